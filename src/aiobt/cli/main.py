@@ -1,0 +1,60 @@
+"""The ``aiobt`` command: one sub-command per module, imported only when used.
+
+Each sub-command module exposes ``add_arguments(parser)`` and
+``run(args) -> int``. Services live in ``aiobt_services.<name>.main`` and follow
+the same shape, so ``aiobt robot ...`` and ``python -m aiobt_services.robot``
+run the same code.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import logging
+import sys
+from collections.abc import Sequence
+
+# name -> (module, one-line help). One place lists every sub-command.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "run": ("aiobt.cli.run", "load an XML tree and tick it until it finishes"),
+    "demo": ("aiobt.cli.demo", "the main job: run the example mission"),
+    "nodes": ("aiobt.cli.nodes", "print the <TreeNodesModel> of every registered node"),
+    "router": ("aiobt.cli.router", "run a Zenoh router in this process"),
+    "robot": ("aiobt_services.robot.main", "the pybullet robot service"),
+    "planner": ("aiobt_services.planner.main", "the planner service"),
+    "controller": ("aiobt_services.controller.main", "the controller service"),
+    "behaviors": ("aiobt_services.behaviors.main", "the behavior service"),
+}
+
+
+def _load(module_name: str) -> object:
+    return importlib.import_module(module_name)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    args = _full_parser(argv).parse_args(argv)
+    logging.basicConfig(
+        level=logging.DEBUG if args.verbose > 1 else logging.INFO,
+        format="%(asctime)s %(levelname).1s %(name)s: %(message)s",
+    )
+    module = _load(args._module)
+    code: int = module.run(args)  # type: ignore[attr-defined]
+    return code
+
+
+def _full_parser(argv: Sequence[str]) -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="aiobt", description="aiobt: asyncio behavior trees")
+    parser.add_argument("-v", "--verbose", action="count", default=0, help="more logging")
+    commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    wanted = next((a for a in argv if not a.startswith("-")), None)
+    for name, (module_name, help_text) in COMMANDS.items():
+        sub = commands.add_parser(name, help=help_text, description=help_text)
+        sub.set_defaults(_module=module_name)
+        if name == wanted:
+            _load(module_name).add_arguments(sub)  # type: ignore[attr-defined]
+    return parser
+
+
+if __name__ == "__main__":
+    sys.exit(main())
