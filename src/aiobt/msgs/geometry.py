@@ -1,0 +1,144 @@
+"""Geometry messages (ROS ``std_msgs``/``geometry_msgs`` shapes) and yaw helpers.
+
+Time stamps are float seconds on the robot clock. A ``PoseStamped`` may also be
+given short, ``{"x": 1.0, "y": 2.0, "yaw": 0.5}`` (frame ``map`` unless a
+``frame_id`` is given), as a user types it on the zenoh command line.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Self
+
+from pydantic import Field, model_validator
+
+from aiobt.msgs._base import Msg
+
+_QUATERNION_NORM_TOLERANCE = 0.01
+
+
+def yaw_to_quaternion(yaw: float) -> tuple[float, float, float, float]:
+    """``(x, y, z, w)`` of a rotation by ``yaw`` radians about z."""
+    half = 0.5 * yaw
+    return 0.0, 0.0, math.sin(half), math.cos(half)
+
+
+def quaternion_to_yaw(x: float, y: float, z: float, w: float) -> float:
+    """Yaw (rotation about z, radians in [-pi, pi]) of a quaternion."""
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def normalize_angle(angle: float) -> float:
+    """``angle`` wrapped into [-pi, pi)."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+class Header(Msg):
+    stamp: float = Field(default=0.0, ge=0.0, description="seconds on the robot clock")
+    frame_id: str = ""
+
+
+class Point(Msg):
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+
+
+class Vector3(Msg):
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+
+
+class Quaternion(Msg):
+    """A unit quaternion; inputs within 1 % of unit length are normalised, others refused."""
+
+    x: float = 0.0
+    y: float = 0.0
+    z: float = 0.0
+    w: float = 1.0
+
+    @model_validator(mode="after")
+    def _unit_length(self) -> Self:
+        norm = math.sqrt(self.x**2 + self.y**2 + self.z**2 + self.w**2)
+        if abs(norm - 1.0) > _QUATERNION_NORM_TOLERANCE:
+            raise ValueError(f"quaternion must have unit length, got norm {norm:.6g}")
+        if norm != 1.0:
+            self.__dict__.update(x=self.x / norm, y=self.y / norm, z=self.z / norm, w=self.w / norm)
+        return self
+
+    @classmethod
+    def from_yaw(cls, yaw: float) -> Self:
+        x, y, z, w = yaw_to_quaternion(yaw)
+        return cls(x=x, y=y, z=z, w=w)
+
+    @property
+    def yaw(self) -> float:
+        return quaternion_to_yaw(self.x, self.y, self.z, self.w)
+
+
+class Pose(Msg):
+    position: Point = Field(default_factory=Point)
+    orientation: Quaternion = Field(default_factory=Quaternion)
+
+    @classmethod
+    def from_xy_yaw(cls, x: float, y: float, yaw: float = 0.0) -> Self:
+        return cls(position=Point(x=x, y=y), orientation=Quaternion.from_yaw(yaw))
+
+    @property
+    def yaw(self) -> float:
+        return self.orientation.yaw
+
+
+class _ShortPose(Msg):
+    """The short goal form; validated first so errors name ``x``, ``y`` or ``yaw``."""
+
+    x: float
+    y: float
+    yaw: float = 0.0
+    frame_id: str = "map"
+    stamp: float = Field(default=0.0, ge=0.0)
+
+
+class PoseStamped(Msg):
+    header: Header = Field(default_factory=lambda: Header(frame_id="map"))
+    pose: Pose = Field(default_factory=Pose)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _short_form(cls, data: Any) -> Any:
+        if isinstance(data, dict) and "x" in data and "pose" not in data:
+            short = _ShortPose.model_validate(data)
+            return {
+                "header": {"stamp": short.stamp, "frame_id": short.frame_id},
+                "pose": Pose.from_xy_yaw(short.x, short.y, short.yaw),
+            }
+        return data
+
+    @classmethod
+    def from_xy_yaw(
+        cls, x: float, y: float, yaw: float = 0.0, frame_id: str = "map", stamp: float = 0.0
+    ) -> Self:
+        return cls(header=Header(stamp=stamp, frame_id=frame_id), pose=Pose.from_xy_yaw(x, y, yaw))
+
+    @property
+    def x(self) -> float:
+        return self.pose.position.x
+
+    @property
+    def y(self) -> float:
+        return self.pose.position.y
+
+    @property
+    def yaw(self) -> float:
+        return self.pose.orientation.yaw
+
+
+class Twist(Msg):
+    linear: Vector3 = Field(default_factory=Vector3)
+    angular: Vector3 = Field(default_factory=Vector3)
+
+    @classmethod
+    def planar(cls, vx: float, wz: float, vy: float = 0.0) -> Self:
+        """A base command: forward ``vx`` m/s, sideways ``vy`` m/s, turn ``wz`` rad/s."""
+        return cls(linear=Vector3(x=vx, y=vy), angular=Vector3(z=wz))

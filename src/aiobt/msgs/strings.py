@@ -1,0 +1,149 @@
+"""Nav2's ``;``-separated string forms (``nav2_behavior_tree/bt_utils.hpp``), both ways.
+
+So these types work as BT port literals in XML:
+
+- Point ``x;y;z``; Quaternion ``x;y;z;w``
+- PoseStamped ``stamp_ns;frame_id;x;y;z;qx;qy;qz;qw`` (Nav2's 9 fields); also
+  accepted: ``x;y;z;qx;qy;qz;qw`` and ``x;y;yaw`` in frame ``map``
+- Goals (``PoseStampedArray``): a multiple of 9 fields
+- Path ``stamp_ns;frame_id`` followed by 9 fields per pose
+
+Stamps are integer nanoseconds in the string, float seconds in the models.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+
+from pydantic import ValidationError
+
+from aiobt.msgs._base import MessageError
+from aiobt.msgs.geometry import Header, Point, PoseStamped, Quaternion
+from aiobt.msgs.nav import Goals, Path
+
+_POSE_FIELDS = 9
+
+
+def _split(text: str) -> list[str]:
+    return [part.strip() for part in text.strip().split(";")] if text.strip() else []
+
+
+def _floats(parts: Sequence[str], names: Sequence[str], what: str) -> list[float]:
+    values: list[float] = []
+    for part, name in zip(parts, names, strict=True):
+        try:
+            values.append(float(part))
+        except ValueError:
+            raise MessageError(what, name, f"'{part}' is not a number") from None
+        if not math.isfinite(values[-1]):
+            raise MessageError(what, name, f"'{part}' is not a finite number")
+    return values
+
+
+def _stamp(part: str, what: str) -> float:
+    try:
+        nanoseconds = int(part)
+    except ValueError:
+        raise MessageError(what, "header.stamp", f"'{part}' is not integer nanoseconds") from None
+    return nanoseconds * 1e-9
+
+
+def point_from_string(text: str) -> Point:
+    parts = _split(text)
+    if len(parts) != 3:
+        raise MessageError("Point", "<string>", f"expected 'x;y;z', got {len(parts)} fields")
+    x, y, z = _floats(parts, "xyz", "Point")
+    return Point(x=x, y=y, z=z)
+
+
+def quaternion_from_string(text: str) -> Quaternion:
+    parts = _split(text)
+    if len(parts) != 4:
+        raise MessageError("Quaternion", "<string>", f"expected 'x;y;z;w', got {len(parts)} fields")
+    x, y, z, w = _floats(parts, "xyzw", "Quaternion")
+    try:
+        return Quaternion(x=x, y=y, z=z, w=w)
+    except ValidationError as exc:
+        raise MessageError.from_validation(Quaternion, exc) from None
+
+
+_NAMES_9 = (
+    *(f"pose.position.{axis}" for axis in "xyz"),
+    *(f"pose.orientation.{axis}" for axis in "xyzw"),
+)
+
+
+def _pose_from_parts(parts: Sequence[str], what: str) -> PoseStamped:
+    if len(parts) == 3:
+        x, y, yaw = _floats(parts, ("x", "y", "yaw"), what)
+        return PoseStamped.from_xy_yaw(x, y, yaw)
+    if len(parts) == 7:
+        stamp, frame, numbers = 0.0, "map", parts
+    elif len(parts) == _POSE_FIELDS:
+        stamp, frame, numbers = _stamp(parts[0], what), parts[1], parts[2:]
+    else:
+        raise MessageError(what, "<string>", f"expected 9, 7 or 3 fields, got {len(parts)}")
+    x, y, z, qx, qy, qz, qw = _floats(numbers, _NAMES_9, what)
+    data = {
+        "header": {"stamp": stamp, "frame_id": frame},
+        "pose": {
+            "position": {"x": x, "y": y, "z": z},
+            "orientation": {"x": qx, "y": qy, "z": qz, "w": qw},
+        },
+    }
+    try:
+        return PoseStamped.model_validate(data)
+    except ValidationError as exc:
+        raise MessageError.from_validation(PoseStamped, exc) from None
+
+
+def pose_stamped_from_string(text: str) -> PoseStamped:
+    return _pose_from_parts(_split(text), "PoseStamped")
+
+
+def goals_from_string(text: str) -> Goals:
+    parts = _split(text)
+    if len(parts) % _POSE_FIELDS:
+        raise MessageError("Goals", "<string>", f"expected 9 fields per pose, got {len(parts)}")
+    chunks = [parts[i : i + _POSE_FIELDS] for i in range(0, len(parts), _POSE_FIELDS)]
+    return Goals(goals=[_pose_from_parts(chunk, "Goals") for chunk in chunks])
+
+
+def path_from_string(text: str) -> Path:
+    parts = _split(text)
+    if len(parts) < 2 or (len(parts) - 2) % _POSE_FIELDS:
+        raise MessageError(
+            "Path", "<string>", f"expected 'stamp;frame' then 9 fields per pose, got {len(parts)}"
+        )
+    header = Header(stamp=_stamp(parts[0], "Path"), frame_id=parts[1])
+    body = parts[2:]
+    chunks = [body[i : i + _POSE_FIELDS] for i in range(0, len(body), _POSE_FIELDS)]
+    return Path(header=header, poses=[_pose_from_parts(chunk, "Path") for chunk in chunks])
+
+
+def _num(value: float) -> str:
+    return repr(float(value))
+
+
+def point_to_string(point: Point) -> str:
+    return ";".join(_num(v) for v in (point.x, point.y, point.z))
+
+
+def quaternion_to_string(q: Quaternion) -> str:
+    return ";".join(_num(v) for v in (q.x, q.y, q.z, q.w))
+
+
+def pose_stamped_to_string(pose: PoseStamped) -> str:
+    stamp = str(round(pose.header.stamp * 1e9))
+    body = f"{point_to_string(pose.pose.position)};{quaternion_to_string(pose.pose.orientation)}"
+    return f"{stamp};{pose.header.frame_id};{body}"
+
+
+def goals_to_string(goals: Goals) -> str:
+    return ";".join(pose_stamped_to_string(p) for p in goals.goals)
+
+
+def path_to_string(path: Path) -> str:
+    head = f"{round(path.header.stamp * 1e9)};{path.header.frame_id}"
+    return ";".join([head, *(pose_stamped_to_string(p) for p in path.poses)])
