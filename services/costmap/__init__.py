@@ -1,0 +1,59 @@
+"""Layered 2D costmaps with Nav2's cost values, on numpy (planner and controller).
+
+Arrays are ``(height, width)`` uint8, indexed ``[row, col]`` (row = y).
+"""
+
+from .collision import (
+    footprint_cost,
+    line_cells,
+    oriented_footprint,
+    point_cost,
+    points_cost,
+    segment_is_free,
+    segment_max_cost,
+)
+from .costmap import Costmap
+from .distance import distance_transform
+from .grid import (
+    FREE,
+    INSCRIBED,
+    LETHAL,
+    NO_INFORMATION,
+    CostArray,
+    CostGrid,
+    GridGeometry,
+)
+from .inflation import InflationParams, costs_from_distance, inflate
+from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max
+from .rolling import RollingCostmap
+from .static_layer import StaticParams, occupancy_to_costs, resample
+
+__all__ = [
+    "FREE",
+    "INSCRIBED",
+    "LETHAL",
+    "NO_INFORMATION",
+    "CostArray",
+    "CostGrid",
+    "Costmap",
+    "GridGeometry",
+    "InflationParams",
+    "ObstacleParams",
+    "RollingCostmap",
+    "Scan",
+    "StaticParams",
+    "clear_and_mark",
+    "combine_max",
+    "costs_from_distance",
+    "distance_transform",
+    "footprint_cost",
+    "inflate",
+    "line_cells",
+    "occupancy_to_costs",
+    "oriented_footprint",
+    "point_cost",
+    "points_cost",
+    "resample",
+    "segment_is_free",
+    "segment_max_cost",
+]

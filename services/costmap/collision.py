@@ -1,0 +1,83 @@
+"""Cost look-ups for points, segments and footprints on a :class:`CostGrid`.
+
+Anything outside the grid counts as LETHAL (Nav2's FootprintCollisionChecker).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+from .grid import LETHAL, CostGrid, FloatArray, IntArray
+
+
+def point_cost(grid: CostGrid, x: float, y: float) -> int:
+    cell = grid.geometry.world_to_cell(x, y)
+    if cell is None:
+        return LETHAL
+    return int(grid.costs[cell[1], cell[0]])
+
+
+def points_cost(grid: CostGrid, xs: npt.ArrayLike, ys: npt.ArrayLike) -> IntArray:
+    """Vectorised :func:`point_cost`."""
+    cols, rows, ok = grid.geometry.world_to_cells(np.asarray(xs), np.asarray(ys))
+    costs: IntArray = np.where(ok, grid.costs[rows, cols], LETHAL).astype(np.intp)
+    return costs
+
+
+def line_cells(col0: int, row0: int, col1: int, row1: int) -> tuple[IntArray, IntArray]:
+    """Cells of the digital line between two cells (both ends included), DDA/Bresenham."""
+    steps = max(abs(col1 - col0), abs(row1 - row0)) + 1
+    cols = np.rint(np.linspace(col0, col1, steps)).astype(np.intp)
+    rows = np.rint(np.linspace(row0, row1, steps)).astype(np.intp)
+    return cols, rows
+
+
+def segment_points(x0: float, y0: float, x1: float, y1: float, spacing: float) -> FloatArray:
+    """``(n, 2)`` points from (x0, y0) to (x1, y1) at most ``spacing`` apart, ends included."""
+    length = math.hypot(x1 - x0, y1 - y0)
+    count = max(2, math.ceil(length / spacing) + 1)
+    t = np.linspace(0.0, 1.0, count)
+    return np.column_stack((x0 + (x1 - x0) * t, y0 + (y1 - y0) * t))
+
+
+def segment_max_cost(grid: CostGrid, x0: float, y0: float, x1: float, y1: float) -> int:
+    """Highest cost of any cell the segment passes through (LETHAL if it leaves the grid)."""
+    points = segment_points(x0, y0, x1, y1, grid.geometry.resolution * 0.5)
+    return int(points_cost(grid, points[:, 0], points[:, 1]).max())
+
+
+def segment_is_free(
+    grid: CostGrid, x0: float, y0: float, x1: float, y1: float, max_cost: int = LETHAL - 1
+) -> bool:
+    """True if no cell along the segment costs more than ``max_cost``."""
+    return segment_max_cost(grid, x0, y0, x1, y1) <= max_cost
+
+
+def oriented_footprint(x: float, y: float, yaw: float, footprint: npt.ArrayLike) -> FloatArray:
+    """Footprint vertices ``(k, 2)`` in the robot frame, moved to pose (x, y, yaw)."""
+    vertices = np.asarray(footprint, dtype=np.float64).reshape(-1, 2)
+    c, s = math.cos(yaw), math.sin(yaw)
+    rotated = vertices @ np.array([[c, s], [-s, c]])
+    result: FloatArray = rotated + np.array([x, y])
+    return result
+
+
+def footprint_cost(grid: CostGrid, x: float, y: float, yaw: float, footprint: npt.ArrayLike) -> int:
+    """Nav2 ``footprintCost``: the highest cost on the footprint's outline.
+
+    With fewer than 3 vertices the robot is a point (circular robots rely on
+    the inflation layer's inscribed cost).
+    """
+    vertices = oriented_footprint(x, y, yaw, footprint)
+    if len(vertices) < 3:
+        return point_cost(grid, x, y)
+    spacing = grid.geometry.resolution * 0.5
+    edges = [
+        segment_points(a[0], a[1], b[0], b[1], spacing)
+        for a, b in zip(vertices, np.roll(vertices, -1, axis=0), strict=True)
+    ]
+    outline = np.concatenate(edges)
+    return int(points_cost(grid, outline[:, 0], outline[:, 1]).max())

@@ -1,0 +1,108 @@
+"""The obstacle layer: marking and clearing from 2D laser scans by ray tracing."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry
+
+
+@dataclass(frozen=True, slots=True)
+class ObstacleParams:
+    """Nav2 ``obstacle_layer`` observation-source parameters (meters)."""
+
+    obstacle_max_range: float = 2.5
+    obstacle_min_range: float = 0.0
+    raytrace_max_range: float = 3.0
+    raytrace_min_range: float = 0.0
+    inf_is_valid: bool = True
+
+
+@dataclass(frozen=True, slots=True)
+class Scan:
+    """A planar laser scan taken at a sensor pose in the costmap's frame."""
+
+    sensor_x: float
+    sensor_y: float
+    sensor_yaw: float
+    angle_min: float
+    angle_increment: float
+    ranges: FloatArray
+    range_min: float = 0.0
+    range_max: float = math.inf
+
+    @classmethod
+    def create(
+        cls,
+        pose: tuple[float, float, float],
+        angle_min: float,
+        angle_increment: float,
+        ranges: npt.ArrayLike,
+        range_min: float = 0.0,
+        range_max: float = math.inf,
+    ) -> Scan:
+        values = np.asarray(ranges, dtype=np.float64).ravel()
+        return cls(*pose, angle_min, angle_increment, values, range_min, range_max)
+
+
+def _rays(
+    scan: Scan, params: ObstacleParams
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Unit directions, clearing lengths and hit flags of the usable rays."""
+    ranges = scan.ranges.copy()
+    angles: FloatArray = (
+        scan.sensor_yaw
+        + scan.angle_min
+        + scan.angle_increment * np.arange(ranges.size, dtype=np.float64)
+    )
+    no_return = np.isinf(ranges) | (ranges >= scan.range_max)
+    if params.inf_is_valid:
+        ranges = np.where(np.isinf(ranges), scan.range_max, ranges)
+    usable = np.isfinite(ranges) & (ranges >= scan.range_min)
+    hit = usable & ~no_return
+    hit &= (ranges <= params.obstacle_max_range) & (ranges >= params.obstacle_min_range)
+    traced = np.where(usable & (ranges >= params.raytrace_min_range), ranges, 0.0)
+    clear_len: FloatArray = np.minimum(traced, params.raytrace_max_range).astype(np.float64)
+    ranges = np.where(usable, ranges, 0.0).astype(np.float64)
+    return angles, ranges, clear_len, hit.astype(np.float64)
+
+
+def clear_and_mark(
+    grid: CostArray, geometry: GridGeometry, scan: Scan, params: ObstacleParams
+) -> None:
+    """Ray-trace free space along every ray, then mark the hit cells LETHAL (in place).
+
+    Rays are sampled every half cell; the cell of a hit is never cleared by
+    its own ray. Points outside the grid are ignored.
+    """
+    if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
+        raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
+    angles, ranges, clear_len, hit = _rays(scan, params)
+    dx, dy = np.cos(angles), np.sin(angles)
+    flat = grid.reshape(-1)
+    step = geometry.resolution * 0.5
+    longest = float(clear_len.max(initial=0.0))
+    if longest > 0.0:
+        t = np.arange(0.0, longest, step)
+        inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
+        xs = scan.sensor_x + dx[:, None] * t[None, :]
+        ys = scan.sensor_y + dy[:, None] * t[None, :]
+        cols, rows, ok = geometry.world_to_cells(xs[inside], ys[inside])
+        flat[rows[ok] * geometry.width + cols[ok]] = FREE
+    marks = hit > 0
+    cols, rows, ok = geometry.world_to_cells(
+        scan.sensor_x + dx[marks] * ranges[marks], scan.sensor_y + dy[marks] * ranges[marks]
+    )
+    flat[rows[ok] * geometry.width + cols[ok]] = LETHAL
+
+
+def combine_max(master: CostArray, layer: CostArray) -> CostArray:
+    """Nav2 ``updateWithMax``: unknown layer cells are skipped; otherwise the
+    layer wins over unknown master cells and over lower costs."""
+    known = layer != NO_INFORMATION
+    take = known & ((master == NO_INFORMATION) | (master < layer))
+    return np.where(take, layer, master).astype(np.uint8)

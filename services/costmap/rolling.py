@@ -1,0 +1,78 @@
+"""A rolling-window costmap that stays centred on the robot (Nav2 local costmap)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .costmap import Costmap
+from .grid import NO_INFORMATION, CostArray, GridGeometry
+from .inflation import InflationParams
+from .obstacle_layer import ObstacleParams
+from .static_layer import resample
+
+
+class RollingCostmap(Costmap):
+    """A fixed-size window whose origin follows the robot, snapped to whole cells.
+
+    Obstacle cells that stay inside the window keep their value when it moves;
+    newly uncovered cells are unknown. An optional static source (a global cost
+    grid, e.g. from the map) is resampled into the window on every move.
+    """
+
+    __slots__ = ("_static_source",)
+
+    def __init__(
+        self,
+        width_m: float,
+        height_m: float,
+        resolution: float,
+        inflation: InflationParams | None = None,
+        obstacle_params: ObstacleParams | None = None,
+        track_unknown_space: bool = False,
+    ) -> None:
+        width = max(1, round(width_m / resolution))
+        height = max(1, round(height_m / resolution))
+        geometry = GridGeometry(
+            width, height, resolution, -width * resolution / 2, -height * resolution / 2
+        )
+        super().__init__(geometry, inflation, obstacle_params, None, track_unknown_space)
+        self._static_source: tuple[CostArray, GridGeometry] | None = None
+
+    def set_static_source(self, costs: CostArray, geometry: GridGeometry) -> None:
+        """Use a global static cost grid (Nav2 costs) as this window's static layer."""
+        self._static_source = (costs, geometry)
+        self.static = resample(costs, geometry, self.geometry)
+        self._dirty = True
+
+    def update_origin(self, robot_x: float, robot_y: float) -> None:
+        """Centre the window on the robot; shift the obstacle layer by whole cells."""
+        if not (math.isfinite(robot_x) and math.isfinite(robot_y)):
+            raise ValueError(f"robot position must be finite, got ({robot_x}, {robot_y})")
+        g = self.geometry
+        res = g.resolution
+        new_x = math.floor((robot_x - g.size_x / 2) / res + 1e-9) * res
+        new_y = math.floor((robot_y - g.size_y / 2) / res + 1e-9) * res
+        shift_c = round((new_x - g.origin_x) / res)
+        shift_r = round((new_y - g.origin_y) / res)
+        if shift_c == 0 and shift_r == 0:
+            return
+        self.obstacles = _shifted(self.obstacles, shift_r, shift_c)
+        self.geometry = g.moved_to(g.origin_x + shift_c * res, g.origin_y + shift_r * res)
+        if self._static_source is not None:
+            self.static = resample(*self._static_source, self.geometry)
+        self._dirty = True
+
+
+def _shifted(grid: CostArray, shift_r: int, shift_c: int) -> CostArray:
+    """``out[r, c] = grid[r + shift_r, c + shift_c]`` where defined, unknown elsewhere."""
+    height, width = grid.shape
+    out = np.full_like(grid, NO_INFORMATION)
+    src_r = slice(max(0, shift_r), min(height, height + shift_r))
+    dst_r = slice(max(0, -shift_r), min(height, height - shift_r))
+    src_c = slice(max(0, shift_c), min(width, width + shift_c))
+    dst_c = slice(max(0, -shift_c), min(width, width - shift_c))
+    if src_r.start < src_r.stop and src_c.start < src_c.stop:
+        out[dst_r, dst_c] = grid[src_r, src_c]
+    return out
