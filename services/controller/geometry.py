@@ -1,0 +1,100 @@
+"""Planar geometry shared by the controllers, checkers and behaviors.
+
+Poses are ``(x, y, yaw)`` in one frame; paths are numpy arrays so that the
+per-cycle work (closest point, lookahead, tracking error) is vectorised.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+
+def wrap_angle(angle: float) -> float:
+    """Angle wrapped to ``[-pi, pi)``."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+@dataclass(slots=True, frozen=True)
+class Pose2D:
+    """A planar pose: position in metres, heading in radians."""
+
+    x: float
+    y: float
+    yaw: float
+
+    def distance_to(self, other: Pose2D) -> float:
+        return math.hypot(other.x - self.x, other.y - self.y)
+
+    def is_finite(self) -> bool:
+        return math.isfinite(self.x) and math.isfinite(self.y) and math.isfinite(self.yaw)
+
+
+@dataclass(slots=True, frozen=True)
+class Velocity:
+    """A unicycle command or measurement: forward speed ``v``, yaw rate ``w``."""
+
+    v: float = 0.0
+    w: float = 0.0
+
+    def is_finite(self) -> bool:
+        return math.isfinite(self.v) and math.isfinite(self.w)
+
+
+STOP = Velocity(0.0, 0.0)
+
+
+@dataclass(slots=True, frozen=True)
+class PlanarPath:
+    """A path in one frame: ``xy`` is (N, 2), ``yaw`` is (N,)."""
+
+    frame_id: str
+    xy: FloatArray
+    yaw: FloatArray
+
+    @classmethod
+    def from_poses(cls, frame_id: str, poses: list[tuple[float, float, float]]) -> PlanarPath:
+        array = np.asarray(poses, dtype=np.float64).reshape(-1, 3)
+        return cls(frame_id, array[:, :2].copy(), array[:, 2].copy())
+
+    def __len__(self) -> int:
+        return int(self.xy.shape[0])
+
+    @property
+    def goal(self) -> Pose2D:
+        x, y = self.xy[-1]
+        return Pose2D(float(x), float(y), float(self.yaw[-1]))
+
+    def segment_lengths(self) -> FloatArray:
+        diff = np.diff(self.xy, axis=0)
+        lengths: FloatArray = np.hypot(diff[:, 0], diff[:, 1])
+        return lengths
+
+    def length(self) -> float:
+        return float(self.segment_lengths().sum())
+
+
+def to_robot_frame(pose: Pose2D, points: FloatArray) -> FloatArray:
+    """Points (N, 2) expressed in the robot frame of ``pose`` (x ahead, y left)."""
+    cos_yaw, sin_yaw = math.cos(pose.yaw), math.sin(pose.yaw)
+    dx = points[:, 0] - pose.x
+    dy = points[:, 1] - pose.y
+    return np.column_stack((cos_yaw * dx + sin_yaw * dy, -sin_yaw * dx + cos_yaw * dy))
+
+
+def integrate_arc(pose: Pose2D, cmd: Velocity, times: FloatArray) -> FloatArray:
+    """Poses (T, 3) reached from ``pose`` holding ``cmd`` for each of ``times``."""
+    yaw = pose.yaw + cmd.w * times
+    if abs(cmd.w) < 1e-9:
+        x = pose.x + cmd.v * times * math.cos(pose.yaw)
+        y = pose.y + cmd.v * times * math.sin(pose.yaw)
+    else:
+        radius = cmd.v / cmd.w
+        x = pose.x + radius * (np.sin(yaw) - math.sin(pose.yaw))
+        y = pose.y - radius * (np.cos(yaw) - math.cos(pose.yaw))
+    return np.column_stack((x, y, yaw))

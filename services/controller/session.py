@@ -1,0 +1,214 @@
+"""One FollowPath goal as a pure state machine, stepped once per control cycle.
+
+The service feeds it the clock time and the latest robot states (per frame) and
+publishes what it returns; nothing here does I/O, so every failure path is
+unit-testable with a kinematic model and a fake clock.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+from .base import ControlContext, Controller
+from .checkers import CheckerRegistry, GoalChecker, ProgressChecker, default_checkers
+from .collision import CollisionChecker
+from .dwb import DWBController
+from .errors import ControllerError, FollowPathCode
+from .geometry import STOP, PlanarPath, Pose2D, Velocity
+from .rpp import RegulatedPurePursuit
+from .tracking import TrackingFeedback, project_onto_path, tracking_feedback
+
+
+@dataclass(slots=True, frozen=True)
+class FollowRequest:
+    path: PlanarPath
+    controller_id: str = ""
+    goal_checker_id: str = ""
+    progress_checker_id: str = ""
+
+
+@dataclass(slots=True, frozen=True)
+class RobotState:
+    """A pose (and measured velocity) in one frame, stamped on the robot clock."""
+
+    pose: Pose2D
+    velocity: Velocity
+    stamp: float
+
+
+@dataclass(slots=True)
+class ControllerConfig:
+    control_period: float = 0.05
+    pose_timeout: float = 0.5
+    failure_tolerance: float = 0.3
+    time_allowance: float = 0.0  # 0: no limit on a goal's duration
+    known_frames: tuple[str, ...] = ("map", "odom")
+    default_controller: str = "FollowPath"
+    default_goal_checker: str = "general_goal_checker"
+    default_progress_checker: str = "progress_checker"
+    controllers: dict[str, Callable[[], Controller]] = field(
+        default_factory=lambda: {"FollowPath": RegulatedPurePursuit, "DWB": DWBController}
+    )
+    checkers: CheckerRegistry = field(default_factory=default_checkers)
+
+
+@dataclass(slots=True, frozen=True)
+class StepResult:
+    cmd: Velocity
+    feedback: TrackingFeedback | None = None
+    succeeded: bool = False
+    error: ControllerError | None = None
+
+    @property
+    def finished(self) -> bool:
+        return self.succeeded or self.error is not None
+
+
+def _pick(kind: str, wanted: str, default: str, known: Mapping[str, object]) -> str:
+    name = wanted or default
+    if name not in known:
+        raise ControllerError(
+            FollowPathCode.INVALID_CONTROLLER,
+            f"unknown {kind} {name!r}; known: {', '.join(sorted(known))}",
+        )
+    return name
+
+
+def validate_path(path: PlanarPath, known_frames: tuple[str, ...]) -> None:
+    if len(path) == 0:
+        raise ControllerError(FollowPathCode.INVALID_PATH, "path is empty")
+    if len(path) == 1:
+        raise ControllerError(
+            FollowPathCode.INVALID_PATH, "path has a single pose; at least two are needed"
+        )
+    if path.frame_id not in known_frames:
+        raise ControllerError(
+            FollowPathCode.TF_ERROR,
+            f"path frame {path.frame_id!r} is unknown; known frames: {', '.join(known_frames)}",
+        )
+    for name, column in (("x", path.xy[:, 0]), ("y", path.xy[:, 1]), ("yaw", path.yaw)):
+        bad = [i for i, value in enumerate(column) if not math.isfinite(float(value))]
+        if bad:
+            raise ControllerError(
+                FollowPathCode.INVALID_PATH, f"path pose {bad[0]} has a non-finite {name}"
+            )
+
+
+class FollowPathSession:
+    """Runs one FollowPath goal: validate, then :meth:`step` each control cycle."""
+
+    __slots__ = (
+        "_collision", "_config", "_controller", "_failing_since", "_goal_checker",
+        "_ids", "_progress", "_request", "_started",
+    )  # fmt: skip
+
+    def __init__(
+        self,
+        request: FollowRequest,
+        config: ControllerConfig,
+        now: float,
+        collision: CollisionChecker | None,
+    ) -> None:
+        self._config = config
+        self._collision = collision
+        self._started = now
+        self._failing_since: float | None = None
+        self._ids = ("", "", "")
+        self._install(request, now)
+
+    @property
+    def request(self) -> FollowRequest:
+        return self._request
+
+    def replace(self, request: FollowRequest, now: float) -> None:
+        """Take over a new path (preemption) without stopping; raises on a bad request."""
+        self._install(request, now)
+
+    def _install(self, request: FollowRequest, now: float) -> None:
+        cfg = self._config
+        ids = (
+            _pick("controller id", request.controller_id, cfg.default_controller, cfg.controllers),
+            _pick(
+                "goal checker id",
+                request.goal_checker_id,
+                cfg.default_goal_checker,
+                cfg.checkers.goal_checkers,
+            ),
+            _pick(
+                "progress checker id",
+                request.progress_checker_id,
+                cfg.default_progress_checker,
+                cfg.checkers.progress_checkers,
+            ),
+        )
+        validate_path(request.path, cfg.known_frames)
+        if ids[0] != self._ids[0]:
+            self._controller: Controller = cfg.controllers[ids[0]]()
+        if ids[1] != self._ids[1]:
+            self._goal_checker: GoalChecker = cfg.checkers.goal_checkers[ids[1]]()
+        if ids[2] != self._ids[2]:
+            self._progress: ProgressChecker = cfg.checkers.progress_checkers[ids[2]]()
+        self._ids = ids
+        self._request = request
+        self._controller.set_plan(request.path)
+        self._goal_checker.reset()
+
+    def step(self, now: float, states: Mapping[str, RobotState]) -> StepResult:
+        try:
+            return self._step(now, states)
+        except ControllerError as error:
+            return StepResult(STOP, error=error)
+
+    def _step(self, now: float, states: Mapping[str, RobotState]) -> StepResult:
+        cfg = self._config
+        path = self._request.path
+        if cfg.time_allowance > 0.0 and now - self._started > cfg.time_allowance:
+            raise ControllerError(
+                FollowPathCode.CONTROLLER_TIMED_OUT,
+                f"goal not reached within the time allowance of {cfg.time_allowance:.1f} s",
+            )
+        state = self._fresh_state(now, states, path.frame_id)
+        feedback = tracking_feedback(path, state.pose, project_onto_path(path, state.pose))
+        if self._goal_checker.is_goal_reached(state.pose, path.goal, state.velocity):
+            return StepResult(STOP, feedback, succeeded=True)
+        if not self._progress.check(state.pose, now):
+            raise ControllerError(FollowPathCode.FAILED_TO_MAKE_PROGRESS, "failed to make progress")
+        return StepResult(self._compute(now, state), feedback)
+
+    def _fresh_state(self, now: float, states: Mapping[str, RobotState], frame: str) -> RobotState:
+        state = states.get(frame)
+        if state is None:
+            raise ControllerError(
+                FollowPathCode.TF_ERROR, f"no robot pose received in frame {frame!r}"
+            )
+        age = now - state.stamp
+        if age > self._config.pose_timeout:
+            raise ControllerError(
+                FollowPathCode.TF_ERROR,
+                f"robot pose in frame {frame!r} is stale ({age:.2f} s old, "
+                f"pose_timeout {self._config.pose_timeout:.2f} s); stopping",
+            )
+        if not state.pose.is_finite():
+            raise ControllerError(
+                FollowPathCode.TF_ERROR, f"robot pose in frame {frame!r} is not finite"
+            )
+        return state
+
+    def _compute(self, now: float, state: RobotState) -> Velocity:
+        ctx = ControlContext(
+            self._config.control_period, self._goal_checker.xy_goal_tolerance, self._collision
+        )
+        try:
+            cmd = self._controller.compute_velocity(state.pose, state.velocity, ctx)
+        except ControllerError as error:
+            if self._failing_since is None:
+                self._failing_since = now
+            waited = now - self._failing_since
+            if waited >= self._config.failure_tolerance:
+                error.message = f"{error.message}; no valid control for {waited:.2f} s"
+                raise
+            return STOP
+        self._failing_since = None
+        return cmd

@@ -1,0 +1,197 @@
+"""FollowPath goal handling: bad requests, stale poses, patience, preemption, collisions."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
+from aiobt_services.controller.errors import ControllerError, FollowPathCode
+from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
+from aiobt_services.controller.session import (
+    ControllerConfig,
+    FollowPathSession,
+    FollowRequest,
+    RobotState,
+)
+from aiobt_services.controller.unicycle import Unicycle
+
+from .courses import drive, polyline, straight
+
+
+def _start(request: FollowRequest, config: ControllerConfig | None = None) -> FollowPathSession:
+    return FollowPathSession(request, config or ControllerConfig(), 0.0, None)
+
+
+def _state(pose: Pose2D, stamp: float = 0.0) -> dict[str, RobotState]:
+    return {"map": RobotState(pose, Velocity(), stamp)}
+
+
+@pytest.mark.parametrize(
+    ("request_", "code", "message"),
+    [
+        (
+            FollowRequest(PlanarPath.from_poses("map", [])),
+            FollowPathCode.INVALID_PATH,
+            "path is empty",
+        ),
+        (
+            FollowRequest(PlanarPath.from_poses("map", [(1.0, 0.0, 0.0)])),
+            FollowPathCode.INVALID_PATH,
+            "single pose",
+        ),
+        (
+            FollowRequest(PlanarPath.from_poses("base_link", [(0, 0, 0), (1, 0, 0)])),
+            FollowPathCode.TF_ERROR,
+            "path frame 'base_link' is unknown",
+        ),
+        (
+            FollowRequest(PlanarPath.from_poses("map", [(0, 0, 0), (math.nan, 0, 0)])),
+            FollowPathCode.INVALID_PATH,
+            "path pose 1 has a non-finite x",
+        ),
+        (
+            FollowRequest(straight(), controller_id="MPPI"),
+            FollowPathCode.INVALID_CONTROLLER,
+            "unknown controller id 'MPPI'; known: DWB, FollowPath",
+        ),
+        (
+            FollowRequest(straight(), goal_checker_id="nope"),
+            FollowPathCode.INVALID_CONTROLLER,
+            "unknown goal checker id 'nope'",
+        ),
+        (
+            FollowRequest(straight(), progress_checker_id="nope"),
+            FollowPathCode.INVALID_CONTROLLER,
+            "unknown progress checker id 'nope'",
+        ),
+    ],
+    ids=["empty", "single", "frame", "nan", "controller", "goal_checker", "progress_checker"],
+)
+def test_bad_request_gets_code_and_message(request_, code, message):
+    with pytest.raises(ControllerError) as caught:
+        _start(request_)
+    assert caught.value.code == code
+    assert message in caught.value.message
+
+
+def test_empty_ids_select_the_defaults():
+    session = _start(FollowRequest(straight()))
+    step = session.step(0.0, _state(Pose2D(0.0, 0.0, 0.0)))
+    assert step.error is None
+    assert step.cmd.v > 0.0
+
+
+def test_stale_pose_stops_robot_with_tf_error():
+    session = _start(FollowRequest(straight()))
+    assert session.step(0.0, _state(Pose2D(0, 0, 0), stamp=0.0)).cmd.v > 0.0
+    step = session.step(0.6, _state(Pose2D(0, 0, 0), stamp=0.0))
+    assert step.cmd == Velocity(0.0, 0.0)
+    assert step.error is not None
+    assert step.error.code == FollowPathCode.TF_ERROR
+    assert "stale" in step.error.message
+
+
+def test_missing_pose_frame_is_a_tf_error():
+    session = _start(FollowRequest(straight()))
+    step = session.step(0.0, {})
+    assert step.error is not None
+    assert step.error.code == FollowPathCode.TF_ERROR
+    assert "no robot pose received in frame 'map'" in step.error.message
+
+
+def test_robot_that_does_not_move_fails_to_make_progress():
+    session = _start(FollowRequest(straight()))
+    pose = Pose2D(0.0, 0.0, 0.0)
+    now = 0.0
+    while now < 10.0:
+        assert session.step(now, _state(pose, now)).error is None
+        now += 0.5
+    step = session.step(10.5, _state(pose, 10.5))
+    assert step.error is not None
+    assert step.error.code == FollowPathCode.FAILED_TO_MAKE_PROGRESS
+
+
+def test_time_allowance_gives_controller_timed_out():
+    config = ControllerConfig(time_allowance=2.0)
+    run, _ = drive(straight(10.0), config=config)
+    assert run.result is not None
+    assert run.result.error is not None
+    assert run.result.error.code == FollowPathCode.CONTROLLER_TIMED_OUT
+    assert run.time == pytest.approx(2.05, abs=0.06)
+
+
+def _wall_at(x: float) -> CollisionChecker:
+    grid = GridCostmap.empty(8.0, 4.0, 0.05, (-2.0, -2.0))
+    grid.fill_box(x, -2.0, x + 0.2, 2.0, LETHAL)
+    return CollisionChecker(grid)
+
+
+def test_obstacle_ahead_stops_rpp_before_contact_with_no_valid_control():
+    run, robot = drive(straight(4.0), collision=_wall_at(2.0))
+    assert run.result is not None
+    assert run.result.error is not None
+    assert run.result.error.code == FollowPathCode.NO_VALID_CONTROL
+    assert "detected collision ahead" in run.result.error.message
+    assert "no valid control for 0.3" in run.result.error.message
+    assert 1.0 < robot.pose.x < 2.0
+    assert run.commands[-1] == (0.0, 0.0)
+
+
+def test_obstacle_ahead_makes_dwb_stop_short_then_fail_to_make_progress():
+    # DWB keeps standing-still samples valid, so it halts at the wall and the
+    # progress checker ends the goal, as Nav2's DWB does
+    run, robot = drive(straight(4.0), controller_id="DWB", collision=_wall_at(2.0))
+    assert run.result is not None
+    assert run.result.error is not None
+    assert run.result.error.code == FollowPathCode.FAILED_TO_MAKE_PROGRESS
+    assert 1.0 < robot.pose.x < 2.0
+    assert run.commands[-1] == (0.0, 0.0)
+
+
+def test_failure_within_patience_stops_then_resumes_when_cleared():
+    checker = _wall_at(2.0)
+    session = FollowPathSession(FollowRequest(straight(4.0)), ControllerConfig(), 0.0, checker)
+    pose = Pose2D(1.7, 0.0, 0.0)
+    step = session.step(0.0, {"map": RobotState(pose, Velocity(0.5, 0.0), 0.0)})
+    assert step.error is None
+    assert step.cmd == Velocity(0.0, 0.0)
+    assert isinstance(checker.costmap, GridCostmap)
+    checker.costmap.costs[:] = 0
+    step = session.step(0.1, {"map": RobotState(pose, Velocity(0.0, 0.0), 0.1)})
+    assert step.error is None
+    assert step.cmd.v > 0.0
+
+
+def test_replace_takes_new_path_without_stopping():
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    session = FollowPathSession(FollowRequest(straight(4.0)), ControllerConfig(), 0.0, None)
+    now = 0.0
+    for _ in range(40):
+        step = session.step(now, {"map": RobotState(robot.pose, robot.velocity, now)})
+        robot.step(step.cmd, 0.05)
+        now += 0.05
+    x = robot.pose.x
+    session.replace(FollowRequest(polyline([(x - 0.5, 0.0), (x + 1.0, 0.0), (x + 1.0, 2.0)])), now)
+    step = session.step(now, {"map": RobotState(robot.pose, robot.velocity, now)})
+    assert step.cmd.v > 0.3  # kept moving on the new path
+    assert session.request.path.goal.y == 2.0
+
+
+def test_replace_with_bad_path_raises_and_keeps_old_one():
+    session = _start(FollowRequest(straight()))
+    with pytest.raises(ControllerError):
+        session.replace(FollowRequest(PlanarPath.from_poses("map", [])), 0.1)
+    assert len(session.request.path) == len(straight())
+
+
+def test_feedback_reports_signed_cross_track_and_remaining_length():
+    session = _start(FollowRequest(straight(4.0)))
+    step = session.step(0.0, _state(Pose2D(1.0, -0.2, 0.1)))
+    fb = step.feedback
+    assert fb is not None
+    assert fb.cross_track_error == pytest.approx(-0.2)
+    assert fb.heading_error == pytest.approx(0.1)
+    assert fb.remaining_path_length == pytest.approx(3.0)
+    assert fb.distance_to_goal == pytest.approx(float(np.hypot(3.0, 0.2)))
