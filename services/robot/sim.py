@@ -1,0 +1,290 @@
+"""The simulated robot: a stepped, deterministic pybullet world around a diff-drive base.
+
+:class:`Simulation` has its own time line (``time``, advanced by ``dt`` per
+:meth:`step`); nothing in here reads the wall clock, so a test can step it as
+fast as the CPU allows and get the same result every run.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+
+from .drive import CommandVerdict, DriveController, DriveLimits
+from .geometry import Pose2D
+from .mapfile import OCCUPIED, MapInfo
+from .obstacles import Motion, ObstacleError, ObstacleSpec, validate
+from .sensors import (
+    Battery,
+    BatteryConfig,
+    LidarConfig,
+    NoiseConfig,
+    WheelOdometry,
+    noisy_pose,
+    ranges_from_hits,
+    ray_endpoints,
+)
+from .world import Physics, RobotShape
+
+log = logging.getLogger("aiobt_services.robot.sim")
+
+
+class PoseError(ValueError):
+    """A requested robot pose is outside the world or inside something solid."""
+
+
+@dataclass(slots=True, frozen=True)
+class SimConfig:
+    dt: float = 0.01
+    limits: DriveLimits = field(default_factory=DriveLimits)
+    noise: NoiseConfig = field(default_factory=NoiseConfig)
+    lidar: LidarConfig = field(default_factory=LidarConfig)
+    battery: BatteryConfig = field(default_factory=BatteryConfig)
+    robot: RobotShape = field(default_factory=RobotShape)
+    gui: bool = False
+
+
+@dataclass(slots=True, frozen=True)
+class ContactEvent:
+    """The bumper: contact with ``other`` ("wall" or an obstacle id) began or ended."""
+
+    time: float
+    pressed: bool
+    other: str
+    x: float
+    y: float
+    angle: float  # direction of the contact seen from the robot, rad, 0 = ahead
+
+
+@dataclass(slots=True, frozen=True)
+class Scan:
+    time: float
+    ranges: npt.NDArray[np.float64]
+    config: LidarConfig
+
+
+@dataclass(slots=True)
+class _Obstacle:
+    spec: ObstacleSpec
+    body: int
+    since: float
+
+
+class Simulation:
+    """A world (walls from the map), one robot, obstacles; stepped by the caller."""
+
+    def __init__(self, world: MapInfo, config: SimConfig | None = None) -> None:
+        self.world = world
+        self.config = config or SimConfig()
+        self.time = 0.0
+        self.steps = 0
+        self.drive = DriveController(self.config.limits)
+        self.battery = Battery(self.config.battery)
+        self.odometry = WheelOdometry()
+        self._rng = np.random.default_rng(self.config.noise.seed)
+        self._physics = Physics(gui=self.config.gui, dt=self.config.dt)
+        self._walls = set(self._physics.build_walls(world))
+        start = Pose2D(*world.start)
+        self._robot = self._physics.robot(self.config.robot, start)
+        self._true = start
+        self._loc_offset = Pose2D()
+        self._obstacles: dict[str, _Obstacle] = {}
+        self._contacts: dict[str, ContactEvent] = {}
+
+    # -- lifecycle -------------------------------------------------------
+    def close(self) -> None:
+        self._physics.close()
+
+    def __enter__(self) -> Simulation:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    # -- commands --------------------------------------------------------
+    def command(self, linear: float, angular: float) -> CommandVerdict:
+        verdict = self.drive.command(linear, angular, self.time)
+        if not verdict.accepted:
+            log.warning("velocity command dropped: %s", verdict.reason)
+        elif verdict.clamped:
+            log.debug(
+                "velocity command (%s, %s) clamped to (%s, %s)",
+                linear,
+                angular,
+                verdict.linear,
+                verdict.angular,
+            )
+        return verdict
+
+    def step(self, count: int = 1) -> list[ContactEvent]:
+        """Advance ``count`` physics steps; returns the bumper events that occurred."""
+        events: list[ContactEvent] = []
+        for _ in range(count):
+            events.extend(self._step_once())
+        return events
+
+    def run_for(self, seconds: float) -> list[ContactEvent]:
+        return self.step(max(0, round(seconds / self.config.dt)))
+
+    def _step_once(self) -> list[ContactEvent]:
+        dt, cfg = self.config.dt, self.config
+        linear, angular = self.drive.update(self.time, dt)
+        if self.battery.depleted:
+            linear = angular = 0.0
+        body_speed = linear * (1.0 - cfg.noise.slip)
+        yaw = self._true.yaw
+        self._physics.call(
+            "resetBaseVelocity",
+            self._robot,
+            (body_speed * math.cos(yaw), body_speed * math.sin(yaw), 0.0),
+            (0.0, 0.0, angular),
+        )
+        self._move_dynamic_obstacles()
+        self._physics.call("stepSimulation")
+        self.time = round(self.time + dt, 9)
+        self.steps += 1
+        pose = self._physics.planar_pose(self._robot)
+        self._physics.place(self._robot, pose, cfg.robot.z)  # keep the base flat
+        self._true = pose
+        self.odometry.update(linear, angular, dt, cfg.noise, self._rng)
+        dock = self.world.dock
+        self.battery.update(linear, angular, dock is not None and dock.contains(pose.x, pose.y), dt)
+        return self._contact_events()
+
+    # -- state -----------------------------------------------------------
+    @property
+    def true_pose(self) -> Pose2D:
+        """Ground truth in ``map``."""
+        return self._true
+
+    def localized_pose(self) -> Pose2D:
+        """The localization stand-in: truth, offset by ``initialpose``, plus noise."""
+        return noisy_pose(self._loc_offset.compose(self._true), self.config.noise, self._rng)
+
+    def scan(self) -> Scan:
+        cfg = self.config.lidar
+        start_radius = max(cfg.range_min, self.config.robot.radius + 0.01)
+        starts, ends = ray_endpoints(self._true, cfg, start_radius)
+        results = self._physics.call("rayTestBatch", starts.tolist(), ends.tolist())
+        hit = np.fromiter((r[0] >= 0 for r in results), dtype=bool, count=len(results))
+        fractions = np.fromiter((r[2] for r in results), dtype=np.float64, count=len(results))
+        return Scan(self.time, ranges_from_hits(fractions, hit, cfg, start_radius, self._rng), cfg)
+
+    # -- robot pose ------------------------------------------------------
+    def check_free(self, pose: Pose2D, clearance: float, ignore: str = "") -> None:
+        """Raise :class:`PoseError` unless a disc of ``clearance`` at ``pose`` is free."""
+        if not all(math.isfinite(v) for v in (pose.x, pose.y, pose.yaw)):
+            raise PoseError(f"pose ({pose.x}, {pose.y}, {pose.yaw}) is not finite")
+        if not self.world.contains(pose.x, pose.y, margin=clearance):
+            raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) is outside the world")
+        if self._grid_blocked(pose.x, pose.y, clearance):
+            raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) overlaps a wall")
+        for oid, obstacle in self._obstacles.items():
+            here = obstacle.spec.pose_at(self.time - obstacle.since)
+            if oid != ignore and here.distance_to(pose) < clearance + obstacle.spec.bounding_radius:
+                raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) overlaps obstacle '{oid}'")
+
+    def _grid_blocked(self, x: float, y: float, radius: float) -> bool:
+        w = self.world
+        row, col = w.world_to_cell(x, y)
+        reach = radius / w.resolution + 1.0
+        r0, r1 = max(0, math.floor(row - reach)), min(w.height, math.ceil(row + reach) + 1)
+        c0, c1 = max(0, math.floor(col - reach)), min(w.width, math.ceil(col + reach) + 1)
+        rows, cols = np.mgrid[r0:r1, c0:c1]
+        near = np.hypot(rows + 0.5 - row, cols + 0.5 - col) <= radius / w.resolution + 0.5
+        return bool(np.any(w.grid[r0:r1, c0:c1][near] == OCCUPIED))
+
+    def teleport(self, pose: Pose2D) -> None:
+        """Move the robot (e.g. ``initialpose``); odometry keeps running, motion stops."""
+        self.check_free(pose, self.config.robot.radius)
+        self._physics.place(self._robot, pose, self.config.robot.z)
+        self._true = pose
+        self._loc_offset = Pose2D()
+        self.drive.stop()
+
+    def set_localization(self, estimate: Pose2D) -> None:
+        """Make the localization believe the robot is at ``estimate`` (AMCL-style)."""
+        self._loc_offset = estimate.compose(self._true.inverse())
+
+    def reinitialize_localization(self) -> None:
+        """Global localization: the estimate snaps back onto the truth."""
+        self._loc_offset = Pose2D()
+
+    # -- obstacles -------------------------------------------------------
+    @property
+    def obstacles(self) -> dict[str, ObstacleSpec]:
+        return {oid: o.spec for oid, o in self._obstacles.items()}
+
+    def obstacle_pose(self, oid: str) -> Pose2D:
+        obstacle = self._obstacles[oid]
+        return obstacle.spec.pose_at(self.time - obstacle.since)
+
+    def spawn(self, spec: ObstacleSpec) -> None:
+        if spec.id in self._obstacles:
+            raise ObstacleError(f"obstacle '{spec.id}' already exists")
+        validate(spec, self.world)
+        self._check_clear_of_robot(spec, spec.pose)
+        self._obstacles[spec.id] = _Obstacle(spec, self._physics.obstacle(spec), self.time)
+
+    def move(self, oid: str, pose: Pose2D, motion: Motion | None = None) -> None:
+        obstacle = self._get(oid)
+        spec = obstacle.spec.moved_to(pose, motion)
+        validate(spec, self.world)
+        self._check_clear_of_robot(spec, pose)
+        obstacle.spec, obstacle.since = spec, self.time
+        self._physics.place(obstacle.body, pose, 0.5 * spec.height)
+
+    def remove(self, oid: str) -> None:
+        obstacle = self._get(oid)
+        self._physics.remove(obstacle.body)
+        del self._obstacles[oid]
+        self._contacts.pop(oid, None)
+
+    def _get(self, oid: str) -> _Obstacle:
+        if oid not in self._obstacles:
+            known = ", ".join(sorted(self._obstacles)) or "none"
+            raise ObstacleError(f"no obstacle '{oid}' (known: {known})")
+        return self._obstacles[oid]
+
+    def _check_clear_of_robot(self, spec: ObstacleSpec, pose: Pose2D) -> None:
+        if pose.distance_to(self._true) < spec.bounding_radius + self.config.robot.radius:
+            raise ObstacleError(f"obstacle '{spec.id}' would overlap the robot")
+
+    def _move_dynamic_obstacles(self) -> None:
+        for obstacle in self._obstacles.values():
+            if obstacle.spec.motion is not None:
+                pose = obstacle.spec.pose_at(self.time - obstacle.since)
+                self._physics.place(obstacle.body, pose, 0.5 * obstacle.spec.height)
+
+    # -- bumper ----------------------------------------------------------
+    def _body_name(self, body: int) -> str | None:
+        if body in self._walls:
+            return "wall"
+        return next((oid for oid, o in self._obstacles.items() if o.body == body), None)
+
+    def _contact_events(self) -> list[ContactEvent]:
+        current: dict[str, ContactEvent] = {}
+        for point in self._physics.call("getContactPoints", bodyA=self._robot):
+            name = self._body_name(point[2])
+            if name is None or name in current or point[8] > 0.001:
+                continue
+            x, y = point[5][0], point[5][1]
+            angle = math.atan2(y - self._true.y, x - self._true.x) - self._true.yaw
+            angle = math.atan2(math.sin(angle), math.cos(angle))
+            current[name] = ContactEvent(self.time, True, name, x, y, angle)
+        events = [e for name, e in current.items() if name not in self._contacts]
+        events += [
+            ContactEvent(self.time, False, name, e.x, e.y, e.angle)
+            for name, e in self._contacts.items()
+            if name not in current
+        ]
+        self._contacts = current
+        return events
+
+    @property
+    def in_contact(self) -> list[str]:
+        return sorted(self._contacts)
