@@ -94,6 +94,11 @@ class Simulation:
         self._loc_offset = Pose2D()
         self._obstacles: dict[str, _Obstacle] = {}
         self._contacts: dict[str, ContactEvent] = {}
+        try:
+            self.check_free(start, self.config.robot.radius)
+        except PoseError as exc:
+            self.close()
+            raise PoseError(f"{world.source}: start {exc}") from None
 
     # -- lifecycle -------------------------------------------------------
     def close(self) -> None:

@@ -1,0 +1,126 @@
+"""``aiobt robot``: the pybullet robot service on Zenoh.
+
+Publishes ``{ns}/odom``, ``{ns}/pose``, ``{ns}/scan``, ``{ns}/battery``,
+``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
+``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
+move,remove,list}``, ``{ns}/srv/reset_pose``,
+``{ns}/srv/reinitialize_global_localization`` and ``{ns}/srv/snapshot``; holds
+the liveliness token ``{ns}/nodes/robot``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import logging
+import signal
+from pathlib import Path
+
+from aiobt.msgs import (
+    BatteryState,
+    Empty,
+    LaserScan,
+    Msg,
+    OccupancyGrid,
+    Odometry,
+    PoseStamped,
+    Twist,
+)
+from aiobt.msgs import Clock as ClockMsg
+from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
+
+from . import convert, messages
+from .mapfile import MapError, load_map
+from .options import add_robot_arguments, sim_config
+from .runner import Rates, SimRunner
+from .service import RobotService
+from .sim import Simulation
+from .snapshot import render_png
+from .worlds import world_path
+
+log = logging.getLogger("aiobt_services.robot.main")
+
+PUBLISHED: dict[str, type[Msg]] = {
+    "odom": Odometry,
+    "pose": PoseStamped,
+    "scan": LaserScan,
+    "battery": BatteryState,
+    "clock": ClockMsg,
+    "bumper": messages.BumperEvent,
+}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_bus_arguments(parser)
+    add_robot_arguments(parser)
+
+
+class BusOutputs:
+    """The runner's sink: one publisher per topic."""
+
+    def __init__(self, bus: Bus) -> None:
+        self._pubs = {name: bus.publisher(name, model) for name, model in PUBLISHED.items()}
+
+    def publish(self, topic: str, msg: Msg) -> None:
+        self._pubs[topic].put(msg)
+
+
+def _wire(bus: Bus, service: RobotService) -> None:
+    bus.subscribe("cmd_vel", Twist, callback=service.on_cmd_vel)
+    bus.subscribe("initialpose", PoseStamped, callback=service.on_initialpose)
+    m = messages
+    bus.serve("obstacles/spawn", m.SpawnObstacle, m.Ack, service.spawn)
+    bus.serve("obstacles/move", m.MoveObstacle, m.Ack, service.move)
+    bus.serve("obstacles/remove", m.RemoveObstacle, m.Ack, service.remove)
+    bus.serve("obstacles/list", Empty, m.ObstacleList, service.list_obstacles)
+    bus.serve("reset_pose", PoseStamped, m.Ack, service.reset_pose)
+    bus.serve("reinitialize_global_localization", Empty, m.Ack, service.reinitialize_localization)
+    bus.serve("snapshot", m.SnapshotRequest, m.Snapshot, service.snapshot)
+
+
+async def serve(args: argparse.Namespace, sim: Simulation) -> None:
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    async with open_bus(BusSettings.from_args(args)) as bus:
+        service = RobotService(sim, initialpose=args.initialpose)
+        bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
+        runner = SimRunner(
+            sim,
+            BusOutputs(bus),
+            speed=args.speed,
+            rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
+        )
+        _wire(bus, service)
+        bus.declare_token("nodes/robot")
+        log.info(
+            "robot up on namespace '%s': world %s, speed x%g, dt %g s",
+            bus.namespace,
+            sim.world.source,
+            args.speed,
+            sim.config.dt,
+        )
+        await runner.run(stop)
+    log.info("robot stopped at sim time %.2f s after %d steps", sim.time, sim.steps)
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        world = load_map(world_path(args.world))
+        config = sim_config(args)
+        if args.start is not None:
+            x, y, yaw = args.start
+            world.start = (x, y, yaw)
+        sim = Simulation(world, config)
+    except (MapError, ValueError) as exc:
+        log.error("robot: %s", exc)
+        return 2
+    with sim:
+        with contextlib.suppress(KeyboardInterrupt):
+            asyncio.run(serve(args, sim))
+        if args.snapshot_on_exit:
+            Path(args.snapshot_on_exit).write_bytes(render_png(sim))
+            log.info("snapshot written to %s", args.snapshot_on_exit)
+    return 0

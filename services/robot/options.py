@@ -1,0 +1,92 @@
+"""Command-line options of the robot service and the simulation config they make."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from .drive import DriveLimits
+from .sensors import LidarConfig, NoiseConfig
+from .sim import SimConfig
+
+
+def _positive(text: str) -> float:
+    value = float(text)
+    if not (math.isfinite(value) and value > 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
+    return value
+
+
+def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("robot simulation")
+    add = group.add_argument
+    add(
+        "--world",
+        default="office",
+        help="shipped world (office, small) or a Nav2 map YAML path (default: %(default)s)",
+    )
+    add(
+        "--speed",
+        type=_positive,
+        default=1.0,
+        help="sim time runs this many times faster than wall time (default: %(default)s)",
+    )
+    add("--dt", type=_positive, default=0.01, help="physics step, s (default: %(default)s)")
+    add("--gui", action="store_true", help="open the pybullet GUI (needs a display)")
+    add(
+        "--start",
+        type=float,
+        nargs=3,
+        metavar=("X", "Y", "YAW"),
+        help="start pose in map (default: the world's)",
+    )
+    add(
+        "--initialpose",
+        choices=("teleport", "localize"),
+        default="teleport",
+        help="{ns}/initialpose moves the robot, or only re-seats localization",
+    )
+    add("--max-linear", type=_positive, default=1.0, help="m/s (default: %(default)s)")
+    add("--max-angular", type=_positive, default=2.0, help="rad/s (default: %(default)s)")
+    add(
+        "--cmd-timeout",
+        type=_positive,
+        default=0.5,
+        help="stop when no cmd_vel for this long, s of sim time (default: %(default)s)",
+    )
+    add("--scan-hz", type=_positive, default=10.0, help="lidar rate (default: %(default)s)")
+    add("--odom-hz", type=_positive, default=50.0, help="odom and pose rate (default: %(default)s)")
+    add("--lidar-rays", type=int, default=360, help="beams per scan (default: %(default)s)")
+    add("--lidar-range", type=_positive, default=12.0, help="m (default: %(default)s)")
+    add("--odom-noise", type=float, default=0.0, help="relative std of wheel speed error")
+    add("--slip", type=float, default=0.0, help="fraction of wheel motion lost to slip")
+    add("--pose-noise", type=float, default=0.0, help="std of localization error, m")
+    add("--pose-noise-yaw", type=float, default=0.0, help="std of localization error, rad")
+    add("--seed", type=int, default=0, help="noise seed (default: %(default)s)")
+    add("--snapshot-on-exit", metavar="PNG", default=None, help="write a top-down PNG at exit")
+
+
+def sim_config(args: argparse.Namespace) -> SimConfig:
+    """The :class:`SimConfig` the flags describe (``ValueError`` names a bad one)."""
+    return SimConfig(
+        dt=args.dt,
+        limits=DriveLimits(
+            max_linear=args.max_linear, max_angular=args.max_angular, cmd_timeout=args.cmd_timeout
+        ),
+        noise=NoiseConfig(
+            odom_linear=args.odom_noise,
+            odom_angular=args.odom_noise,
+            slip=args.slip,
+            pose_xy=args.pose_noise,
+            pose_yaw=args.pose_noise_yaw,
+            seed=args.seed,
+        ),
+        lidar=LidarConfig(
+            rays=args.lidar_rays, range_max=args.lidar_range, angle_max=_angle_max(args.lidar_rays)
+        ),
+        gui=args.gui,
+    )
+
+
+def _angle_max(rays: int) -> float:
+    return math.pi * (1.0 - 2.0 / max(1, rays))
