@@ -1,0 +1,67 @@
+"""Everything Zenoh: the bus (one session per process), topics, services, actions.
+
+async with open_bus(BusSettings.from_args(args)) as bus:
+    bus.publisher("odom", Odometry).put(msg)
+    async for twist in bus.subscribe("cmd_vel", Twist): ...
+    client = bus.action_client("follow_path", FollowPath)
+    goal = await client.send_goal(FollowPath.Goal(path=path), server_timeout=1.0)
+    result = await goal.result()
+"""
+
+from aiobt.transport.actions import (
+    ActionClient,
+    ActionError,
+    ActionServer,
+    ClientGoal,
+    Execute,
+    GoalHandle,
+    GoalLost,
+    GoalRejected,
+    ServerUnavailable,
+)
+from aiobt.transport.bridge import PayloadTooLarge
+from aiobt.transport.bus import Bus, open_bus
+from aiobt.transport.keys import ActionKeys, Keys
+from aiobt.transport.presence import Presence
+from aiobt.transport.services import ServiceError, ServiceServer, ServiceUnavailable
+from aiobt.transport.session import BusUnavailable, open_session
+from aiobt.transport.settings import (
+    DEFAULT_NAMESPACE,
+    DEFAULT_ROUTER,
+    BusConfigError,
+    BusSettings,
+    add_bus_arguments,
+)
+from aiobt.transport.simclock import SimClockFollower
+from aiobt.transport.topics import Publisher, Subscription
+
+__all__ = [
+    "DEFAULT_NAMESPACE",
+    "DEFAULT_ROUTER",
+    "ActionClient",
+    "ActionError",
+    "ActionKeys",
+    "ActionServer",
+    "Bus",
+    "BusConfigError",
+    "BusSettings",
+    "BusUnavailable",
+    "ClientGoal",
+    "Execute",
+    "GoalHandle",
+    "GoalLost",
+    "GoalRejected",
+    "Keys",
+    "PayloadTooLarge",
+    "Presence",
+    "Publisher",
+    "ServerUnavailable",
+    "ServiceError",
+    "ServiceServer",
+    "ServiceUnavailable",
+    "SimClockFollower",
+    "Subscription",
+    "add_bus_arguments",
+    "open_bus",
+    "open_session",
+]

@@ -1,0 +1,118 @@
+"""``aiobt router``: a Zenoh router in this process, for local use and tests.
+
+    aiobt router --listen tcp/127.0.0.1:7447
+    aiobt router --listen tcp/0.0.0.0:7447 --config router.json5   # e.g. with auth
+
+Security (user/password, access control, TLS) is Zenoh configuration: pass a
+config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
+"""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import signal
+import sys
+import threading
+from collections.abc import Callable, Sequence
+from types import FrameType
+
+import zenoh
+
+from aiobt.transport import _z
+from aiobt.transport.settings import DEFAULT_ROUTER, BusConfigError, BusSettings
+
+log = logging.getLogger("aiobt.cli.router")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "-l",
+        "--listen",
+        action="append",
+        metavar="ENDPOINT",
+        help=f"endpoint to listen on, repeatable (default: {DEFAULT_ROUTER})",
+    )
+    parser.add_argument(
+        "-e",
+        "--connect",
+        action="append",
+        metavar="ENDPOINT",
+        help="another router to connect to (a mesh of routers), repeatable",
+    )
+    parser.add_argument(
+        "-c",
+        "--config",
+        metavar="FILE",
+        default=None,
+        help="Zenoh JSON5 config file (default: $ZENOH_CONFIG); the flags override it",
+    )
+    parser.add_argument(
+        "--lease-ms",
+        type=int,
+        default=1000,
+        help="link lease: how fast a hung peer is noticed (default: %(default)s ms)",
+    )
+
+
+def settings_from_args(args: argparse.Namespace) -> BusSettings:
+    listen = tuple(args.listen or ())
+    if not listen and not (args.config or _env_config()):
+        listen = (DEFAULT_ROUTER,)
+    return BusSettings(
+        mode="router",
+        listen=listen,
+        connect=tuple(args.connect or ()),
+        config_file=args.config,
+        lease_ms=args.lease_ms,
+    )
+
+
+def _env_config() -> str | None:
+    return os.environ.get("ZENOH_CONFIG") or None
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        config = settings_from_args(args).zenoh_config()
+    except BusConfigError as exc:
+        log.error("%s", exc)
+        return 2
+    try:
+        session = zenoh.open(config)
+    except zenoh.ZError as exc:
+        log.error("cannot start the router (listen %s): %s", args.listen or "default", exc)
+        return 1
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, _setter(stop)) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        log.info("router %s listening on %s", session.zid(), ", ".join(args.listen or ["config"]))
+        while not stop.wait(0.5):
+            pass
+        log.info("router stopping")
+    finally:
+        _z.close(session)
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+    return 0
+
+
+def _setter(stop: threading.Event) -> Callable[[int, FrameType | None], None]:
+    def handler(signum: int, frame: FrameType | None) -> None:
+        stop.set()
+
+    return handler
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="aiobt router", description=__doc__.splitlines()[0])
+    add_arguments(parser)
+    logging.basicConfig(
+        level=logging.INFO, format="%(asctime)s %(levelname).1s %(name)s: %(message)s"
+    )
+    return run(parser.parse_args(argv))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,128 @@
+"""Test helpers for real Zenoh on loopback: free ports, a router process, service processes.
+
+Processes start with ``subprocess`` (fork+exec: a forked Zenoh process hangs)
+and are stopped by PID. Their output goes to a log file, shown on failure.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from collections.abc import Iterator, Mapping, Sequence
+from pathlib import Path
+
+LOOPBACK = "127.0.0.1"
+
+
+def free_port() -> int:
+    """A TCP port free on loopback right now (bind to port 0)."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
+        sock.bind((LOOPBACK, 0))
+        return int(sock.getsockname()[1])
+
+
+def free_endpoint() -> str:
+    return f"tcp/{LOOPBACK}:{free_port()}"
+
+
+def port_of(endpoint: str) -> int:
+    return int(endpoint.rsplit(":", 1)[1])
+
+
+def wait_port(port: int, timeout: float = 10.0, host: str = LOOPBACK) -> bool:
+    """True once something accepts TCP connections on ``port``."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        with contextlib.suppress(OSError), socket.create_connection((host, port), timeout=0.2):
+            return True
+        time.sleep(0.02)
+    return False
+
+
+class ServiceProcess:
+    """A child Python process (``python ARGS``), stopped by PID."""
+
+    def __init__(self, args: Sequence[str], env: Mapping[str, str] | None = None) -> None:
+        self.args = list(args)
+        handle, name = tempfile.mkstemp(prefix="aiobt-proc-", suffix=".log")
+        os.close(handle)
+        self.log_path = Path(name)
+        with self.log_path.open("wb") as log_file:
+            self.popen = subprocess.Popen(
+                [sys.executable, *self.args],
+                stdout=log_file,
+                stderr=subprocess.STDOUT,
+                stdin=subprocess.DEVNULL,
+                env={**os.environ, **(env or {})},
+            )
+
+    @property
+    def pid(self) -> int:
+        return self.popen.pid
+
+    @property
+    def running(self) -> bool:
+        return self.popen.poll() is None
+
+    def output(self) -> str:
+        return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""
+
+    def kill(self) -> None:
+        """SIGKILL by PID (a crash), and reap."""
+        if self.running:
+            os.kill(self.pid, signal.SIGKILL)
+        self.popen.wait(timeout=10)
+
+    def stop(self, timeout: float = 5.0) -> int:
+        """SIGTERM, then SIGKILL after ``timeout``; returns the exit code."""
+        if self.running:
+            os.kill(self.pid, signal.SIGTERM)
+            try:
+                self.popen.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                os.kill(self.pid, signal.SIGKILL)
+                self.popen.wait(timeout=10)
+        return int(self.popen.returncode)
+
+    def cleanup(self) -> None:
+        self.stop()
+        with contextlib.suppress(OSError):
+            self.log_path.unlink()
+
+
+def spawn_service(args: Sequence[str], env: Mapping[str, str] | None = None) -> ServiceProcess:
+    """Start ``python ARGS`` (e.g. ``["-m", "aiobt_services.robot", "--connect", ep]``)."""
+    return ServiceProcess(args, env)
+
+
+def start_router(
+    endpoint: str | None = None, extra_args: Sequence[str] = (), timeout: float = 10.0
+) -> tuple[ServiceProcess, str]:
+    """A router process listening on ``endpoint`` (a free loopback port by default)."""
+    for _ in range(3):
+        where = endpoint or free_endpoint()
+        proc = spawn_service(["-m", "aiobt.cli.router", "--listen", where, *extra_args])
+        if wait_port(port_of(where), timeout) and proc.running:
+            return proc, where
+        output = proc.output()
+        proc.cleanup()
+        if endpoint is not None:
+            break
+    raise RuntimeError(f"the router did not start on {where}:\n{output}")
+
+
+@contextlib.contextmanager
+def running_router(
+    endpoint: str | None = None, extra_args: Sequence[str] = ()
+) -> Iterator[tuple[ServiceProcess, str]]:
+    proc, where = start_router(endpoint, extra_args)
+    try:
+        yield proc, where
+    finally:
+        proc.cleanup()

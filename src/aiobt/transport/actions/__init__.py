@@ -1,0 +1,22 @@
+"""The action protocol over Zenoh: server, client, errors (see ``protocol``)."""
+
+from aiobt.transport.actions.client import ActionClient, ClientGoal
+from aiobt.transport.actions.protocol import (
+    ActionError,
+    GoalLost,
+    GoalRejected,
+    ServerUnavailable,
+)
+from aiobt.transport.actions.server import ActionServer, Execute, GoalHandle
+
+__all__ = [
+    "ActionClient",
+    "ActionError",
+    "ActionServer",
+    "ClientGoal",
+    "Execute",
+    "GoalHandle",
+    "GoalLost",
+    "GoalRejected",
+    "ServerUnavailable",
+]

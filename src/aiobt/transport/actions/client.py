@@ -1,0 +1,318 @@
+"""The action client: send a goal, await its result, cancel; never hangs on a dead server."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+from collections.abc import AsyncIterator, Callable
+from typing import Any, Generic, TypeVar
+
+import zenoh
+
+from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
+from aiobt.transport.actions import protocol as p
+from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.keys import ActionKeys
+from aiobt.transport.presence import Presence
+from aiobt.transport.services import ServiceError, call
+
+G = TypeVar("G", bound=Msg)
+R = TypeVar("R", bound=ActionResult)
+F = TypeVar("F", bound=Msg)
+T = TypeVar("T")
+log = logging.getLogger("aiobt.transport.actions")
+_GOAL_STREAM_TIMEOUT = 7 * 24 * 3600.0  # the goal's query lives as long as the goal
+_RETRY_PAUSE = 0.02
+
+
+def _retrieve(future: asyncio.Future[Any]) -> None:
+    if not future.cancelled():
+        future.exception()
+
+
+class ClientGoal(Generic[G, R, F]):
+    """One sent goal: ``await result()``, ``await cancel()``, feedback, status."""
+
+    def __init__(self, client: ActionClient[G, R, F], goal_id: str, goal: G) -> None:
+        self.goal_id = goal_id
+        self.goal = goal
+        self.status = GoalState.UNKNOWN
+        self.latest_feedback: F | None = None
+        self.on_feedback: Callable[[F], object] | None = None
+        self._client = client
+        loop = asyncio.get_running_loop()
+        self._accepted: asyncio.Future[bool | None] = loop.create_future()
+        self._result: asyncio.Future[R] = loop.create_future()
+        self._feedback: asyncio.Queue[F] = asyncio.Queue(maxsize=100)
+        for future in (self._accepted, self._result):  # no "exception never retrieved"
+            future.add_done_callback(_retrieve)
+
+    @property
+    def done(self) -> bool:
+        return self._result.done()
+
+    async def result(self, timeout: float | None = None) -> R:  # noqa: ASYNC109
+        """The Result (check ``status``: SUCCEEDED, ABORTED or CANCELED).
+
+        Raises :class:`GoalLost` if the server went away, ``TimeoutError`` after ``timeout``.
+        """
+        async with asyncio.timeout(timeout):
+            return await asyncio.shield(self._result)
+
+    async def cancel(self, timeout: float = 2.0) -> R | None:  # noqa: ASYNC109
+        """Ask the server to cancel, then wait (bounded) for the final result."""
+        if self.done:
+            return self._result.result() if not self._result.exception() else None
+        with contextlib.suppress(ServiceError, TimeoutError):
+            await self._client.request_cancel(self.goal_id, timeout)
+        with contextlib.suppress(p.GoalLost, TimeoutError):
+            return await self.result(timeout)
+        return None
+
+    async def feedback(self) -> AsyncIterator[F]:
+        """Feedback messages until the goal ends."""
+        while not self.done or not self._feedback.empty():
+            getter: asyncio.Future[Any] = asyncio.ensure_future(self._feedback.get())
+            ending: asyncio.Future[Any] = self._result
+            await asyncio.wait({getter, ending}, return_when=asyncio.FIRST_COMPLETED)
+            if not getter.done():
+                getter.cancel()
+                continue
+            yield getter.result()
+
+    # -- the goal's reply stream (called in the loop) ----------------------------------------
+
+    def on_reply(self, reply: zenoh.Reply) -> None:
+        if reply.err is not None:
+            self._fail_or_reject(reply.err.payload.to_string())
+            return
+        sample = reply.ok
+        assert sample is not None
+        tag = sample.attachment.to_bytes() if sample.attachment is not None else b""
+        payload = sample.payload.to_bytes()
+        if tag == p.ACCEPTED:
+            self.status = GoalState.ACCEPTED
+            _settle(self._accepted, True)
+        elif tag == p.REJECTED:
+            reason = payload.decode(errors="replace")
+            _fail(self._accepted, p.GoalRejected(self._client.keys.base, self.goal_id, reason))
+        elif tag == p.FEEDBACK:
+            self._on_feedback(payload)
+        elif (state := p.parse_result_tag(tag)) is not None:
+            self._on_result(state, payload)
+
+    def _fail_or_reject(self, message: str) -> None:
+        if not self._accepted.done():
+            error = p.GoalRejected(self._client.keys.base, self.goal_id, message)
+            _fail(self._accepted, error)
+        else:
+            self.lost(f"error on the goal stream: {message}")
+
+    def _on_feedback(self, payload: bytes) -> None:
+        try:
+            feedback = decode(self._client.feedback_model, payload, key=self._client.keys.base)
+        except MessageError as exc:
+            log.warning("dropped bad feedback: %s", exc)
+            return
+        self.status = GoalState.EXECUTING
+        self.latest_feedback = feedback
+        if self._feedback.full():
+            self._feedback.get_nowait()
+        self._feedback.put_nowait(feedback)
+        if self.on_feedback is not None:
+            self.on_feedback(feedback)
+
+    def _on_result(self, state: GoalState, payload: bytes) -> None:
+        try:
+            result = decode(self._client.result_model, payload, key=self._client.keys.base)
+        except MessageError as exc:
+            self.lost(f"malformed result: {exc}")
+            return
+        self.status = state
+        _settle(self._result, result)
+
+    def on_stream_end(self) -> None:
+        if not self._accepted.done():
+            _settle(self._accepted, None)  # nobody answered: maybe not routed yet
+        elif not self.done:
+            self.lost("the goal stream ended without a result (server process gone?)")
+
+    def lost(self, why: str) -> None:
+        if not self.done:
+            self.status = GoalState.ABORTED
+            base = self._client.keys.base
+            _fail(self._result, p.GoalLost(f"action {base}: goal {self.goal_id} lost: {why}"))
+
+
+def _settle(future: asyncio.Future[T], value: T) -> None:
+    if not future.done():
+        future.set_result(value)
+
+
+def _fail(future: asyncio.Future[Any], error: BaseException) -> None:
+    if not future.done():
+        future.set_exception(error)
+
+
+class ActionClient(Generic[G, R, F]):
+    """Sends goals to one action server; fails goals within ~1 s if the server dies."""
+
+    def __init__(
+        self,
+        session: zenoh.Session,
+        bridge: LoopBridge,
+        keys: ActionKeys,
+        action: type[ActionDef[G, R, F]],
+        presence: Presence,
+    ) -> None:
+        self.keys = keys
+        self.action = action
+        self.result_model = action.result_type()
+        self.feedback_model = action.feedback_type()
+        self._goal_model = action.goal_type()
+        self._session = session
+        self._bridge = bridge
+        self._presence = presence
+        self._goals: dict[str, ClientGoal[G, R, F]] = {}
+        presence.add_listener(self._on_presence)
+
+    @property
+    def server_present(self) -> bool:
+        return self._presence.present
+
+    async def wait_for_server(self, timeout: float | None) -> bool:  # noqa: ASYNC109
+        return await self._presence.wait(timeout)
+
+    async def send_goal(
+        self,
+        goal: G,
+        *,
+        server_timeout: float = 1.0,
+        on_feedback: Callable[[F], object] | None = None,
+        goal_id: str | None = None,
+    ) -> ClientGoal[G, R, F]:
+        """Send ``goal``; returns once accepted. ``server_timeout`` bounds the whole wait.
+
+        Raises :class:`ServerUnavailable` (no answer in time) or :class:`GoalRejected`.
+        """
+        if not isinstance(goal, self._goal_model):
+            raise TypeError(f"{self.keys.base}: expected {self._goal_model.__name__}")
+        payload = goal.to_json()
+        self._bridge.check_size(self.keys.goal("x"), payload)
+        handle = await self._send(goal, payload, goal_id or p.new_goal_id(), server_timeout)
+        handle.on_feedback = on_feedback
+        return handle
+
+    async def _send(
+        self, goal: G, payload: bytes, goal_id: str, server_timeout: float
+    ) -> ClientGoal[G, R, F]:
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + server_timeout
+        while await self._presence.wait(deadline - loop.time()):
+            handle = ClientGoal(self, goal_id, goal)
+            self._goals[goal_id] = handle
+            self._session.get(
+                self.keys.goal(goal_id),
+                callback(self._relay(handle.on_reply), self._relay_end(handle)),
+                payload=payload,
+                encoding=JSON,
+                consolidation=zenoh.ConsolidationMode.NONE,
+                timeout=_GOAL_STREAM_TIMEOUT,
+            )
+            with contextlib.suppress(TimeoutError):
+                async with asyncio.timeout_at(deadline):
+                    if await asyncio.shield(handle._accepted):
+                        return handle
+            self._forget(goal_id)
+            if loop.time() >= deadline:
+                self._cancel_quietly(goal_id)  # it may still arrive: do not let it run
+                break
+            await asyncio.sleep(_RETRY_PAUSE)  # no queryable routed yet: ask again
+        raise p.ServerUnavailable(
+            f"action server {self.keys.base} did not accept the goal within {server_timeout} s"
+            f" ({'present' if self.server_present else 'not present'})"
+        )
+
+    def _relay(self, fn: Callable[[zenoh.Reply], None]) -> Callable[[zenoh.Reply], None]:
+        return lambda reply: self._bridge.call(fn, reply)
+
+    def _relay_end(self, handle: ClientGoal[G, R, F]) -> Callable[[], None]:
+        def ended() -> None:
+            self._bridge.call(handle.on_stream_end)
+            self._bridge.call(self._forget_if_done, handle)
+
+        return ended
+
+    def _forget(self, goal_id: str) -> None:
+        self._goals.pop(goal_id, None)
+
+    def _forget_if_done(self, handle: ClientGoal[G, R, F]) -> None:
+        if handle.done and self._goals.get(handle.goal_id) is handle:
+            self._forget(handle.goal_id)
+
+    def _on_presence(self, present: bool) -> None:
+        if present:
+            return
+        for handle in list(self._goals.values()):
+            if handle._accepted.done() and not handle._accepted.exception():
+                handle.lost("the server's liveliness token disappeared")
+
+    def _cancel_quietly(self, goal_id: str) -> None:
+        payload = p.CancelRequest(goal_id=goal_id).to_json()
+        self._session.get(self.keys.cancel, payload=payload, encoding=JSON, timeout=1.0)
+
+    async def request_cancel(self, goal_id: str, timeout: float = 2.0) -> list[str]:  # noqa: ASYNC109
+        """Ask the server to cancel ``goal_id`` ("" = all); returns the ids being canceled."""
+        request = p.CancelRequest(goal_id=goal_id)
+        response = await call(
+            self._session, self._bridge, self.keys.cancel, request, p.CancelResponse, timeout
+        )
+        return response.goals_canceling
+
+    async def cancel_all(self, timeout: float = 2.0) -> list[str]:  # noqa: ASYNC109
+        """Cancel every goal of the server (anyone's); returns the ids being canceled."""
+        return await self.request_cancel("", timeout)
+
+    async def fetch_result(self, goal_id: str, timeout: float = 2.0) -> tuple[GoalState, R]:  # noqa: ASYNC109
+        """Query a goal's result (waits for it if the goal is still running)."""
+        key = self.keys.result(goal_id)
+        return await _fetch_result(self._session, self._bridge, key, self.result_model, timeout)
+
+    def close(self) -> None:
+        self._presence.remove_listener(self._on_presence)
+        for handle in list(self._goals.values()):
+            handle.lost("the client closed")
+        self._goals.clear()
+
+
+async def _fetch_result(
+    session: zenoh.Session,
+    bridge: LoopBridge,
+    key: str,
+    model: type[R],
+    timeout: float,  # noqa: ASYNC109
+) -> tuple[GoalState, R]:
+    future: asyncio.Future[zenoh.Reply | None] = bridge.loop.create_future()
+
+    def settle(reply: zenoh.Reply | None) -> None:
+        if not future.done():
+            future.set_result(reply)
+
+    def on_reply(reply: zenoh.Reply) -> None:
+        bridge.call(settle, reply)
+
+    session.get(key, callback(on_reply, lambda: bridge.call(settle, None)), timeout=timeout)
+    async with asyncio.timeout(timeout + 0.5):
+        reply = await future
+    if reply is None or reply.err is not None:
+        why = reply.err.payload.to_string() if reply and reply.err else "no server answered"
+        raise ServiceError(f"{key}: {why}")
+    sample = reply.ok
+    assert sample is not None
+    tag = sample.attachment.to_bytes() if sample.attachment is not None else b""
+    state = p.parse_result_tag(tag) or GoalState.UNKNOWN
+    try:
+        return state, decode(model, sample.payload.to_bytes(), key=key)
+    except (MessageError, PayloadTooLarge) as exc:
+        raise ServiceError(str(exc)) from None

@@ -1,0 +1,62 @@
+"""Server-side bookkeeping: one record per accepted goal, and recent results."""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+
+import zenoh
+
+from aiobt.transport import _z
+from aiobt.transport.bridge import JSON
+
+_KEEP_RESULTS = 128
+
+
+class GoalRecord:
+    """An accepted goal: its open send_goal query (the goal's stream) and its fate."""
+
+    __slots__ = ("cancel_requested", "done", "goal_id", "preempted_by", "query", "waiters")
+
+    def __init__(self, goal_id: str, query: zenoh.Query) -> None:
+        self.goal_id = goal_id
+        self.query = query
+        self.preempted_by = ""
+        self.cancel_requested = False
+        self.done = False
+        self.waiters: list[zenoh.Query] = []
+
+    def reply(self, payload: bytes, tag: bytes) -> None:
+        if not self.done:
+            self.query.reply(self.query.key_expr, payload, encoding=JSON, attachment=tag)
+
+    def finish(self, tag: bytes, payload: bytes) -> None:
+        """Send the result on the goal's stream and to result queries, then end them."""
+        if self.done:
+            return
+        self.reply(payload, tag)
+        self.done = True
+        _z.drop(self.query)
+        for waiter in self.waiters:
+            waiter.reply(waiter.key_expr, payload, encoding=JSON, attachment=tag)
+            _z.drop(waiter)
+        self.waiters.clear()
+
+
+class ResultStore:
+    """The last results by goal id, so a client can fetch one by query."""
+
+    __slots__ = ("_results",)
+
+    def __init__(self) -> None:
+        self._results: OrderedDict[str, tuple[bytes, bytes]] = OrderedDict()
+
+    def store(self, goal_id: str, tag: bytes, payload: bytes) -> None:
+        self._results[goal_id] = (tag, payload)
+        while len(self._results) > _KEEP_RESULTS:
+            self._results.popitem(last=False)
+
+    def get(self, goal_id: str) -> tuple[bytes, bytes] | None:
+        return self._results.get(goal_id)
+
+    def __contains__(self, goal_id: str) -> bool:
+        return goal_id in self._results

@@ -1,0 +1,93 @@
+"""The action wire protocol (DESIGN.md §4), shared by server and client.
+
+The client makes the goal id and sends the goal as the payload of a query on
+``goal/{id}``. The server's replies to that one query form the goal's stream,
+each tagged by its attachment:
+
+- ``accepted`` (empty payload), or ``rejected`` (payload: the reason), first;
+- ``feedback`` (payload: the Feedback model), any number;
+- ``result:{GoalState}`` (payload: the Result model), last; then the stream ends.
+
+An error reply means the goal payload was refused (it names the field). A
+stream that ends without a result means the server went away. Status,
+feedback and result are also published on ``status/{id}``, ``feedback/{id}``
+and ``result/{id}`` for observers, and ``result/{id}`` answers queries.
+"""
+
+from __future__ import annotations
+
+import re
+import uuid
+from enum import IntEnum
+from typing import Literal
+
+from pydantic import Field
+
+from aiobt.msgs import ActionResult, GoalState, Msg
+
+ACCEPTED = b"accepted"
+REJECTED = b"rejected"
+FEEDBACK = b"feedback"
+RESULT_PREFIX = b"result:"
+_GOAL_ID = re.compile(r"^[A-Za-z0-9_.-]{1,64}$")
+Preemption = Literal["abort", "replace"]
+
+
+class ActionError(RuntimeError):
+    """Base of the action client's failures."""
+
+
+class ServerUnavailable(ActionError):
+    """No action server answered send_goal within ``server_timeout``."""
+
+
+class GoalRejected(ActionError):
+    """The server refused the goal; ``reason`` says why (e.g. the bad field)."""
+
+    def __init__(self, server: str, goal_id: str, reason: str) -> None:
+        super().__init__(f"action {server}: goal {goal_id} rejected: {reason}")
+        self.reason = reason
+
+
+class GoalLost(ActionError):
+    """The goal ended without a result: the server died, hung, or shut down."""
+
+
+class CancelRequest(Msg):
+    goal_id: str = Field(default="", description="empty: cancel every goal of the server")
+
+
+class CancelResponse(Msg):
+    goals_canceling: list[str] = Field(default_factory=list)
+
+
+def new_goal_id() -> str:
+    return uuid.uuid4().hex
+
+
+def valid_goal_id(goal_id: str) -> bool:
+    return bool(_GOAL_ID.match(goal_id))
+
+
+def result_tag(state: GoalState) -> bytes:
+    return RESULT_PREFIX + str(int(state)).encode()
+
+
+def parse_result_tag(tag: bytes) -> GoalState | None:
+    if not tag.startswith(RESULT_PREFIX):
+        return None
+    try:
+        return GoalState(int(tag[len(RESULT_PREFIX) :]))
+    except ValueError:
+        return None
+
+
+def unknown_error_code(table: type[IntEnum]) -> int:
+    """The table's UNKNOWN code (or its first non-zero one): for crashes in execute."""
+    if "UNKNOWN" in table.__members__:
+        return int(table["UNKNOWN"])
+    return next((int(member) for member in table if int(member) != 0), 1)
+
+
+def terminal_state(result: ActionResult) -> GoalState:
+    return GoalState.SUCCEEDED if result.error_code == 0 else GoalState.ABORTED

@@ -1,0 +1,269 @@
+"""The action server: one goal at a time, preemption by a newer goal, cancel, results.
+
+``execute(goal, handle)`` is a coroutine returning the Result. Cancel and
+"abort" preemption cancel its task (clean up in ``finally``); with
+``preemption="replace"`` the running execute keeps going and takes the newer
+goal over through :meth:`GoalHandle.take_new_goal` / :meth:`GoalHandle.wait_new_goal`.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Awaitable, Callable, Coroutine
+from typing import Any, Generic, TypeVar
+
+import zenoh
+
+from aiobt.msgs import ActionDef, ActionResult, GoalState, GoalStatus, MessageError, Msg, decode
+from aiobt.transport import _z
+from aiobt.transport.actions import protocol as p
+from aiobt.transport.actions.goals import GoalRecord, ResultStore
+from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.keys import ActionKeys
+from aiobt.transport.services import query_payload
+
+G = TypeVar("G", bound=Msg)
+R = TypeVar("R", bound=ActionResult)
+F = TypeVar("F", bound=Msg)
+log = logging.getLogger("aiobt.transport.actions")
+_STOP_TIMEOUT = 5.0
+
+
+class GoalHandle(Generic[G, R, F]):
+    """What ``execute`` gets: the goal, feedback publishing, and (replace) newer goals."""
+
+    def __init__(self, server: ActionServer[G, R, F], record: GoalRecord, goal: G) -> None:
+        self.goal_id = record.goal_id
+        self.goal = goal
+        self.record = record
+        self._server = server
+        self._new_goals: asyncio.Queue[G] = asyncio.Queue()
+
+    def publish_feedback(self, feedback: F) -> None:
+        self._server.publish_feedback(self.goal_id, feedback)
+
+    def take_new_goal(self) -> G | None:
+        """The newest goal that took this execution over since the last call, if any."""
+        newest: G | None = None
+        while not self._new_goals.empty():
+            newest = self._new_goals.get_nowait()
+        return newest
+
+    async def wait_new_goal(self) -> G:
+        """Wait for a newer goal to take this execution over (replace policy)."""
+        newest = await self._new_goals.get()
+        return self.take_new_goal() or newest
+
+    def _switch(self, record: GoalRecord, goal: G) -> None:
+        self.record = record
+        self.goal_id = record.goal_id
+        self.goal = goal
+        self._new_goals.put_nowait(goal)
+
+
+Execute = Callable[[G, GoalHandle[G, R, F]], Awaitable[R]]
+
+
+class ActionServer(Generic[G, R, F]):
+    def __init__(
+        self,
+        session: zenoh.Session,
+        bridge: LoopBridge,
+        keys: ActionKeys,
+        action: type[ActionDef[G, R, F]],
+        execute: Execute[G, R, F],
+        *,
+        preemption: p.Preemption = "abort",
+        accept: Callable[[G], str | None] | None = None,
+    ) -> None:
+        if preemption not in ("abort", "replace"):
+            raise ValueError(f"preemption must be 'abort' or 'replace', got {preemption!r}")
+        self.keys = keys
+        self.action = action
+        self.preemption = preemption
+        self._goal_model = action.goal_type()
+        self._result_model = action.result_type()
+        self._execute = execute
+        self._accept = accept
+        self._session = session
+        self._bridge = bridge
+        self._active: GoalRecord | None = None
+        self._task: asyncio.Task[None] | None = None
+        self._handle: GoalHandle[G, R, F] | None = None
+        self._lock = asyncio.Lock()
+        self._results = ResultStore()
+        self._tasks: set[asyncio.Task[None]] = set()
+        self._queryables = [
+            session.declare_queryable(keys.goals, callback(self._from_zenoh(self._on_goal))),
+            session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
+            session.declare_queryable(keys.results, callback(self._from_zenoh(self._on_result))),
+        ]
+        self._token = session.liveliness().declare_token(keys.alive)
+
+    def _from_zenoh(
+        self, coroutine: Callable[[zenoh.Query], Coroutine[Any, Any, None]]
+    ) -> Callable[[zenoh.Query], None]:
+        def on_query(query: zenoh.Query) -> None:
+            self._bridge.call(self._spawn, coroutine, query)
+
+        return on_query
+
+    def _spawn(
+        self, coroutine: Callable[[zenoh.Query], Coroutine[Any, Any, None]], query: zenoh.Query
+    ) -> None:
+        task: asyncio.Task[None] = asyncio.get_running_loop().create_task(coroutine(query))
+        self._tasks.add(task)
+        task.add_done_callback(self._tasks.discard)
+
+    @property
+    def active_goal_id(self) -> str | None:
+        return self._active.goal_id if self._active else None
+
+    # -- goal intake -------------------------------------------------------------------------
+
+    async def _on_goal(self, query: zenoh.Query) -> None:
+        goal_id = str(query.key_expr).rsplit("/", 1)[-1]
+        try:
+            goal = self._decode_goal(goal_id, query)
+        except (MessageError, PayloadTooLarge, ValueError) as exc:
+            query.reply_err(f"bad goal: {exc}")
+            _z.drop(query)
+            return
+        reason = self._accept(goal) if self._accept else None
+        if reason is None and (goal_id in self._results or self.active_goal_id == goal_id):
+            reason = f"duplicate goal id {goal_id}"
+        if reason is not None:
+            query.reply(query.key_expr, reason.encode(), attachment=p.REJECTED)
+            _z.drop(query)
+            return
+        query.reply(query.key_expr, b"", attachment=p.ACCEPTED)
+        record = GoalRecord(goal_id, query)
+        self._publish_status(goal_id, GoalState.ACCEPTED)
+        async with self._lock:
+            await self._take_over(record, goal)
+
+    def _decode_goal(self, goal_id: str, query: zenoh.Query) -> G:
+        if not p.valid_goal_id(goal_id):
+            raise ValueError(f"goal id {goal_id!r} must be 1-64 of [A-Za-z0-9_.-]")
+        payload = query_payload(query)
+        self._bridge.check_size(str(query.key_expr), payload)
+        return decode(self._goal_model, payload, key=str(query.key_expr))
+
+    async def _take_over(self, record: GoalRecord, goal: G) -> None:
+        running = self._task is not None and not self._task.done()
+        if running and self.preemption == "replace" and self._handle and self._active:
+            self._finish(self._active, GoalState.ABORTED, self._preempted(record.goal_id))
+            self._active = record
+            self._handle._switch(record, goal)
+            self._publish_status(record.goal_id, GoalState.EXECUTING)
+            return
+        if running and self._task and self._active:
+            self._active.preempted_by = record.goal_id
+            self._task.cancel()
+            await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
+        self._active = record
+        self._handle = GoalHandle(self, record, goal)
+        self._task = asyncio.get_running_loop().create_task(self._run(self._handle))
+
+    def _preempted(self, by: str) -> R:
+        return self._result_model(error_msg=f"preempted by goal {by}")
+
+    # -- execution ---------------------------------------------------------------------------
+
+    async def _run(self, handle: GoalHandle[G, R, F]) -> None:
+        self._publish_status(handle.goal_id, GoalState.EXECUTING)
+        try:
+            result = await self._execute(handle.goal, handle)
+            if not isinstance(result, self._result_model):
+                raise TypeError(f"execute returned {type(result).__name__}, not a Result")
+            state = p.terminal_state(result)
+        except asyncio.CancelledError:
+            state, result = self._cancel_outcome(handle.record)
+            self._finish_handle(handle, state, result)
+            if not (handle.record.preempted_by or handle.record.cancel_requested):
+                raise  # the server itself is shutting down
+            return
+        except Exception as exc:
+            log.exception("%s: execute failed on goal %s", self.keys.base, handle.goal_id)
+            code = p.unknown_error_code(self.action.ErrorCode)
+            state = GoalState.ABORTED
+            result = self._result_model(error_code=code, error_msg=f"{type(exc).__name__}: {exc}")
+        self._finish_handle(handle, state, result)
+
+    def _cancel_outcome(self, record: GoalRecord) -> tuple[GoalState, R]:
+        if record.preempted_by:
+            return GoalState.ABORTED, self._preempted(record.preempted_by)
+        if record.cancel_requested:
+            return GoalState.CANCELED, self._result_model(error_msg="canceled")
+        return GoalState.ABORTED, self._result_model(error_msg="action server shutting down")
+
+    def _finish_handle(self, handle: GoalHandle[G, R, F], state: GoalState, result: R) -> None:
+        self._finish(handle.record, state, result)
+        if self._active is handle.record:
+            self._active = None
+
+    def _finish(self, record: GoalRecord, state: GoalState, result: R) -> None:
+        if record.done:
+            return
+        payload = result.to_json()
+        tag = p.result_tag(state)
+        self._results.store(record.goal_id, tag, payload)
+        record.finish(tag, payload)
+        self._publish_status(record.goal_id, state, result.error_msg)
+        self._session.put(self.keys.result(record.goal_id), payload, encoding=JSON, attachment=tag)
+
+    # -- cancel, result query, observers -----------------------------------------------------
+
+    async def _on_cancel(self, query: zenoh.Query) -> None:
+        try:
+            request = decode(p.CancelRequest, query_payload(query) or b"{}", key=self.keys.cancel)
+        except MessageError as exc:
+            query.reply_err(f"bad cancel request: {exc}")
+            _z.drop(query)
+            return
+        canceling = []
+        active = self._active
+        if active and self._task and request.goal_id in ("", active.goal_id):
+            active.cancel_requested = True
+            canceling.append(active.goal_id)
+            self._publish_status(active.goal_id, GoalState.CANCELING)
+            self._task.cancel()
+        response = p.CancelResponse(goals_canceling=canceling)
+        query.reply(query.key_expr, response.to_json(), encoding=JSON)
+        _z.drop(query)
+
+    async def _on_result(self, query: zenoh.Query) -> None:
+        goal_id = str(query.key_expr).rsplit("/", 1)[-1]
+        stored = self._results.get(goal_id)
+        if stored is not None:
+            query.reply(query.key_expr, stored[1], encoding=JSON, attachment=stored[0])
+            _z.drop(query)
+        elif self._active and self._active.goal_id == goal_id:
+            self._active.waiters.append(query)  # answered when the goal finishes
+        else:
+            query.reply_err(f"unknown goal id {goal_id}")
+            _z.drop(query)
+
+    def publish_feedback(self, goal_id: str, feedback: F) -> None:
+        active = self._active
+        if active is None or active.goal_id != goal_id:
+            return  # a preempted goal's late feedback
+        payload = feedback.to_json()
+        active.reply(payload, p.FEEDBACK)
+        self._session.put(self.keys.feedback(goal_id), payload, encoding=JSON)
+
+    def _publish_status(self, goal_id: str, state: GoalState, reason: str = "") -> None:
+        status = GoalStatus(goal_id=goal_id, status=state, reason=reason)
+        self._session.put(self.keys.status(goal_id), status.to_json(), encoding=JSON)
+
+    async def aclose(self) -> None:
+        """Withdraw the token, abort the running goal (its client is told), undeclare."""
+        _z.undeclare(self._token)
+        if self._task is not None and not self._task.done():
+            self._task.cancel()
+            await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
+        for task in list(self._tasks):
+            task.cancel()
+        for queryable in self._queryables:
+            _z.undeclare(queryable)

@@ -1,0 +1,59 @@
+"""Zenoh callbacks (on Zenoh threads) into the asyncio loop, and payload checks.
+
+Callbacks are registered with ``indirect=False`` (no extra Python thread) and do
+only ``loop.call_soon_threadsafe``: nothing blocks a Zenoh thread.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from collections.abc import Callable
+from typing import Any, TypeVar
+
+import zenoh
+
+T = TypeVar("T")
+JSON = zenoh.Encoding.APPLICATION_JSON
+log = logging.getLogger("aiobt.transport")
+
+
+class PayloadTooLarge(ValueError):
+    """A payload above the bus's ``max_payload``, refused on send and on receipt."""
+
+    def __init__(self, key: str, size: int, limit: int) -> None:
+        super().__init__(f"{key}: payload of {size} bytes exceeds the limit of {limit} bytes")
+        self.key = key
+        self.size = size
+        self.limit = limit
+
+
+class LoopBridge:
+    """Hands work from Zenoh threads to one event loop; silent once the loop is gone."""
+
+    __slots__ = ("closed", "loop", "max_payload")
+
+    def __init__(self, loop: asyncio.AbstractEventLoop, max_payload: int) -> None:
+        self.loop = loop
+        self.max_payload = max_payload
+        self.closed = False
+
+    def call(self, fn: Callable[..., Any], *args: Any) -> None:
+        """Run ``fn(*args)`` in the loop soon (from any thread)."""
+        if self.closed:
+            return
+        try:
+            self.loop.call_soon_threadsafe(fn, *args)
+        except RuntimeError:  # the loop closed under us: the process is ending
+            self.closed = True
+
+    def check_size(self, key: str, payload: bytes) -> None:
+        if len(payload) > self.max_payload:
+            raise PayloadTooLarge(key, len(payload), self.max_payload)
+
+
+def callback(
+    fn: Callable[[T], None], on_drop: Callable[[], None] | None = None
+) -> zenoh.handlers.Callback[T]:
+    """A direct Zenoh callback handler (runs on the Zenoh thread; keep ``fn`` tiny)."""
+    return zenoh.handlers.Callback(fn, on_drop, indirect=False)

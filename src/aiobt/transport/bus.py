@@ -1,0 +1,199 @@
+"""The :class:`Bus`: one Zenoh session per process, typed topics, services, actions."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+from collections.abc import AsyncIterator, Callable
+from typing import Any, Literal, TypeVar
+
+import zenoh
+
+from aiobt.msgs import ActionDef, ActionResult, Msg
+from aiobt.transport import _z, services, topics
+from aiobt.transport.actions.client import ActionClient
+from aiobt.transport.actions.server import ActionServer, Execute
+from aiobt.transport.bridge import LoopBridge
+from aiobt.transport.keys import Keys
+from aiobt.transport.presence import Presence
+from aiobt.transport.session import open_session
+from aiobt.transport.settings import BusSettings
+
+M = TypeVar("M", bound=Msg)
+Req = TypeVar("Req", bound=Msg)
+Resp = TypeVar("Resp", bound=Msg)
+G = TypeVar("G", bound=Msg)
+R = TypeVar("R", bound=ActionResult)
+F = TypeVar("F", bound=Msg)
+log = logging.getLogger("aiobt.transport")
+
+
+class Bus:
+    """Everything a process says on Zenoh. Create with :func:`open_bus`.
+
+    Names are relative to the namespace: ``bus.publisher("odom", Odometry)``
+    publishes on ``{ns}/odom``; services live on ``{ns}/srv/{name}`` and actions
+    on ``{ns}/action/{name}/...``.
+    """
+
+    def __init__(self, session: zenoh.Session, settings: BusSettings) -> None:
+        self.session = session
+        self.settings = settings
+        self.keys = Keys(settings.namespace)
+        self.bridge = LoopBridge(asyncio.get_running_loop(), settings.max_payload)
+        self._closables: list[Any] = []
+        self._presence: dict[str, Presence] = {}
+        self._closed = False
+
+    @property
+    def namespace(self) -> str:
+        return self.keys.namespace
+
+    def _track(self, entity: M | Any) -> Any:
+        self._closables.append(entity)
+        return entity
+
+    def publisher(
+        self, name: str, model: type[M], *, reliable: bool = False
+    ) -> topics.Publisher[M]:
+        """A publisher on ``{ns}/{name}``; ``reliable``: block, not drop, when congested."""
+        key = self.keys.topic(name)
+        pub = topics.declare_publisher(self.session, self.bridge, key, model, reliable=reliable)
+        return self._track(pub)  # type: ignore[no-any-return]
+
+    def latched_publisher(self, name: str, model: type[M]) -> topics.Publisher[M]:
+        """A publisher whose last value late subscribers (``latched=True``) still get."""
+        pub = topics.declare_latched_publisher(
+            self.session, self.bridge, self.keys.topic(name), model
+        )
+        return self._track(pub)  # type: ignore[no-any-return]
+
+    def subscribe(
+        self,
+        name: str,
+        model: type[M],
+        callback: Callable[[M], object] | None = None,
+        *,
+        latched: bool = False,
+        queue_size: int = 100,
+    ) -> topics.Subscription[M]:
+        """Messages on ``{ns}/{name}``; ``latched`` also gets a latched publisher's last value."""
+        sub = topics.declare_subscription(
+            self.session,
+            self.bridge,
+            self.keys.topic(name),
+            model,
+            callback_fn=callback,
+            latched=latched,
+            queue_size=queue_size,
+        )
+        return self._track(sub)  # type: ignore[no-any-return]
+
+    def serve(
+        self,
+        name: str,
+        request: type[Req],
+        response: type[Resp],
+        handler: services.Handler[Req, Resp],
+    ) -> services.ServiceServer[Req, Resp]:
+        """Answer ``{ns}/srv/{name}`` with ``handler(request)`` (sync or async)."""
+        key = self.keys.service(name)
+        server = services.ServiceServer(
+            self.session, self.bridge, key, (request, response), handler
+        )
+        return self._track(server)  # type: ignore[no-any-return]
+
+    async def call(
+        self,
+        name: str,
+        request: Msg,
+        response: type[Resp],
+        timeout: float = 2.0,  # noqa: ASYNC109
+    ) -> Resp:
+        """Call ``{ns}/srv/{name}``: waits up to ``timeout`` for the server to be there."""
+        key = self.keys.service(name)
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + timeout
+        if not await self.presence(key).wait(timeout):
+            raise services.ServiceUnavailable(f"{key}: no server within {timeout} s")
+        remaining = max(0.05, deadline - loop.time())
+        return await services.call(self.session, self.bridge, key, request, response, remaining)
+
+    def presence(self, key: str) -> Presence:
+        """Liveliness watcher on an absolute key (shared; closed with the bus)."""
+        if key not in self._presence:
+            self._presence[key] = Presence(self.session, self.bridge, key)
+        return self._presence[key]
+
+    def declare_token(self, name: str) -> zenoh.LivelinessToken:
+        """A liveliness token on ``{ns}/{name}`` (e.g. ``nodes/planner``), until the bus closes."""
+        token = self.session.liveliness().declare_token(self.keys.topic(name))
+        return self._track(token)  # type: ignore[no-any-return]
+
+    def action_server(
+        self,
+        name: str,
+        action: type[ActionDef[G, R, F]],
+        execute: Execute[G, R, F],
+        *,
+        preemption: Literal["abort", "replace"] = "abort",
+        accept: Callable[[G], str | None] | None = None,
+    ) -> ActionServer[G, R, F]:
+        """Serve action ``name`` (see :class:`ActionServer`)."""
+        server = ActionServer(
+            self.session,
+            self.bridge,
+            self.keys.action(name),
+            action,
+            execute,
+            preemption=preemption,
+            accept=accept,
+        )
+        return self._track(server)  # type: ignore[no-any-return]
+
+    def action_client(self, name: str, action: type[ActionDef[G, R, F]]) -> ActionClient[G, R, F]:
+        """A client of action server ``name`` (see :class:`ActionClient`)."""
+        keys = self.keys.action(name)
+        client = ActionClient(self.session, self.bridge, keys, action, self.presence(keys.alive))
+        return self._track(client)  # type: ignore[no-any-return]
+
+    async def close(self) -> None:
+        """Undeclare everything (newest first), then close the session. Idempotent."""
+        if self._closed:
+            return
+        self._closed = True
+        for entity in reversed(self._closables):
+            await _close_one(entity)
+        for presence in self._presence.values():
+            presence.close()
+        self.bridge.closed = True
+        _z.close(self.session)
+
+
+async def _close_one(entity: Any) -> None:
+    try:
+        if hasattr(entity, "aclose"):
+            await entity.aclose()
+        elif hasattr(entity, "close"):
+            entity.close()
+        else:
+            _z.undeclare(entity)
+    except Exception:
+        log.exception("closing %r failed", entity)
+
+
+@contextlib.asynccontextmanager
+async def open_bus(settings: BusSettings | None = None) -> AsyncIterator[Bus]:
+    """Open the process's bus; always closed on exit (no exit hangs)."""
+    settings = settings or BusSettings()
+    session = await open_session(settings)
+    try:
+        bus = Bus(session, settings)
+    except BaseException:
+        _z.close(session)
+        raise
+    try:
+        yield bus
+    finally:
+        await bus.close()

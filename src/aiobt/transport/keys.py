@@ -1,0 +1,85 @@
+"""The key layout of DESIGN.md §4, in one place.
+
+``{ns}/{topic}`` for topics, ``{ns}/srv/{service}`` for services and
+``{ns}/action/{server}/...`` for actions. A server's liveliness token sits on
+its service or action base key.
+"""
+
+from __future__ import annotations
+
+import re
+
+_FORBIDDEN = re.compile(r"[*$?#\s]|//")
+
+
+def check_name(name: str, what: str) -> str:
+    """``name`` if it is a usable key chunk path (no wildcards, no empty chunks)."""
+    if not name or name.startswith("/") or name.endswith("/") or _FORBIDDEN.search(name):
+        raise ValueError(
+            f"{what} {name!r} is not a valid key: no wildcards (* $ ? #), spaces, "
+            "empty or leading/trailing '/' chunks"
+        )
+    return name
+
+
+class Keys:
+    """Key expressions of one robot namespace."""
+
+    __slots__ = ("namespace",)
+
+    def __init__(self, namespace: str) -> None:
+        self.namespace = check_name(namespace, "namespace")
+
+    def topic(self, name: str) -> str:
+        return f"{self.namespace}/{check_name(name, 'topic')}"
+
+    def service(self, name: str) -> str:
+        return f"{self.namespace}/srv/{check_name(name, 'service')}"
+
+    def action(self, server: str) -> ActionKeys:
+        return ActionKeys(f"{self.namespace}/action/{check_name(server, 'action server')}")
+
+
+class ActionKeys:
+    """Keys of one action server under ``{ns}/action/{server}``.
+
+    - ``goal/{id}``: queryable; the send_goal query, whose reply stream carries
+      accepted/rejected, feedback and finally the result
+    - ``cancel``: queryable; cancel one goal (``goal_id``) or all (empty id)
+    - ``status/{id}``, ``feedback/{id}``, ``result/{id}``: published for
+      observers; ``result/{id}`` is also a queryable answering the result
+    - the base key itself: the server's liveliness token
+    """
+
+    __slots__ = ("base",)
+
+    def __init__(self, base: str) -> None:
+        self.base = base
+
+    def goal(self, goal_id: str) -> str:
+        return f"{self.base}/goal/{goal_id}"
+
+    @property
+    def goals(self) -> str:
+        return f"{self.base}/goal/*"
+
+    @property
+    def cancel(self) -> str:
+        return f"{self.base}/cancel"
+
+    def status(self, goal_id: str) -> str:
+        return f"{self.base}/status/{goal_id}"
+
+    def feedback(self, goal_id: str) -> str:
+        return f"{self.base}/feedback/{goal_id}"
+
+    def result(self, goal_id: str) -> str:
+        return f"{self.base}/result/{goal_id}"
+
+    @property
+    def results(self) -> str:
+        return f"{self.base}/result/*"
+
+    @property
+    def alive(self) -> str:
+        return self.base

@@ -1,0 +1,138 @@
+"""Request/reply services: every query is answered, with a result or an error naming why."""
+
+from __future__ import annotations
+
+import asyncio
+import inspect
+import logging
+from collections.abc import Awaitable, Callable
+from typing import Generic, TypeVar
+
+import zenoh
+
+from aiobt.msgs import MessageError, Msg, decode
+from aiobt.transport import _z
+from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
+
+Req = TypeVar("Req", bound=Msg)
+Resp = TypeVar("Resp", bound=Msg)
+Handler = Callable[[Req], Awaitable[Resp] | Resp]
+log = logging.getLogger("aiobt.transport.services")
+
+
+class ServiceError(RuntimeError):
+    """The server answered with an error (bad request, handler failure)."""
+
+
+class ServiceUnavailable(ServiceError):
+    """Nobody answered: no server, or it did not reply in time."""
+
+
+def query_payload(query: zenoh.Query) -> bytes:
+    payload = query.payload
+    return payload.to_bytes() if payload is not None else b""
+
+
+class ServiceServer(Generic[Req, Resp]):
+    """Answers queries on ``key`` with ``handler(request)``; holds a liveliness token."""
+
+    def __init__(
+        self,
+        session: zenoh.Session,
+        bridge: LoopBridge,
+        key: str,
+        models: tuple[type[Req], type[Resp]],
+        handler: Handler[Req, Resp],
+    ) -> None:
+        self.key = key
+        self._request, self._response = models
+        self._handler = handler
+        self._bridge = bridge
+        self._tasks: set[asyncio.Task[None]] = set()
+        self._queryable = session.declare_queryable(key, callback(self._on_query))
+        self._token = session.liveliness().declare_token(key)
+
+    def _on_query(self, query: zenoh.Query) -> None:
+        self._bridge.call(self._spawn, query)
+
+    def _spawn(self, query: zenoh.Query) -> None:
+        task = asyncio.get_running_loop().create_task(self._answer(query))
+        self._tasks.add(task)
+        task.add_done_callback(self._tasks.discard)
+
+    async def _answer(self, query: zenoh.Query) -> None:
+        try:
+            payload = query_payload(query) or b"{}"
+            self._bridge.check_size(self.key, payload)
+            request = decode(self._request, payload, key=self.key)
+            response = self._handler(request)
+            if inspect.isawaitable(response):
+                response = await response
+            if not isinstance(response, self._response):
+                raise TypeError(f"handler returned {type(response).__name__}")
+            query.reply(query.key_expr, response.to_json(), encoding=JSON)
+        except (MessageError, PayloadTooLarge) as exc:
+            query.reply_err(f"bad request: {exc}")
+        except Exception as exc:
+            log.exception("%s: service handler failed", self.key)
+            query.reply_err(f"{self.key}: handler failed: {type(exc).__name__}: {exc}")
+        finally:
+            _z.drop(query)
+
+    def close(self) -> None:
+        _z.undeclare(self._token)
+        _z.undeclare(self._queryable)
+        for task in self._tasks:
+            task.cancel()
+
+
+class _Call:
+    """One get: the first reply (or the end of the stream) resolves the future."""
+
+    def __init__(self, bridge: LoopBridge) -> None:
+        self.future: asyncio.Future[zenoh.Reply | None] = bridge.loop.create_future()
+        self._bridge = bridge
+
+    def on_reply(self, reply: zenoh.Reply) -> None:
+        self._bridge.call(self._resolve, reply)
+
+    def on_drop(self) -> None:
+        self._bridge.call(self._resolve, None)
+
+    def _resolve(self, reply: zenoh.Reply | None) -> None:
+        if not self.future.done():
+            self.future.set_result(reply)
+
+
+async def call(
+    session: zenoh.Session,
+    bridge: LoopBridge,
+    key: str,
+    request: Msg,
+    response_model: type[Resp],
+    timeout: float,  # noqa: ASYNC109
+) -> Resp:
+    """Send ``request``, return the decoded response; raise ServiceError/Unavailable."""
+    payload = request.to_json()
+    bridge.check_size(key, payload)
+    pending = _Call(bridge)
+    session.get(
+        key,
+        callback(pending.on_reply, pending.on_drop),
+        payload=payload,
+        encoding=JSON,
+        timeout=timeout,
+    )
+    async with asyncio.timeout(timeout + 0.5):
+        reply = await pending.future
+    if reply is None:
+        raise ServiceUnavailable(f"{key}: no service answered")
+    if reply.err is not None:
+        message = reply.err.payload.to_string()
+        if message.lower().startswith("timeout"):
+            raise ServiceUnavailable(f"{key}: no reply within {timeout} s")
+        raise ServiceError(f"{key}: {message}")
+    assert reply.ok is not None
+    data = reply.ok.payload.to_bytes()
+    bridge.check_size(key, data)
+    return decode(response_model, data, key=key)

@@ -1,0 +1,158 @@
+"""Bus settings: the shared command-line flags, a Zenoh config file, and defaults.
+
+Precedence: a Zenoh config file (``--config`` or ``ZENOH_CONFIG``) first, then
+the explicit flags on top. Services default to ``client`` mode connecting to a
+router on ``tcp/127.0.0.1:7447``, with a 1000 ms lease so a hung process is
+noticed within about a second.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from dataclasses import dataclass, field
+from typing import Literal, cast
+
+import zenoh
+
+from aiobt.transport.keys import check_name
+
+Mode = Literal["client", "peer", "router"]
+DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
+DEFAULT_NAMESPACE = "robot"
+DEFAULT_MAX_PAYLOAD = 16 * 1024 * 1024
+
+
+class BusConfigError(ValueError):
+    """A bad bus setting or Zenoh config file; the message names the file/flag and field."""
+
+
+@dataclass(slots=True, frozen=True)
+class BusSettings:
+    mode: Mode | None = None
+    connect: tuple[str, ...] = ()
+    listen: tuple[str, ...] = ()
+    namespace: str = DEFAULT_NAMESPACE
+    config_file: str | None = None
+    lease_ms: int = 1000
+    connect_timeout: float | None = None
+    max_payload: int = DEFAULT_MAX_PAYLOAD
+    extra: dict[str, object] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        try:
+            check_name(self.namespace, "--namespace")
+        except ValueError as exc:
+            raise BusConfigError(str(exc)) from None
+        if self.mode not in (None, "client", "peer", "router"):
+            raise BusConfigError(f"--mode must be client, peer or router, got {self.mode!r}")
+        if self.lease_ms < 100:
+            raise BusConfigError(f"--lease-ms must be >= 100, got {self.lease_ms}")
+        if self.max_payload <= 0:
+            raise BusConfigError(f"max_payload must be > 0, got {self.max_payload}")
+
+    @classmethod
+    def from_args(cls, args: argparse.Namespace) -> BusSettings:
+        """Settings from the flags added by :func:`add_bus_arguments`."""
+        return cls(
+            mode=cast("Mode | None", args.mode),
+            connect=tuple(args.connect or ()),
+            listen=tuple(args.listen or ()),
+            namespace=args.namespace,
+            config_file=args.config,
+            lease_ms=args.lease_ms,
+            connect_timeout=args.connect_timeout,
+        )
+
+    @property
+    def effective_config_file(self) -> str | None:
+        return self.config_file or os.environ.get("ZENOH_CONFIG") or None
+
+    def zenoh_config(self) -> zenoh.Config:
+        """The Zenoh config: the file if any, then these settings on top."""
+        config = self._base_config()
+        mode = self.mode or (None if self.effective_config_file else "client")
+        _insert(config, "mode", mode)
+        connect = self.connect or ((DEFAULT_ROUTER,) if mode == "client" else ())
+        _insert(config, "connect/endpoints", list(connect) or None)
+        _insert(config, "listen/endpoints", list(self.listen) or None)
+        _insert(config, "transport/link/tx/lease", self.lease_ms)
+        _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
+        if not self.effective_config_file:
+            _insert(config, "scouting/multicast/enabled", False)
+        for key, value in self.extra.items():
+            _insert(config, key, value)
+        return config
+
+    def _base_config(self) -> zenoh.Config:
+        path = self.effective_config_file
+        if not path:
+            return zenoh.Config()
+        if not os.path.isfile(path):
+            raise BusConfigError(f"Zenoh config file {path}: no such file")
+        try:
+            return zenoh.Config.from_file(path)
+        except zenoh.ZError as exc:
+            raise BusConfigError(f"Zenoh config file {path}: {exc}") from None
+
+
+def _insert(config: zenoh.Config, key: str, value: object) -> None:
+    if value is None:
+        return
+    try:
+        config.insert_json5(key, json.dumps(value))
+    except zenoh.ZError as exc:
+        raise BusConfigError(f"Zenoh config field {key}={value!r}: {exc}") from None
+
+
+def add_bus_arguments(parser: argparse.ArgumentParser) -> None:
+    """The shared flags: --connect --listen --mode --config --namespace --lease-ms."""
+    group = parser.add_argument_group("Zenoh bus")
+    group.add_argument(
+        "-e",
+        "--connect",
+        action="append",
+        metavar="ENDPOINT",
+        help=f"endpoint to connect to, repeatable (client default: {DEFAULT_ROUTER})",
+    )
+    group.add_argument(
+        "-l",
+        "--listen",
+        action="append",
+        metavar="ENDPOINT",
+        help="endpoint to listen on, repeatable (e.g. tcp/0.0.0.0:7447)",
+    )
+    group.add_argument(
+        "-m",
+        "--mode",
+        choices=("client", "peer", "router"),
+        default=None,
+        help="Zenoh session mode (default: client, or the config file's)",
+    )
+    group.add_argument(
+        "-c",
+        "--config",
+        metavar="FILE",
+        default=None,
+        help="Zenoh JSON5 config file (default: $ZENOH_CONFIG); the flags override it",
+    )
+    group.add_argument(
+        "-n",
+        "--namespace",
+        default=os.environ.get("AIOBT_NAMESPACE", DEFAULT_NAMESPACE),
+        help="robot namespace, the first chunk of every key (default: %(default)s)",
+    )
+    group.add_argument(
+        "--lease-ms",
+        type=int,
+        default=1000,
+        help="Zenoh link lease: how fast a hung peer is noticed (default: %(default)s ms)",
+    )
+    group.add_argument(
+        "--connect-timeout",
+        type=float,
+        default=None,
+        metavar="SECONDS",
+        help="give up if the router is not reachable in time (default: retry forever)",
+    )

@@ -1,0 +1,77 @@
+"""Request/reply services over a real router: answers, error replies, absence."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+
+from aiobt.msgs import ClearCostmapExceptRegion, ClearCostmapResponse, IsPathValid, Path
+from aiobt.transport import Bus, BusSettings, ServiceError, ServiceUnavailable, open_bus
+
+pytestmark = pytest.mark.integration
+CLEAR = "local_costmap/clear_except_local_costmap"
+
+
+async def test_call_and_answer(bus: Bus, bus_settings: BusSettings) -> None:
+    seen: list[float] = []
+
+    async def clear(request: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
+        seen.append(request.reset_distance)
+        return ClearCostmapResponse(success=True, message=f"kept {request.reset_distance} m")
+
+    bus.serve(CLEAR, ClearCostmapExceptRegion.Request, ClearCostmapResponse, clear)
+    async with open_bus(bus_settings) as client:
+        request = ClearCostmapExceptRegion.Request(reset_distance=2.5)
+        response = await client.call(CLEAR, request, ClearCostmapResponse, timeout=5.0)
+    assert response == ClearCostmapResponse(success=True, message="kept 2.5 m")
+    assert seen == [2.5]
+
+
+async def test_bad_request_gets_an_error_naming_the_field(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    bus.serve(
+        "is_path_valid",
+        IsPathValid.Request,
+        IsPathValid.Response,
+        lambda request: IsPathValid.Response(is_valid=True),
+    )
+    bad = IsPathValid.Request.model_construct(
+        path=Path(), max_cost=999, consider_unknown_as_obstacle=False
+    )
+    async with open_bus(bus_settings) as client:
+        with pytest.raises(ServiceError, match=r"bad request: .*'max_cost'") as caught:
+            await client.call("is_path_valid", bad, IsPathValid.Response, timeout=5.0)
+    assert not isinstance(caught.value, ServiceUnavailable)
+
+
+async def test_handler_failure_is_an_error_reply_and_server_keeps_running(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    calls = 0
+
+    def flaky(request: IsPathValid.Request) -> IsPathValid.Response:
+        nonlocal calls
+        calls += 1
+        if calls == 1:
+            raise RuntimeError("costmap not ready")
+        return IsPathValid.Response(is_valid=True)
+
+    bus.serve("is_path_valid", IsPathValid.Request, IsPathValid.Response, flaky)
+    async with open_bus(bus_settings) as client:
+        request = IsPathValid.Request(path=Path())
+        with pytest.raises(ServiceError, match="costmap not ready"):
+            await client.call("is_path_valid", request, IsPathValid.Response, timeout=5.0)
+        response = await client.call("is_path_valid", request, IsPathValid.Response, timeout=5.0)
+    assert response.is_valid
+
+
+async def test_absent_service_fails_fast(bus: Bus) -> None:
+    loop = asyncio.get_running_loop()
+    start = loop.time()
+    with pytest.raises(ServiceUnavailable, match=r"no server within 0\.3 s"):
+        await bus.call(
+            "nobody_here", IsPathValid.Request(path=Path()), IsPathValid.Response, timeout=0.3
+        )
+    assert loop.time() - start < 1.0
