@@ -28,7 +28,7 @@ from .sensors import (
     ranges_from_hits,
     ray_endpoints,
 )
-from .world import Physics, RobotShape
+from .world import RAY_MASK, Physics, RobotShape
 
 log = logging.getLogger("aiobt_services.robot.sim")
 
@@ -174,7 +174,13 @@ class Simulation:
         cfg = self.config.lidar
         start_radius = max(cfg.range_min, self.config.robot.radius + 0.01)
         starts, ends = ray_endpoints(self._true, cfg, start_radius)
-        results = self._physics.call("rayTestBatch", starts.tolist(), ends.tolist())
+        results = self._physics.call(
+            "rayTestBatch",
+            starts.tolist(),
+            ends.tolist(),
+            numThreads=1,
+            collisionFilterMask=RAY_MASK,
+        )
         hit = np.fromiter((r[0] >= 0 for r in results), dtype=bool, count=len(results))
         fractions = np.fromiter((r[2] for r in results), dtype=np.float64, count=len(results))
         return Scan(self.time, ranges_from_hits(fractions, hit, cfg, start_radius, self._rng), cfg)

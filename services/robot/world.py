@@ -17,6 +17,8 @@ from .obstacles import ObstacleSpec
 log = logging.getLogger("aiobt_services.robot.world")
 
 WALL_HEIGHT = 1.0
+ROBOT_GROUP = 0x4  # collision filter group of the robot body
+RAY_MASK = 0xFFFF & ~ROBOT_GROUP  # the lidar's rays skip the robot's own body
 
 
 @dataclass(slots=True, frozen=True)
@@ -105,6 +107,7 @@ class Physics:
         self.call(
             "changeDynamics", body, -1, lateralFriction=0.0, linearDamping=0.0, angularDamping=0.0
         )
+        self.call("setCollisionFilterGroupMask", body, -1, ROBOT_GROUP, 0xFFFF)
         return body
 
     def obstacle(self, spec: ObstacleSpec) -> int:
