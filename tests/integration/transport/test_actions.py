@@ -1,0 +1,243 @@
+"""The action protocol between two sessions via a real router."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import AsyncIterator
+
+import pytest
+
+from aiobt.msgs import (
+    ComputePathToPose,
+    FollowPath,
+    GoalState,
+    GoalStatus,
+    Path,
+    PoseStamped,
+    Wait,
+    decode,
+)
+from aiobt.transport import (
+    Bus,
+    BusSettings,
+    GoalHandle,
+    GoalRejected,
+    ServerUnavailable,
+    open_bus,
+)
+
+pytestmark = pytest.mark.integration
+WaitHandle = GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
+PlanHandle = GoalHandle[
+    ComputePathToPose.Goal, ComputePathToPose.Result, ComputePathToPose.Feedback
+]
+
+
+@pytest.fixture
+async def client_bus(bus_settings: BusSettings) -> AsyncIterator[Bus]:
+    async with open_bus(bus_settings) as opened:
+        yield opened
+
+
+def serve_wait(bus: Bus, **kwargs: object) -> list[str]:
+    """A wait server on ``bus``; returns a log of what happened to its executions."""
+    events: list[str] = []
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        events.append(f"start {handle.goal_id}")
+        try:
+            for step in range(round(goal.time / 0.02)):
+                handle.publish_feedback(Wait.Feedback(time_left=goal.time - 0.02 * step))
+                await asyncio.sleep(0.02)
+            return Wait.Result(total_elapsed_time=goal.time)
+        finally:
+            events.append(f"end {handle.goal_id}")
+
+    bus.action_server("wait", Wait, execute, **kwargs)  # type: ignore[arg-type]
+    return events
+
+
+async def test_goal_with_feedback_and_result(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus)
+    client = client_bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=0.2), server_timeout=5.0)
+    feedback = [fb.time_left async for fb in goal.feedback()]
+    result = await goal.result(timeout=5.0)
+    assert goal.status is GoalState.SUCCEEDED
+    assert result.error_code == 0
+    assert result.total_elapsed_time == pytest.approx(0.2)
+    assert len(feedback) >= 5
+    assert feedback == sorted(feedback, reverse=True)
+    state, fetched = await client.fetch_result(goal.goal_id)
+    assert (state, fetched) == (GoalState.SUCCEEDED, result)
+
+
+async def test_error_code_result_is_aborted(bus: Bus, client_bus: Bus) -> None:
+    async def plan(goal: ComputePathToPose.Goal, handle: PlanHandle) -> ComputePathToPose.Result:
+        code = ComputePathToPose.ErrorCode.NO_VALID_PATH
+        return ComputePathToPose.Result(error_code=code, error_msg="no path to goal")
+
+    bus.action_server("compute_path_to_pose", ComputePathToPose, plan)
+    client = client_bus.action_client("compute_path_to_pose", ComputePathToPose)
+    goal = await client.send_goal(
+        ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(1, 2)), server_timeout=5.0
+    )
+    result = await goal.result(timeout=5.0)
+    assert (goal.status, result.error_code, result.error_msg) == (
+        GoalState.ABORTED,
+        208,
+        "no path to goal",
+    )
+
+
+async def test_crash_in_execute_is_unknown_error(bus: Bus, client_bus: Bus) -> None:
+    async def plan(goal: ComputePathToPose.Goal, handle: PlanHandle) -> ComputePathToPose.Result:
+        raise ZeroDivisionError("bad costmap")
+
+    bus.action_server("compute_path_to_pose", ComputePathToPose, plan)
+    client = client_bus.action_client("compute_path_to_pose", ComputePathToPose)
+    goal = await client.send_goal(
+        ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(1, 2)), server_timeout=5.0
+    )
+    result = await goal.result(timeout=5.0)
+    assert goal.status is GoalState.ABORTED
+    assert result.error_code == ComputePathToPose.ErrorCode.UNKNOWN
+    assert "ZeroDivisionError: bad costmap" in result.error_msg
+
+
+async def test_rejection_with_a_reason(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus, accept=lambda goal: "too long" if goal.time > 10 else None)
+    client = client_bus.action_client("wait", Wait)
+    with pytest.raises(GoalRejected, match="too long") as caught:
+        await client.send_goal(Wait.Goal(time=60), server_timeout=5.0)
+    assert caught.value.reason == "too long"
+    accepted = await client.send_goal(Wait.Goal(time=0.0), server_timeout=5.0)
+    await accepted.result(timeout=5.0)
+    assert accepted.status is GoalState.SUCCEEDED
+
+
+async def test_malformed_goal_is_rejected_naming_the_field(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus)
+    client = client_bus.action_client("wait", Wait)
+    with pytest.raises(GoalRejected, match=r"bad goal: .*'time'"):
+        await client.send_goal(Wait.Goal.model_construct(time=-1.0), server_timeout=5.0)
+
+
+async def test_cancel_one_goal(bus: Bus, client_bus: Bus) -> None:
+    events = serve_wait(bus)
+    client = client_bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=5.0)
+    async for _ in goal.feedback():
+        break
+    result = await goal.cancel(timeout=5.0)
+    assert goal.status is GoalState.CANCELED
+    assert result is not None
+    assert result.error_code == 0
+    assert events == [f"start {goal.goal_id}", f"end {goal.goal_id}"]
+
+
+async def test_cancel_all_goals(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus)
+    client = client_bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=5.0)
+    assert await client.cancel_all(timeout=5.0) == [goal.goal_id]
+    await goal.result(timeout=5.0)
+    assert goal.status is GoalState.CANCELED
+    assert await client.cancel_all(timeout=5.0) == []
+
+
+async def test_new_goal_aborts_the_running_one(bus: Bus, client_bus: Bus) -> None:
+    events = serve_wait(bus)
+    client = client_bus.action_client("wait", Wait)
+    first = await client.send_goal(Wait.Goal(time=30.0), server_timeout=5.0)
+    second = await client.send_goal(Wait.Goal(time=0.1), server_timeout=5.0)
+    first_result = await first.result(timeout=5.0)
+    await second.result(timeout=5.0)
+    assert first.status is GoalState.ABORTED
+    assert first_result.error_msg == f"preempted by goal {second.goal_id}"
+    assert second.status is GoalState.SUCCEEDED
+    # the first execution was cleaned up before the second started
+    assert events == [
+        f"start {first.goal_id}",
+        f"end {first.goal_id}",
+        f"start {second.goal_id}",
+        f"end {second.goal_id}",
+    ]
+
+
+async def test_replace_policy_hands_the_new_goal_to_the_running_execute(
+    bus: Bus, client_bus: Bus
+) -> None:
+    starts: list[str] = []
+    FollowHandle = GoalHandle[FollowPath.Goal, FollowPath.Result, FollowPath.Feedback]
+
+    async def follow(goal: FollowPath.Goal, handle: FollowHandle) -> FollowPath.Result:
+        starts.append(goal.controller_id)
+        path = goal.path
+        while path.header.frame_id != "done":
+            handle.publish_feedback(FollowPath.Feedback(distance_to_goal=len(path.poses)))
+            if (newer := handle.take_new_goal()) is not None:
+                path = newer.path
+            await asyncio.sleep(0.01)
+        return FollowPath.Result(error_msg=f"followed {len(path.poses)} poses")
+
+    bus.action_server("follow_path", FollowPath, follow, preemption="replace")
+    client = client_bus.action_client("follow_path", FollowPath)
+    first = await client.send_goal(
+        FollowPath.Goal(path=Path(), controller_id="A"), server_timeout=5.0
+    )
+    async for _ in first.feedback():
+        break
+    done_path = Path(poses=[PoseStamped.from_xy_yaw(1, 1)] * 3)
+    done_path.header.frame_id = "done"
+    second = await client.send_goal(
+        FollowPath.Goal(path=done_path, controller_id="B"), server_timeout=5.0
+    )
+    second_result = await second.result(timeout=5.0)
+    first_result = await first.result(timeout=5.0)
+    assert second.status is GoalState.SUCCEEDED
+    assert second_result.error_msg == "followed 3 poses"
+    assert first.status is GoalState.ABORTED
+    assert first_result.error_msg == f"preempted by goal {second.goal_id}"
+    assert starts == ["A"]  # one execution throughout: no stop between the paths
+
+
+async def test_server_timeout_bounds_acceptance(client_bus: Bus) -> None:
+    client = client_bus.action_client("nobody", Wait)
+    loop = asyncio.get_running_loop()
+    start = loop.time()
+    with pytest.raises(ServerUnavailable, match=r"within 0\.3 s"):
+        await client.send_goal(Wait.Goal(time=1.0), server_timeout=0.3)
+    assert 0.25 < loop.time() - start < 1.0
+
+
+async def test_first_goal_is_never_lost(bus_settings: BusSettings, client_bus: Bus) -> None:
+    client = client_bus.action_client("wait", Wait)
+    for _ in range(5):
+        sending = asyncio.create_task(client.send_goal(Wait.Goal(time=0.0), server_timeout=5.0))
+        async with open_bus(bus_settings) as server_bus:  # the server comes up after the send
+            serve_wait(server_bus)
+            goal = await sending
+            await goal.result(timeout=5.0)
+            assert goal.status is GoalState.SUCCEEDED
+
+
+async def test_status_is_published_for_observers(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus)
+    statuses: list[GoalStatus] = []
+    key = f"{bus.namespace}/action/wait/status/*"
+    observer = client_bus.session.declare_subscriber(
+        key, lambda s: statuses.append(decode(GoalStatus, s.payload.to_bytes()))
+    )
+    await asyncio.sleep(0.2)
+    client = client_bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=0.05), server_timeout=5.0)
+    await goal.result(timeout=5.0)
+    await asyncio.sleep(0.2)
+    observer.undeclare()  # type: ignore[no-untyped-call]
+    assert [s.status for s in statuses] == [
+        GoalState.ACCEPTED,
+        GoalState.EXECUTING,
+        GoalState.SUCCEEDED,
+    ]
+    assert {s.goal_id for s in statuses} == {goal.goal_id}

@@ -1,0 +1,174 @@
+"""Separate processes: a killed or hung server, the zenoh CLI, auth, clean exits, no leaks."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+import pytest
+
+from aiobt.msgs import PoseStamped, Wait
+from aiobt.testing.bus import ServiceProcess, running_router
+from aiobt.transport import Bus, BusSettings, BusUnavailable, GoalLost, open_bus
+
+pytestmark = pytest.mark.integration
+Spawn = Callable[[Sequence[str]], ServiceProcess]
+SERVER = "tests.integration.transport.action_server_proc"
+ZENOH_CLI = Path(sys.executable).with_name("zenoh")
+
+
+def start_server(spawn: Spawn, settings: BusSettings) -> ServiceProcess:
+    args = ["-m", SERVER, "--connect", settings.connect[0], "--namespace", settings.namespace]
+    return spawn(args)
+
+
+async def test_killed_server_fails_the_goal_fast_and_a_restart_serves_again(
+    bus: Bus, bus_settings: BusSettings, spawn: Spawn
+) -> None:
+    server = start_server(spawn, bus_settings)
+    client = bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=10.0)
+    async for _ in goal.feedback():
+        break
+    server.kill()
+    killed = time.monotonic()
+    with pytest.raises(GoalLost, match="lost"):
+        await goal.result(timeout=5.0)
+    assert time.monotonic() - killed < 1.5
+    start_server(spawn, bus_settings)
+    again = await client.send_goal(Wait.Goal(time=0.1), server_timeout=10.0)
+    result = await again.result(timeout=5.0)
+    assert result.total_elapsed_time >= 0.1
+
+
+async def test_hung_server_is_noticed_within_the_lease(
+    bus: Bus, bus_settings: BusSettings, spawn: Spawn
+) -> None:
+    server = start_server(spawn, bus_settings)
+    client = bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=10.0)
+    async for _ in goal.feedback():
+        break
+    os.kill(server.pid, signal.SIGSTOP)
+    try:
+        hung = time.monotonic()
+        with pytest.raises(GoalLost):
+            await goal.result(timeout=5.0)
+        assert time.monotonic() - hung < 2.0  # lease 1000 ms
+    finally:
+        os.kill(server.pid, signal.SIGCONT)
+        server.kill()
+
+
+async def test_goal_from_the_zenoh_command_line(bus: Bus, router_endpoint: str) -> None:
+    sub = bus.subscribe("goal_pose", PoseStamped)
+    await asyncio.sleep(0.3)  # the CLI publishes once, at once: let the subscription settle
+    command = [
+        str(ZENOH_CLI),
+        "--mode",
+        "client",
+        "--connect",
+        router_endpoint,
+        "put",
+        "-k",
+        f"{bus.namespace}/goal_pose",
+        "-v",
+        '{"x": 1.5, "y": -2.0, "yaw": 0.5}',
+    ]
+    proc = await asyncio.create_subprocess_exec(
+        *command, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
+    )
+    try:
+        _, stderr = await asyncio.wait_for(proc.communicate(), 30.0)
+    finally:
+        if proc.returncode is None:
+            proc.kill()
+            await proc.wait()
+    assert proc.returncode == 0, stderr.decode()
+    goal = await sub.next(timeout=5.0)
+    assert (goal.x, goal.y, goal.header.frame_id) == (1.5, -2.0, "map")
+    assert goal.yaw == pytest.approx(0.5)
+
+
+def test_user_password_auth(tmp_path: Path) -> None:
+    (tmp_path / "users.txt").write_text("robot:s3cret\n")
+    users = {"dictionary_file": str(tmp_path / "users.txt")}
+    (tmp_path / "router.json5").write_text(json.dumps({"transport": {"auth": {"usrpwd": users}}}))
+
+    def client_config(user: str, password: str) -> str:
+        path = tmp_path / f"client-{user}-{password}.json5"
+        usrpwd = {"user": user, "password": password}
+        path.write_text(json.dumps({"transport": {"auth": {"usrpwd": usrpwd}}}))
+        return str(path)
+
+    async def can_talk(endpoint: str, config: str | None) -> bool:
+        settings = BusSettings(
+            connect=(endpoint,), config_file=config, connect_timeout=1.0, mode="client"
+        )
+        try:
+            async with open_bus(settings) as bus:
+                return bus.session.info.routers_zid() != []
+        except BusUnavailable:
+            return False
+
+    with running_router(extra_args=["--config", str(tmp_path / "router.json5")]) as (_, ep):
+        assert asyncio.run(can_talk(ep, client_config("robot", "s3cret")))
+        assert not asyncio.run(can_talk(ep, client_config("robot", "wrong")))
+        assert not asyncio.run(can_talk(ep, None))
+
+
+def test_process_with_open_entities_exits_cleanly(router_endpoint: str) -> None:
+    script = textwrap.dedent(f"""
+        import asyncio
+        from aiobt.msgs import Twist, Wait, ClearCostmapResponse, ClearEntireCostmap
+        from aiobt.transport import BusSettings, open_bus
+
+        async def main():
+            settings = BusSettings(connect=("{router_endpoint}",), namespace="exit_test")
+            async with open_bus(settings) as bus:
+                bus.subscribe("cmd_vel", Twist, callback=print)
+                bus.latched_publisher("map_x", Twist).put(Twist())
+                bus.subscribe("map_x", Twist, latched=True)
+                bus.serve("clear", ClearEntireCostmap.Request, ClearCostmapResponse,
+                          lambda r: ClearCostmapResponse())
+                async def execute(goal, handle):
+                    await asyncio.sleep(10)
+                    return Wait.Result()
+                bus.action_server("wait", Wait, execute)
+                bus.action_client("wait", Wait)
+                await asyncio.sleep(0.2)
+
+        asyncio.run(main())
+    """)
+    started = time.monotonic()
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, timeout=30)
+    assert done.returncode == 0, done.stderr.decode()
+    assert time.monotonic() - started < 10
+
+
+async def test_no_threads_left_after_the_bus_closes(bus_settings: BusSettings) -> None:
+    before = {t.ident for t in threading.enumerate()}
+    async with open_bus(bus_settings) as server, open_bus(bus_settings) as client:
+        events: list[str] = []
+
+        async def execute(goal: Wait.Goal, handle: object) -> Wait.Result:
+            events.append("ran")
+            return Wait.Result()
+
+        server.action_server("wait", Wait, execute)
+        goal = await client.action_client("wait", Wait).send_goal(
+            Wait.Goal(time=0), server_timeout=5.0
+        )
+        await goal.result(timeout=5.0)
+    assert events == ["ran"]
+    leftover = [t.name for t in threading.enumerate() if t.ident not in before]
+    assert leftover == []
