@@ -4,15 +4,15 @@ Publishes ``{ns}/odom``, ``{ns}/pose``, ``{ns}/scan``, ``{ns}/battery``,
 ``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
 move,remove,list}``, ``{ns}/srv/reset_pose``,
-``{ns}/srv/reinitialize_global_localization`` and ``{ns}/srv/snapshot``; holds
-the liveliness token ``{ns}/nodes/robot``.
+``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
+``--stepped``, ``{ns}/srv/step``; holds the liveliness token ``{ns}/nodes/robot``.
+See README.md next to this file for the message shapes.
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
-import contextlib
 import logging
 import signal
 from pathlib import Path
@@ -28,7 +28,14 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
-from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
+from aiobt.transport import (
+    Bus,
+    BusConfigError,
+    BusSettings,
+    BusUnavailable,
+    add_bus_arguments,
+    open_bus,
+)
 
 from . import convert, messages
 from .mapfile import MapError, load_map
@@ -79,6 +86,18 @@ def _wire(bus: Bus, service: RobotService) -> None:
     bus.serve("snapshot", m.SnapshotRequest, m.Snapshot, service.snapshot)
 
 
+def _serve_steps(bus: Bus, runner: SimRunner) -> None:
+    """``--stepped``: sim time moves only when ``srv/step`` asks (one request at a time)."""
+    lock = asyncio.Lock()
+
+    async def step(req: messages.StepRequest) -> messages.StepReply:
+        async with lock:
+            steps = await runner.advance(req.seconds)
+        return messages.StepReply(time=runner.sim.time, steps=steps)
+
+    bus.serve("step", messages.StepRequest, messages.StepReply, step)
+
+
 async def serve(args: argparse.Namespace, sim: Simulation) -> None:
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()
@@ -96,13 +115,17 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
         _wire(bus, service)
         bus.declare_token("nodes/robot")
         log.info(
-            "robot up on namespace '%s': world %s, speed x%g, dt %g s",
+            "robot up on namespace '%s': world %s, %s, dt %g s",
             bus.namespace,
             sim.world.source,
-            args.speed,
+            "stepped by srv/step" if args.stepped else f"speed x{args.speed:g}",
             sim.config.dt,
         )
-        await runner.run(stop)
+        if args.stepped:
+            _serve_steps(bus, runner)
+            await stop.wait()
+        else:
+            await runner.run(stop)
     log.info("robot stopped at sim time %.2f s after %d steps", sim.time, sim.steps)
 
 
@@ -118,8 +141,13 @@ def run(args: argparse.Namespace) -> int:
         log.error("robot: %s", exc)
         return 2
     with sim:
-        with contextlib.suppress(KeyboardInterrupt):
+        try:
             asyncio.run(serve(args, sim))
+        except KeyboardInterrupt:
+            pass
+        except (BusUnavailable, BusConfigError) as exc:
+            log.error("robot: %s", exc)
+            return 1
         if args.snapshot_on_exit:
             Path(args.snapshot_on_exit).write_bytes(render_png(sim))
             log.info("snapshot written to %s", args.snapshot_on_exit)

@@ -99,6 +99,16 @@ class MapInfo:
         m = margin / self.resolution
         return m <= row <= self.height - m and m <= col <= self.width - m
 
+    def disc_blocked(self, x: float, y: float, radius: float) -> bool:
+        """Does any occupied cell touch the disc of ``radius`` around the point?"""
+        row, col = self.world_to_cell(x, y)
+        reach = radius / self.resolution + 1.0
+        r0, r1 = max(0, math.floor(row - reach)), min(self.height, math.ceil(row + reach) + 1)
+        c0, c1 = max(0, math.floor(col - reach)), min(self.width, math.ceil(col + reach) + 1)
+        rows, cols = np.mgrid[r0:r1, c0:c1]
+        near = np.hypot(rows + 0.5 - row, cols + 0.5 - col) <= radius / self.resolution + 0.5
+        return bool(np.any(self.grid[r0:r1, c0:c1][near] == OCCUPIED))
+
     def occupancy_at(self, x: float, y: float) -> int:
         """Cell value under a map point; UNKNOWN outside the map."""
         row, col = self.world_to_cell(x, y)

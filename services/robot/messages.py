@@ -104,3 +104,14 @@ class Snapshot(Msg):
     height: int = 0
     png: bytes = b""
     path: str = ""
+
+
+class StepRequest(Msg):
+    """``srv/step`` (``--stepped`` only): advance the simulation by ``seconds``."""
+
+    seconds: float = Field(gt=0.0, le=3600.0)
+
+
+class StepReply(Msg):
+    time: float = Field(description="sim time after the step")
+    steps: int = Field(description="physics steps taken")

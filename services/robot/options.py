@@ -31,6 +31,11 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
         default=1.0,
         help="sim time runs this many times faster than wall time (default: %(default)s)",
     )
+    add(
+        "--stepped",
+        action="store_true",
+        help="deterministic: sim time moves only on {ns}/srv/step requests",
+    )
     add("--dt", type=_positive, default=0.01, help="physics step, s (default: %(default)s)")
     add("--gui", action="store_true", help="open the pybullet GUI (needs a display)")
     add(

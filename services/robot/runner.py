@@ -80,6 +80,8 @@ class SimRunner:
         """One physics step, then every publication due at the new sim time."""
         sim = self.sim
         for event in sim.step():
+            if event.pressed:
+                log.info("bump: %s at (%.2f, %.2f)", event.other, event.x, event.y)
             self._outputs.publish("bumper", convert.bumper(event))
         due = {t for t, every in self._periods.items() if sim.steps % every == 0}
         if "clock" in due:
@@ -92,6 +94,15 @@ class SimRunner:
             self._outputs.publish("scan", convert.laser_scan(sim.scan()))
         if "battery" in due:
             self._outputs.publish("battery", convert.battery_state(sim.battery, sim.time))
+
+    async def advance(self, seconds: float, chunk: int = 50) -> int:
+        """Stepped mode: tick through ``seconds`` of sim time now, yielding every ``chunk``."""
+        steps = max(0, round(seconds / self.sim.config.dt))
+        for done in range(steps):
+            self.tick()
+            if done % chunk == chunk - 1:
+                await asyncio.sleep(0)  # let commands and queries in between
+        return steps
 
     async def run(self, stop: asyncio.Event) -> None:
         """Step in scaled real time until ``stop`` is set."""

@@ -16,7 +16,7 @@ import numpy.typing as npt
 
 from .drive import CommandVerdict, DriveController, DriveLimits
 from .geometry import Pose2D
-from .mapfile import OCCUPIED, MapInfo
+from .mapfile import MapInfo
 from .obstacles import Motion, ObstacleError, ObstacleSpec, validate
 from .sensors import (
     Battery,
@@ -172,7 +172,7 @@ class Simulation:
 
     def scan(self) -> Scan:
         cfg = self.config.lidar
-        start_radius = max(cfg.range_min, self.config.robot.radius + 0.01)
+        start_radius = 0.0  # from the centre: the rays' filter mask skips the robot's body
         starts, ends = ray_endpoints(self._true, cfg, start_radius)
         results = self._physics.call(
             "rayTestBatch",
@@ -192,22 +192,12 @@ class Simulation:
             raise PoseError(f"pose ({pose.x}, {pose.y}, {pose.yaw}) is not finite")
         if not self.world.contains(pose.x, pose.y, margin=clearance):
             raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) is outside the world")
-        if self._grid_blocked(pose.x, pose.y, clearance):
+        if self.world.disc_blocked(pose.x, pose.y, clearance):
             raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) overlaps a wall")
         for oid, obstacle in self._obstacles.items():
             here = obstacle.spec.pose_at(self.time - obstacle.since)
             if oid != ignore and here.distance_to(pose) < clearance + obstacle.spec.bounding_radius:
                 raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) overlaps obstacle '{oid}'")
-
-    def _grid_blocked(self, x: float, y: float, radius: float) -> bool:
-        w = self.world
-        row, col = w.world_to_cell(x, y)
-        reach = radius / w.resolution + 1.0
-        r0, r1 = max(0, math.floor(row - reach)), min(w.height, math.ceil(row + reach) + 1)
-        c0, c1 = max(0, math.floor(col - reach)), min(w.width, math.ceil(col + reach) + 1)
-        rows, cols = np.mgrid[r0:r1, c0:c1]
-        near = np.hypot(rows + 0.5 - row, cols + 0.5 - col) <= radius / w.resolution + 0.5
-        return bool(np.any(w.grid[r0:r1, c0:c1][near] == OCCUPIED))
 
     def teleport(self, pose: Pose2D) -> None:
         """Move the robot (e.g. ``initialpose``); odometry keeps running, motion stops."""

@@ -15,6 +15,8 @@ from aiobt_services.robot.messages import (
     Snapshot,
     SnapshotRequest,
     SpawnObstacle,
+    StepReply,
+    StepRequest,
 )
 
 from aiobt.msgs import (
@@ -147,3 +149,27 @@ async def test_nan_command_dropped_robot_keeps_running(
     assert math.hypot(here.x, here.y) < 1e-3
     assert proc.running
     assert "cmd_vel" in proc.output()
+
+
+async def test_stepped_mode_moves_only_on_request(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+) -> None:
+    clock, pose = bus.subscribe("clock", Clock), bus.subscribe("pose", PoseStamped)
+    await start_robot(spawn, bus, bus_settings, "--stepped")
+    reply = await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0)
+    assert reply.time == pytest.approx(1.0)
+    assert reply.steps == 100
+    await asyncio.sleep(0.3)  # wall time passes, sim time does not
+    latest = clock.latest
+    assert latest is not None
+    assert latest.clock == pytest.approx(1.0)
+    cmd = bus.publisher("cmd_vel", Twist)
+    await cmd.wait_for_subscribers(5.0)
+    cmd.put(Twist(linear=Vector3(x=0.5)))
+    await asyncio.sleep(0.3)
+    await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0)
+    await asyncio.sleep(0.2)
+    here = pose.latest
+    assert here is not None
+    # one command, then the 0.5 s command timeout: ramp 0.05 + cruise 0.15 + brake 0.05 m
+    assert here.x == pytest.approx(0.25, abs=0.02)

@@ -68,6 +68,8 @@ def test_wall_stops_robot_and_fires_bumper(sim: Simulation) -> None:
     events = drive(sim, 0.8, 0.0, 5.0)
     radius = sim.config.robot.radius
     assert sim.true_pose.x == pytest.approx(INNER_EAST_WALL - radius, abs=0.03)
+    ahead = int(np.argmin(np.abs(sim.config.lidar.angles())))
+    assert sim.scan().ranges[ahead] == pytest.approx(radius, abs=0.03)  # flush: still a return
     pressed = [e for e in events if e.pressed and e.other == "wall"]  # type: ignore[attr-defined]
     assert len(pressed) == 1
     assert abs(pressed[0].angle) < 0.1  # type: ignore[attr-defined]
