@@ -18,12 +18,13 @@ from aiobt.msgs import (
     Vector3,
 )
 
+from .bumper import ContactEvent
 from .geometry import Pose2D
 from .mapfile import MapInfo
 from .messages import BumperEvent, MoveObstacle, ObstacleMotion, ObstacleState, SpawnObstacle
 from .obstacles import Motion, ObstacleSpec
 from .sensors import Battery
-from .sim import ContactEvent, Scan, Simulation
+from .sim import Scan, Simulation
 
 NO_RETURN_MARGIN = 1.0  # a beam without a return reads range_max + this (JSON has no inf)
 

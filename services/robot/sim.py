@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
+from .bumper import Bumper, ContactEvent
 from .drive import CommandVerdict, DriveController, DriveLimits
 from .geometry import Pose2D
 from .mapfile import MapInfo
@@ -49,18 +50,6 @@ class SimConfig:
 
 
 @dataclass(slots=True, frozen=True)
-class ContactEvent:
-    """The bumper: contact with ``other`` ("wall" or an obstacle id) began or ended."""
-
-    time: float
-    pressed: bool
-    other: str
-    x: float
-    y: float
-    angle: float  # direction of the contact seen from the robot, rad, 0 = ahead
-
-
-@dataclass(slots=True, frozen=True)
 class Scan:
     time: float
     ranges: npt.NDArray[np.float64]
@@ -93,7 +82,8 @@ class Simulation:
         self._true = start
         self._loc_offset = Pose2D()
         self._obstacles: dict[str, _Obstacle] = {}
-        self._contacts: dict[str, ContactEvent] = {}
+        self._bumper = Bumper()
+        self._clamp_logged = False
         try:
             self.check_free(start, self.config.robot.radius)
         except PoseError as exc:
@@ -115,6 +105,15 @@ class Simulation:
         verdict = self.drive.command(linear, angular, self.time)
         if not verdict.accepted:
             log.warning("velocity command dropped: %s", verdict.reason)
+        elif verdict.clamped and not self._clamp_logged:
+            self._clamp_logged = True
+            log.info(
+                "velocity command (%s, %s) clamped to the limits (%s, %s); further clamps at debug",
+                linear,
+                angular,
+                verdict.linear,
+                verdict.angular,
+            )
         elif verdict.clamped:
             log.debug(
                 "velocity command (%s, %s) clamped to (%s, %s)",
@@ -139,7 +138,10 @@ class Simulation:
         dt, cfg = self.config.dt, self.config
         linear, angular = self.drive.update(self.time, dt)
         if self.battery.depleted:
+            if linear or angular:
+                log.warning("battery empty: the base does not move until it is charged")
             linear = angular = 0.0
+            self.drive.stop()
         body_speed = linear * (1.0 - cfg.noise.slip)
         yaw = self._true.yaw
         self._physics.call(
@@ -243,7 +245,7 @@ class Simulation:
         obstacle = self._get(oid)
         self._physics.remove(obstacle.body)
         del self._obstacles[oid]
-        self._contacts.pop(oid, None)
+        self._bumper.forget(oid)
 
     def _get(self, oid: str) -> _Obstacle:
         if oid not in self._obstacles:
@@ -268,24 +270,9 @@ class Simulation:
         return next((oid for oid, o in self._obstacles.items() if o.body == body), None)
 
     def _contact_events(self) -> list[ContactEvent]:
-        current: dict[str, ContactEvent] = {}
-        for point in self._physics.call("getContactPoints", bodyA=self._robot):
-            name = self._body_name(point[2])
-            if name is None or name in current or point[8] > 0.001:
-                continue
-            x, y = point[5][0], point[5][1]
-            angle = math.atan2(y - self._true.y, x - self._true.x) - self._true.yaw
-            angle = math.atan2(math.sin(angle), math.cos(angle))
-            current[name] = ContactEvent(self.time, True, name, x, y, angle)
-        events = [e for name, e in current.items() if name not in self._contacts]
-        events += [
-            ContactEvent(self.time, False, name, e.x, e.y, e.angle)
-            for name, e in self._contacts.items()
-            if name not in current
-        ]
-        self._contacts = current
-        return events
+        points = self._physics.call("getContactPoints", bodyA=self._robot)
+        return self._bumper.update(points, self._body_name, self._true, self.time)
 
     @property
     def in_contact(self) -> list[str]:
-        return sorted(self._contacts)
+        return self._bumper.touching

@@ -10,7 +10,7 @@ import pytest
 from aiobt_services.robot.geometry import Pose2D
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.obstacles import Motion, ObstacleError, ObstacleSpec
-from aiobt_services.robot.sensors import NoiseConfig
+from aiobt_services.robot.sensors import BatteryConfig, LidarConfig, NoiseConfig
 from aiobt_services.robot.sim import PoseError, SimConfig, Simulation
 from aiobt_services.robot.snapshot import render_png
 from aiobt_services.robot.worlds import SMALL
@@ -103,9 +103,8 @@ def test_lidar_sees_wall_at_right_range_and_spawned_obstacle(sim: Simulation) ->
 
 
 def test_lidar_no_return_is_out_of_range() -> None:
-    cfg = SimConfig()
+    cfg = SimConfig(lidar=LidarConfig(range_max=1.0))
     with Simulation(load_map(SMALL), cfg) as short_sim:
-        object.__setattr__(short_sim.config.lidar, "range_max", 1.0)
         assert np.all(np.isinf(short_sim.scan().ranges))
 
 
@@ -170,3 +169,24 @@ def test_snapshot_png(sim: Simulation, tmp_path: object) -> None:
     r, _g, b = image.getpixel((100, 95))  # type: ignore[misc]
     assert b > 150
     assert r < 100
+
+
+def test_battery_drains_driving_charges_on_dock_and_empty_stops() -> None:
+    cfg = SimConfig(battery=BatteryConfig(capacity_wh=0.05, initial_percentage=0.5))
+    with Simulation(load_map(SMALL), cfg) as run:
+        level = run.battery.percentage
+        drive(run, 0.5, 0.0, 1.0)
+        assert run.battery.percentage < level
+        dock = run.world.dock
+        assert dock is not None
+        run.teleport(Pose2D(dock.x, dock.y))
+        level = run.battery.percentage
+        run.run_for(1.0)
+        assert run.battery.charging
+        assert run.battery.percentage > level
+        run.teleport(Pose2D(0.0, 0.0))
+        drive(run, 1.0, 0.0, 20.0)  # 0.05 Wh lasts seconds at full speed
+        assert run.battery.depleted
+        here = run.true_pose
+        drive(run, 1.0, 0.0, 1.0)
+        assert run.true_pose.distance_to(here) < 1e-6
