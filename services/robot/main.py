@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import logging
+import os
 import signal
 from pathlib import Path
 
@@ -130,6 +131,9 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.gui and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        log.error("robot: --gui needs a display (DISPLAY is not set); run headless without it")
+        return 2
     try:
         world = load_map(world_path(args.world))
         config = sim_config(args)

@@ -173,3 +173,21 @@ async def test_stepped_mode_moves_only_on_request(
     assert here is not None
     # one command, then the 0.5 s command timeout: ramp 0.05 + cruise 0.15 + brake 0.05 m
     assert here.x == pytest.approx(0.25, abs=0.02)
+    reset = await bus.call("reset_pose", PoseStamped.from_xy_yaw(-1.0, -1.0, 0.5), Ack)
+    assert reset.ok
+    refused = await bus.call("reset_pose", PoseStamped.from_xy_yaw(2.4, 0.0), Ack)
+    assert not refused.ok
+    await bus.call("step", StepRequest(seconds=0.1), StepReply)
+    await asyncio.sleep(0.2)
+    moved = pose.latest
+    assert moved is not None
+    assert (moved.x, moved.y, moved.yaw) == pytest.approx((-1.0, -1.0, 0.5), abs=1e-3)
+    initial = bus.publisher("initialpose", PoseStamped)
+    await initial.wait_for_subscribers(5.0)
+    initial.put(PoseStamped.from_xy_yaw(1.0, 1.0))
+    await asyncio.sleep(0.3)
+    await bus.call("step", StepRequest(seconds=0.1), StepReply)
+    await asyncio.sleep(0.2)
+    moved = pose.latest
+    assert moved is not None
+    assert (moved.x, moved.y) == pytest.approx((1.0, 1.0), abs=1e-3)
