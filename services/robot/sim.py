@@ -29,7 +29,7 @@ from .sensors import (
     ranges_from_hits,
     ray_endpoints,
 )
-from .world import RAY_MASK, Physics, RobotShape
+from .world import RAY_MASK, Physics, RobotShape, substeps_for
 
 log = logging.getLogger("aiobt_services.robot.sim")
 
@@ -75,7 +75,8 @@ class Simulation:
         self.battery = Battery(self.config.battery)
         self.odometry = WheelOdometry()
         self._rng = np.random.default_rng(self.config.noise.seed)
-        self._physics = Physics(gui=self.config.gui, dt=self.config.dt)
+        substeps = substeps_for(self.config.limits.max_linear, self.config.dt)
+        self._physics = Physics(gui=self.config.gui, dt=self.config.dt, substeps=substeps)
         self._walls = set(self._physics.build_walls(world))
         start = Pose2D(*world.start)
         self._robot = self._physics.robot(self.config.robot, start)

@@ -17,6 +17,7 @@ from .obstacles import ObstacleSpec
 log = logging.getLogger("aiobt_services.robot.world")
 
 WALL_HEIGHT = 1.0
+MAX_TRAVEL_PER_SUBSTEP = 0.05  # m: a third of a wall, so a fast base cannot tunnel through
 ROBOT_GROUP = 0x4  # collision filter group of the robot body
 RAY_MASK = 0xFFFF & ~ROBOT_GROUP  # the lidar's rays skip the robot's own body
 
@@ -31,17 +32,25 @@ class RobotShape:
     z: float = 0.15  # centre height; the base floats (no gravity), contacts stay planar
 
 
+def substeps_for(max_speed: float, dt: float) -> int:
+    """Physics sub-steps per step so that one sub-step moves the base at most a few cm."""
+    return max(1, math.ceil(max_speed * dt / MAX_TRAVEL_PER_SUBSTEP))
+
+
 class Physics:
     """One pybullet client (DIRECT unless ``gui``), closed with :meth:`close`."""
 
-    def __init__(self, *, gui: bool = False, dt: float = 0.01) -> None:
+    def __init__(self, *, gui: bool = False, dt: float = 0.01, substeps: int = 1) -> None:
         self.client = pybullet.connect(pybullet.GUI if gui else pybullet.DIRECT)
         if self.client < 0:
             raise RuntimeError("pybullet could not connect (is a display available for --gui?)")
         self.call("setGravity", 0.0, 0.0, 0.0)
         self.call("setTimeStep", dt)
         self.call(
-            "setPhysicsEngineParameter", numSolverIterations=10, deterministicOverlappingPairs=1
+            "setPhysicsEngineParameter",
+            numSolverIterations=10,
+            deterministicOverlappingPairs=1,
+            numSubSteps=max(1, substeps),
         )
 
     def call(self, name: str, *args: Any, **kwargs: Any) -> Any:
@@ -105,7 +114,12 @@ class Physics:
             baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, pose.yaw)),
         )
         self.call(
-            "changeDynamics", body, -1, lateralFriction=0.0, linearDamping=0.0, angularDamping=0.0
+            "changeDynamics",
+            body,
+            -1,
+            lateralFriction=0.0,
+            linearDamping=0.0,
+            angularDamping=0.0,
         )
         self.call("setCollisionFilterGroupMask", body, -1, ROBOT_GROUP, 0xFFFF)
         return body

@@ -7,6 +7,7 @@ from collections.abc import Iterator
 
 import numpy as np
 import pytest
+from aiobt_services.robot.drive import DriveLimits
 from aiobt_services.robot.geometry import Pose2D
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.obstacles import Motion, ObstacleError, ObstacleSpec
@@ -190,3 +191,10 @@ def test_battery_drains_driving_charges_on_dock_and_empty_stops() -> None:
         here = run.true_pose
         drive(run, 1.0, 0.0, 1.0)
         assert run.true_pose.distance_to(here) < 1e-6
+
+
+def test_fast_base_with_long_steps_does_not_tunnel_through_walls() -> None:
+    limits = DriveLimits(max_linear=10.0, max_linear_accel=100.0)
+    with Simulation(load_map(SMALL), SimConfig(dt=0.05, limits=limits)) as fast:
+        drive(fast, 10.0, 0.0, 2.0)
+        assert fast.true_pose.x < INNER_EAST_WALL
