@@ -1,0 +1,68 @@
+"""Spin: rotate in place by a signed angle, counting the turn across the wrap."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from aiobt_services.controller.collision import CollisionChecker
+from aiobt_services.controller.geometry import STOP, Pose2D, Velocity, wrap_angle
+
+from .base import BehaviorStep, Inputs, Outcome, Safety, TimedBehavior, require_finite
+
+
+@dataclass(slots=True)
+class SpinParams:
+    max_rotational_vel: float = 1.0
+    min_rotational_vel: float = 0.4
+    rotational_acc_lim: float = 3.2
+    angle_tolerance: float = 0.02
+
+
+class SpinBehavior(TimedBehavior):
+    """Turns ``target_yaw`` radians (sign = direction; more than a turn is allowed).
+
+    The angle turned is accumulated from wrapped yaw differences, so crossing
+    +-pi or turning more than 2 pi is counted correctly. Speed follows
+    ``sqrt(2 a remaining)`` clamped to [min, max]. Fails COLLISION_AHEAD when
+    the robot's cell is in collision (a circular robot sweeps nothing new).
+    """
+
+    __slots__ = ("_last_yaw", "_turned", "params", "target_yaw")
+
+    def __init__(
+        self,
+        target_yaw: float,
+        time_allowance: float = 10.0,
+        collision: CollisionChecker | None = None,
+        params: SpinParams | None = None,
+        safety: Safety | None = None,
+    ) -> None:
+        super().__init__(time_allowance, collision, safety)
+        self.target_yaw = require_finite("target_yaw", target_yaw)
+        self.params = params or SpinParams()
+        self._turned = 0.0
+        self._last_yaw: float | None = None
+
+    def progress(self) -> float:
+        return abs(self._turned)
+
+    def _cycle(self, inputs: Inputs, pose: Pose2D) -> BehaviorStep:
+        if self._last_yaw is not None:
+            self._turned += wrap_angle(pose.yaw - self._last_yaw)
+        self._last_yaw = pose.yaw
+        direction = math.copysign(1.0, self.target_yaw)
+        remaining = abs(self.target_yaw) - self._turned * direction
+        if remaining <= self.params.angle_tolerance:
+            return BehaviorStep(STOP, self.progress(), done=True)
+        checker = self.collision()
+        if checker is not None and checker.pose_collides(pose):
+            return self.fail(
+                Outcome.COLLISION_AHEAD, "collision ahead: the robot is in collision while spinning"
+            )
+        p = self.params
+        speed = min(
+            max(math.sqrt(2.0 * p.rotational_acc_lim * remaining), p.min_rotational_vel),
+            p.max_rotational_vel,
+        )
+        return BehaviorStep(Velocity(0.0, direction * speed), self.progress())

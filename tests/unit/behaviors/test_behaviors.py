@@ -1,0 +1,190 @@
+"""Behaviors as state machines on a kinematic unicycle and a fixed dt."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from aiobt_services.behaviors import (
+    AssistedTeleop,
+    BehaviorInputError,
+    BehaviorStep,
+    DriveOnHeading,
+    Inputs,
+    Outcome,
+    SpinBehavior,
+    WaitBehavior,
+    back_up,
+)
+from aiobt_services.behaviors.base import TimedBehavior
+from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
+from aiobt_services.controller.geometry import Pose2D, Velocity, wrap_angle
+from aiobt_services.controller.unicycle import Unicycle
+
+DT = 0.05
+
+
+def run(
+    behavior: TimedBehavior | WaitBehavior,
+    robot: Unicycle,
+    max_time: float = 30.0,
+    teleop: Velocity | None = None,
+) -> tuple[BehaviorStep, float, list[Velocity]]:
+    now = 0.0
+    commands: list[Velocity] = []
+    while now <= max_time:
+        step = behavior.step(Inputs(now, robot.pose, now, teleop, now))
+        if step.cmd is not None:
+            commands.append(step.cmd)
+        if step.done:
+            return step, now, commands
+        robot.step(step.cmd or Velocity(), DT)
+        now += DT
+    raise AssertionError("behavior did not finish")
+
+
+def wall_ahead(x: float) -> CollisionChecker:
+    grid = GridCostmap.empty(10.0, 10.0, 0.05, (-5.0, -5.0))
+    grid.fill_box(x, -5.0, x + 0.2, 5.0, LETHAL)
+    return CollisionChecker(grid)
+
+
+@pytest.mark.parametrize("target", [math.pi / 2, -math.pi / 2, 3 * math.pi, -2.5 * math.pi])
+def test_spin_turns_the_signed_angle_across_the_wrap(target):
+    start_yaw = 3.0  # close to +pi, so every spin crosses the wrap
+    robot = Unicycle(Pose2D(0.0, 0.0, start_yaw), max_angular_accel=3.2)
+    step, _, commands = run(SpinBehavior(target), robot)
+    assert step.succeeded
+    assert step.feedback == pytest.approx(abs(target), abs=0.03)
+    assert all(math.copysign(1.0, c.w) == math.copysign(1.0, target) for c in commands[:-1])
+    expected = wrap_angle(start_yaw + target)
+    assert abs(wrap_angle(robot.pose.yaw - expected)) < 0.06
+
+
+def test_spin_times_out_on_a_stuck_robot():
+    class Stuck(Unicycle):
+        def step(self, cmd: Velocity, dt: float) -> Pose2D:
+            return self.pose
+
+    step, now, _ = run(SpinBehavior(1.0, time_allowance=2.0), Stuck(Pose2D(0, 0, 0)))
+    assert step.outcome is Outcome.TIMEOUT
+    assert "time allowance of 2.00 s" in step.message
+    assert step.cmd == Velocity(0.0, 0.0)
+    assert now == pytest.approx(2.05, abs=DT)
+
+
+def test_spin_in_collision_fails_collision_ahead():
+    checker = wall_ahead(-0.1)  # the robot's own cell is lethal
+    step, _, _ = run(SpinBehavior(1.0, collision=checker), Unicycle(Pose2D(0, 0, 0)))
+    assert step.outcome is Outcome.COLLISION_AHEAD
+
+
+def test_drive_on_heading_travels_the_distance_along_its_heading():
+    robot = Unicycle(Pose2D(1.0, 1.0, math.pi / 4))
+    step, now, commands = run(DriveOnHeading(0.5, 0.25), robot)
+    assert step.succeeded
+    assert step.feedback == pytest.approx(0.5, abs=0.25 * DT + 1e-9)
+    assert robot.pose.distance_to(Pose2D(1.0, 1.0, 0.0)) == pytest.approx(0.5, abs=0.02)
+    assert robot.pose.x > 1.3
+    assert robot.pose.y > 1.3
+    assert now == pytest.approx(2.0, abs=2 * DT)
+    assert all(c.v == 0.25 for c in commands[:-1])
+
+
+def test_backup_drives_backwards_whatever_the_signs():
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    step, _, _ = run(back_up(0.3, 0.1), robot)
+    assert step.succeeded
+    assert robot.pose.x == pytest.approx(-0.3, abs=0.02)
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    run(back_up(-0.3, -0.1), robot)
+    assert robot.pose.x == pytest.approx(-0.3, abs=0.02)
+
+
+def test_backup_into_a_wall_stops_before_contact():
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    step, _, _ = run(back_up(2.0, 0.2, collision=wall_ahead(-1.0)), robot)
+    assert step.outcome is Outcome.COLLISION_AHEAD
+    assert "collision ahead" in step.message
+    assert step.cmd == Velocity(0.0, 0.0)
+    assert -0.8 < robot.pose.x < 0.0  # stopped at the 2 s look-ahead, short of the wall
+
+
+def test_drive_checks_only_the_remaining_distance():
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    step, _, _ = run(DriveOnHeading(0.5, 0.2, collision=wall_ahead(0.8)), robot)
+    assert step.succeeded  # the wall is beyond the goal distance
+
+
+@pytest.mark.parametrize(
+    ("make", "message"),
+    [
+        (lambda: DriveOnHeading(0.5, -0.2), "same sign"),
+        (lambda: DriveOnHeading(math.nan, 0.2), "distance must be a finite number"),
+        (lambda: DriveOnHeading(0.5, 0.0), "speed must not be 0"),
+        (lambda: back_up(0.5, math.inf), "speed must be a finite number"),
+        (lambda: SpinBehavior(math.nan), "target_yaw"),
+        (lambda: SpinBehavior(1.0, time_allowance=-1.0), "time_allowance must be >= 0"),
+        (lambda: WaitBehavior(-1.0), "wait duration must be >= 0"),
+        (lambda: WaitBehavior(math.nan), "wait duration must be a finite number"),
+        (lambda: AssistedTeleop(math.nan), "time_allowance must be a finite number"),
+    ],
+)
+def test_bad_goals_are_invalid_input(make, message):
+    with pytest.raises(BehaviorInputError, match=message) as caught:
+        make()
+    assert caught.value.outcome is Outcome.INVALID_INPUT
+
+
+def test_stale_odometry_stops_with_tf_error():
+    spin = SpinBehavior(1.0)
+    assert not spin.step(Inputs(0.0, Pose2D(0, 0, 0), 0.0)).done
+    step = spin.step(Inputs(1.0, Pose2D(0, 0, 0), 0.2))
+    assert step.outcome is Outcome.TF_ERROR
+    assert "stale" in step.message
+    assert step.cmd == Velocity(0.0, 0.0)
+    assert DriveOnHeading(1.0, 0.1).step(Inputs(0.0)).outcome is Outcome.TF_ERROR
+
+
+def test_wait_counts_clock_time_and_never_commands():
+    wait = WaitBehavior(1.0)
+    first = wait.step(Inputs(5.0))
+    assert first.feedback == pytest.approx(1.0)
+    assert not first.done
+    assert first.cmd is None
+    assert not wait.step(Inputs(5.95)).done
+    assert wait.step(Inputs(6.0)).succeeded
+    assert WaitBehavior(0.0).step(Inputs(0.0)).succeeded
+
+
+def test_assisted_teleop_passes_free_twists_and_scales_before_obstacles():
+    teleop = AssistedTeleop(time_allowance=0.0, collision=wall_ahead(1.0))
+    pose = Pose2D(0.0, 0.0, 0.0)
+    free = teleop.filtered(pose, Velocity(0.2, 0.0))  # 0.4 m in 2 s: clear
+    assert free == Velocity(0.2, 0.0)
+    fast = teleop.filtered(pose, Velocity(1.0, 0.0))  # would reach the wall at ~1 s
+    assert 0.0 < fast.v < 0.5
+    away = teleop.filtered(pose, Velocity(-1.0, 0.0))
+    assert away == Velocity(-1.0, 0.0)
+
+
+def test_assisted_teleop_never_hits_the_wall_and_ends_on_time_allowance():
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    behavior = AssistedTeleop(time_allowance=8.0, collision=wall_ahead(1.0))
+    step, _, commands = run(behavior, robot, teleop=Velocity(0.5, 0.0))
+    assert step.outcome is Outcome.TIMEOUT
+    assert robot.pose.x < 1.0
+    assert commands[0].v > 0.4
+    assert commands[-2].v == pytest.approx(0.0, abs=1e-9)
+
+
+def test_assisted_teleop_zeroes_stale_input_and_finishes_on_request():
+    behavior = AssistedTeleop(time_allowance=0.0)
+    pose = Pose2D(0.0, 0.0, 0.0)
+    live = behavior.step(Inputs(0.0, pose, 0.0, Velocity(0.3, 0.1), 0.0))
+    assert live.cmd == Velocity(0.3, 0.1)
+    stale = behavior.step(Inputs(1.0, pose, 1.0, Velocity(0.3, 0.1), 0.0))
+    assert stale.cmd == Velocity(0.0, 0.0)
+    assert not stale.done
+    behavior.finish()
+    assert behavior.step(Inputs(1.1, pose, 1.1)).succeeded
