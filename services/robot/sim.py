@@ -85,6 +85,7 @@ class Simulation:
         self._obstacles: dict[str, _Obstacle] = {}
         self._bumper = Bumper()
         self._clamp_logged = False
+        self._empty_logged = False
         try:
             self.check_free(start, self.config.robot.radius)
         except PoseError as exc:
@@ -106,18 +107,12 @@ class Simulation:
         verdict = self.drive.command(linear, angular, self.time)
         if not verdict.accepted:
             log.warning("velocity command dropped: %s", verdict.reason)
-        elif verdict.clamped and not self._clamp_logged:
-            self._clamp_logged = True
-            log.info(
-                "velocity command (%s, %s) clamped to the limits (%s, %s); further clamps at debug",
-                linear,
-                angular,
-                verdict.linear,
-                verdict.angular,
-            )
         elif verdict.clamped:
-            log.debug(
-                "velocity command (%s, %s) clamped to (%s, %s)",
+            level = logging.DEBUG if self._clamp_logged else logging.INFO
+            self._clamp_logged = True
+            log.log(
+                level,
+                "velocity command (%s, %s) clamped to the limits: (%s, %s)",
                 linear,
                 angular,
                 verdict.linear,
@@ -139,10 +134,13 @@ class Simulation:
         dt, cfg = self.config.dt, self.config
         linear, angular = self.drive.update(self.time, dt)
         if self.battery.depleted:
-            if linear or angular:
+            if (linear or angular) and not self._empty_logged:
                 log.warning("battery empty: the base does not move until it is charged")
+                self._empty_logged = True
             linear = angular = 0.0
             self.drive.stop()
+        else:
+            self._empty_logged = False
         body_speed = linear * (1.0 - cfg.noise.slip)
         yaw = self._true.yaw
         self._physics.call(
