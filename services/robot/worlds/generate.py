@@ -62,8 +62,8 @@ def office() -> MapInfo:
     c.hwall(11.0, 0.0, 20.0, doors=(4.0, 9.0, 14.0, 17.5))  # north side
     c.vwall(7.0, 0.0, 8.5)
     c.vwall(13.0, 0.0, 8.5, doors=(4.0,))  # a door between the two east rooms
-    c.vwall(12.0, 11.0, 20.0)
-    c.hwall(15.5, 12.0, 20.0)
+    c.vwall(12.0, 11.0, 20.0, doors=(18.0,))  # open plan <-> north-east room
+    c.hwall(15.5, 12.0, 20.0, doors=(16.0,))
     c.fill(1.5, 2.0, 3.5, 3.0)  # tables in the west room
     c.fill(4.0, 5.0, 5.5, 6.0)
     c.fill(9.0, 2.5, 11.0, 5.0)  # meeting table
