@@ -138,3 +138,32 @@ def test_shipped_worlds_load() -> None:
     assert office.occupancy_at(office.dock.x, office.dock.y) == 0
     assert small.occupancy_at(0.0, 0.0) == 0
     assert small.occupancy_at(2.45, 0.0) == 100  # east wall
+
+
+def _grow(mask: np.ndarray) -> np.ndarray:
+    grown = mask.copy()
+    grown[1:] |= mask[:-1]
+    grown[:-1] |= mask[1:]
+    grown[:, 1:] |= mask[:, :-1]
+    grown[:, :-1] |= mask[:, 1:]
+    return grown
+
+
+def test_every_office_room_is_reachable_for_the_robot() -> None:
+    office = load_map(OFFICE)
+    blocked = office.grid == 100
+    for _ in range(round(0.25 / office.resolution)):  # robot radius + margin
+        blocked = _grow(blocked)
+    row, col = (int(v) for v in office.world_to_cell(*office.start[:2]))
+    reached = np.zeros_like(blocked)
+    reached[row, col] = True
+    while True:
+        grown = _grow(reached) & ~blocked
+        if (grown == reached).all():
+            break
+        reached = grown
+    rooms = {"south-west": (2, 5), "south": (10, 7), "south-east": (17, 5), "open plan": (6, 18)}
+    rooms |= {"north-east": (16, 13), "north-east top": (16, 18), "dock": (0.8, 9.75)}
+    for name, (x, y) in rooms.items():
+        r, c = (int(v) for v in office.world_to_cell(x, y))
+        assert reached[r, c], f"{name} unreachable"
