@@ -43,8 +43,9 @@ class Keys:
 class ActionKeys:
     """Keys of one action server under ``{ns}/action/{server}``.
 
-    - ``goal/{id}``: queryable; the send_goal query, whose reply stream carries
-      accepted/rejected, feedback and finally the result
+    - ``goal?id={id}``: queryable on ``goal``; the send_goal query, whose reply
+      stream carries accepted/rejected, feedback and finally the result (the id
+      is a selector parameter, so every goal shares one cached route)
     - ``cancel``: queryable; cancel one goal (``goal_id``) or all (empty id)
     - ``status/{id}``, ``feedback/{id}``, ``result/{id}``: published for
       observers; ``result/{id}`` is also a queryable answering the result
@@ -56,16 +57,28 @@ class ActionKeys:
     def __init__(self, base: str) -> None:
         self.base = base
 
-    def goal(self, goal_id: str) -> str:
-        return f"{self.base}/goal/{goal_id}"
-
     @property
-    def goals(self) -> str:
-        return f"{self.base}/goal/*"
+    def goal(self) -> str:
+        return f"{self.base}/goal"
+
+    def goal_selector(self, goal_id: str) -> str:
+        return f"{self.base}/goal?id={goal_id}"
 
     @property
     def cancel(self) -> str:
         return f"{self.base}/cancel"
+
+    @property
+    def any_status(self) -> str:
+        return f"{self.base}/status/*"
+
+    @property
+    def any_feedback(self) -> str:
+        return f"{self.base}/feedback/*"
+
+    @property
+    def any_result(self) -> str:
+        return self.results
 
     def status(self, goal_id: str) -> str:
         return f"{self.base}/status/{goal_id}"

@@ -23,10 +23,10 @@ class Presence:
         self._alive: set[str] = set()
         self._event = asyncio.Event()
         self._listeners: list[Callable[[bool], None]] = []
+        self._bridge = bridge  # before declaring: history samples may arrive at once
         self._sub = session.liveliness().declare_subscriber(
             key, callback(self._on_sample), history=True
         )
-        self._bridge = bridge
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
         alive = sample.kind == zenoh.SampleKind.PUT

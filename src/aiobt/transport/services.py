@@ -89,15 +89,21 @@ class ServiceServer(Generic[Req, Resp]):
 class _Call:
     """One get: the first reply (or the end of the stream) resolves the future."""
 
+    __slots__ = ("_bridge", "_replied", "future")
+
     def __init__(self, bridge: LoopBridge) -> None:
         self.future: asyncio.Future[zenoh.Reply | None] = bridge.loop.create_future()
         self._bridge = bridge
+        self._replied = False
 
     def on_reply(self, reply: zenoh.Reply) -> None:
-        self._bridge.call(self._resolve, reply)
+        if not self._replied:
+            self._replied = True  # Zenoh thread: the end of stream then needs no loop hop
+            self._bridge.call(self._resolve, reply)
 
     def on_drop(self) -> None:
-        self._bridge.call(self._resolve, None)
+        if not self._replied:
+            self._bridge.call(self._resolve, None)
 
     def _resolve(self, reply: zenoh.Reply | None) -> None:
         if not self.future.done():

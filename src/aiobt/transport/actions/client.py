@@ -11,6 +11,7 @@ from typing import Any, Generic, TypeVar
 import zenoh
 
 from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
+from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
@@ -155,6 +156,30 @@ def _fail(future: asyncio.Future[Any], error: BaseException) -> None:
         future.set_exception(error)
 
 
+class _Stream(Generic[G, R, F]):
+    """A goal's reply stream on the Zenoh thread: relays replies, and the end only if needed."""
+
+    __slots__ = ("_client", "_handle", "_result_seen")
+
+    def __init__(self, client: ActionClient[G, R, F], handle: ClientGoal[G, R, F]) -> None:
+        self._client = client
+        self._handle = handle
+        self._result_seen = False
+
+    def on_reply(self, reply: zenoh.Reply) -> None:
+        sample = reply.ok
+        if sample is not None and sample.attachment is not None:
+            self._result_seen |= sample.attachment.to_bytes().startswith(p.RESULT_PREFIX)
+        self._client._bridge.call(self._handle.on_reply, reply)
+
+    def on_drop(self) -> None:
+        goals = self._client._goals
+        if goals.get(self._handle.goal_id) is self._handle:
+            goals.pop(self._handle.goal_id, None)  # atomic under the GIL
+        if not self._result_seen:
+            self._client._bridge.call(self._handle.on_stream_end)
+
+
 class ActionClient(Generic[G, R, F]):
     """Sends goals to one action server; fails goals within ~1 s if the server dies."""
 
@@ -175,6 +200,9 @@ class ActionClient(Generic[G, R, F]):
         self._bridge = bridge
         self._presence = presence
         self._goals: dict[str, ClientGoal[G, R, F]] = {}
+        self._querier = session.declare_querier(
+            keys.goal, consolidation=zenoh.ConsolidationMode.NONE, timeout=_GOAL_STREAM_TIMEOUT
+        )  # declared once: every goal reuses its route
         presence.add_listener(self._on_presence)
 
     @property
@@ -199,7 +227,7 @@ class ActionClient(Generic[G, R, F]):
         if not isinstance(goal, self._goal_model):
             raise TypeError(f"{self.keys.base}: expected {self._goal_model.__name__}")
         payload = goal.to_json()
-        self._bridge.check_size(self.keys.goal("x"), payload)
+        self._bridge.check_size(self.keys.goal, payload)
         handle = await self._send(goal, payload, goal_id or p.new_goal_id(), server_timeout)
         handle.on_feedback = on_feedback
         return handle
@@ -212,13 +240,12 @@ class ActionClient(Generic[G, R, F]):
         while await self._presence.wait(deadline - loop.time()):
             handle = ClientGoal(self, goal_id, goal)
             self._goals[goal_id] = handle
-            self._session.get(
-                self.keys.goal(goal_id),
-                callback(self._relay(handle.on_reply), self._relay_end(handle)),
+            stream = _Stream(self, handle)
+            self._querier.get(
+                callback(stream.on_reply, stream.on_drop),
+                parameters=f"id={goal_id}",
                 payload=payload,
                 encoding=JSON,
-                consolidation=zenoh.ConsolidationMode.NONE,
-                timeout=_GOAL_STREAM_TIMEOUT,
             )
             with contextlib.suppress(TimeoutError):
                 async with asyncio.timeout_at(deadline):
@@ -234,22 +261,8 @@ class ActionClient(Generic[G, R, F]):
             f" ({'present' if self.server_present else 'not present'})"
         )
 
-    def _relay(self, fn: Callable[[zenoh.Reply], None]) -> Callable[[zenoh.Reply], None]:
-        return lambda reply: self._bridge.call(fn, reply)
-
-    def _relay_end(self, handle: ClientGoal[G, R, F]) -> Callable[[], None]:
-        def ended() -> None:
-            self._bridge.call(handle.on_stream_end)
-            self._bridge.call(self._forget_if_done, handle)
-
-        return ended
-
     def _forget(self, goal_id: str) -> None:
         self._goals.pop(goal_id, None)
-
-    def _forget_if_done(self, handle: ClientGoal[G, R, F]) -> None:
-        if handle.done and self._goals.get(handle.goal_id) is handle:
-            self._forget(handle.goal_id)
 
     def _on_presence(self, present: bool) -> None:
         if present:
@@ -281,6 +294,7 @@ class ActionClient(Generic[G, R, F]):
 
     def close(self) -> None:
         self._presence.remove_listener(self._on_presence)
+        _z.undeclare(self._querier)
         for handle in list(self._goals.values()):
             handle.lost("the client closed")
         self._goals.clear()

@@ -1,7 +1,7 @@
 """The action wire protocol (DESIGN.md §4), shared by server and client.
 
 The client makes the goal id and sends the goal as the payload of a query on
-``goal/{id}``. The server's replies to that one query form the goal's stream,
+``goal?id={id}``. The server's replies to that one query form the goal's stream,
 each tagged by its attachment:
 
 - ``accepted`` (empty payload), or ``rejected`` (payload: the reason), first;

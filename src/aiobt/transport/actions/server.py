@@ -95,24 +95,30 @@ class ActionServer(Generic[G, R, F]):
         self._results = ResultStore()
         self._tasks: set[asyncio.Task[None]] = set()
         self._queryables = [
-            session.declare_queryable(keys.goals, callback(self._from_zenoh(self._on_goal))),
+            session.declare_queryable(keys.goal, callback(self._from_zenoh(self._on_goal))),
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
             session.declare_queryable(keys.results, callback(self._from_zenoh(self._on_result))),
         ]
+        # wildcard publishers, never put to: their matching status says whether anybody
+        # observes status/feedback/results, so unobserved goals cost no extra puts
+        self._watches = {
+            kind: session.declare_publisher(key)
+            for kind, key in (
+                ("status", keys.any_status),
+                ("feedback", keys.any_feedback),
+                ("result", keys.any_result),
+            )
+        }
         self._token = session.liveliness().declare_token(keys.alive)
 
-    def _from_zenoh(
-        self, coroutine: Callable[[zenoh.Query], Coroutine[Any, Any, None]]
-    ) -> Callable[[zenoh.Query], None]:
+    def _from_zenoh(self, handle: Callable[[zenoh.Query], None]) -> Callable[[zenoh.Query], None]:
         def on_query(query: zenoh.Query) -> None:
-            self._bridge.call(self._spawn, coroutine, query)
+            self._bridge.call(handle, query)
 
         return on_query
 
-    def _spawn(
-        self, coroutine: Callable[[zenoh.Query], Coroutine[Any, Any, None]], query: zenoh.Query
-    ) -> None:
-        task: asyncio.Task[None] = asyncio.get_running_loop().create_task(coroutine(query))
+    def _spawn(self, coroutine: Callable[..., Coroutine[Any, Any, None]], *args: Any) -> None:
+        task: asyncio.Task[None] = asyncio.get_running_loop().create_task(coroutine(*args))
         self._tasks.add(task)
         task.add_done_callback(self._tasks.discard)
 
@@ -122,8 +128,9 @@ class ActionServer(Generic[G, R, F]):
 
     # -- goal intake -------------------------------------------------------------------------
 
-    async def _on_goal(self, query: zenoh.Query) -> None:
-        goal_id = str(query.key_expr).rsplit("/", 1)[-1]
+    def _on_goal(self, query: zenoh.Query) -> None:
+        """In the loop, synchronously: decode, accept or reject, start (or hand to take-over)."""
+        goal_id = query.parameters.get("id") or ""
         try:
             goal = self._decode_goal(goal_id, query)
         except (MessageError, PayloadTooLarge, ValueError) as exc:
@@ -140,8 +147,43 @@ class ActionServer(Generic[G, R, F]):
         query.reply(query.key_expr, b"", attachment=p.ACCEPTED)
         record = GoalRecord(goal_id, query)
         self._publish_status(goal_id, GoalState.ACCEPTED)
+        if self._lock.locked() or (self._running() and not self._replaceable()):
+            self._spawn(self._take_over_in_order, record, goal)  # must wait for the old goal
+        elif self._replaceable():
+            self._replace(record, goal)
+        else:
+            self._start(record, goal)
+
+    def _running(self) -> bool:
+        return self._task is not None and not self._task.done()
+
+    def _replaceable(self) -> bool:
+        return self.preemption == "replace" and self._running() and self._active is not None
+
+    async def _take_over_in_order(self, record: GoalRecord, goal: G) -> None:
         async with self._lock:
-            await self._take_over(record, goal)
+            if self._replaceable():
+                self._replace(record, goal)
+                return
+            if self._task is not None and self._running():
+                if self._active is not None:
+                    self._active.preempted_by = record.goal_id
+                self._task.cancel()
+                await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
+            self._start(record, goal)
+
+    def _replace(self, record: GoalRecord, goal: G) -> None:
+        assert self._handle is not None
+        assert self._active is not None
+        self._finish(self._active, GoalState.ABORTED, self._preempted(record.goal_id))
+        self._active = record
+        self._handle._switch(record, goal)
+        self._publish_status(record.goal_id, GoalState.EXECUTING)
+
+    def _start(self, record: GoalRecord, goal: G) -> None:
+        self._active = record
+        self._handle = GoalHandle(self, record, goal)
+        self._task = asyncio.get_running_loop().create_task(self._run(self._handle))
 
     def _decode_goal(self, goal_id: str, query: zenoh.Query) -> G:
         if not p.valid_goal_id(goal_id):
@@ -149,22 +191,6 @@ class ActionServer(Generic[G, R, F]):
         payload = query_payload(query)
         self._bridge.check_size(str(query.key_expr), payload)
         return decode(self._goal_model, payload, key=str(query.key_expr))
-
-    async def _take_over(self, record: GoalRecord, goal: G) -> None:
-        running = self._task is not None and not self._task.done()
-        if running and self.preemption == "replace" and self._handle and self._active:
-            self._finish(self._active, GoalState.ABORTED, self._preempted(record.goal_id))
-            self._active = record
-            self._handle._switch(record, goal)
-            self._publish_status(record.goal_id, GoalState.EXECUTING)
-            return
-        if running and self._task and self._active:
-            self._active.preempted_by = record.goal_id
-            self._task.cancel()
-            await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
-        self._active = record
-        self._handle = GoalHandle(self, record, goal)
-        self._task = asyncio.get_running_loop().create_task(self._run(self._handle))
 
     def _preempted(self, by: str) -> R:
         return self._result_model(error_msg=f"preempted by goal {by}")
@@ -211,11 +237,13 @@ class ActionServer(Generic[G, R, F]):
         self._results.store(record.goal_id, tag, payload)
         record.finish(tag, payload)
         self._publish_status(record.goal_id, state, result.error_msg)
-        self._session.put(self.keys.result(record.goal_id), payload, encoding=JSON, attachment=tag)
+        if self._observed("result"):
+            key = self.keys.result(record.goal_id)
+            self._session.put(key, payload, encoding=JSON, attachment=tag)
 
     # -- cancel, result query, observers -----------------------------------------------------
 
-    async def _on_cancel(self, query: zenoh.Query) -> None:
+    def _on_cancel(self, query: zenoh.Query) -> None:
         try:
             request = decode(p.CancelRequest, query_payload(query) or b"{}", key=self.keys.cancel)
         except MessageError as exc:
@@ -233,7 +261,7 @@ class ActionServer(Generic[G, R, F]):
         query.reply(query.key_expr, response.to_json(), encoding=JSON)
         _z.drop(query)
 
-    async def _on_result(self, query: zenoh.Query) -> None:
+    def _on_result(self, query: zenoh.Query) -> None:
         goal_id = str(query.key_expr).rsplit("/", 1)[-1]
         stored = self._results.get(goal_id)
         if stored is not None:
@@ -251,9 +279,15 @@ class ActionServer(Generic[G, R, F]):
             return  # a preempted goal's late feedback
         payload = feedback.to_json()
         active.reply(payload, p.FEEDBACK)
-        self._session.put(self.keys.feedback(goal_id), payload, encoding=JSON)
+        if self._observed("feedback"):
+            self._session.put(self.keys.feedback(goal_id), payload, encoding=JSON)
+
+    def _observed(self, kind: str) -> bool:
+        return _z.matching(self._watches[kind].matching_status)
 
     def _publish_status(self, goal_id: str, state: GoalState, reason: str = "") -> None:
+        if not self._observed("status"):
+            return
         status = GoalStatus(goal_id=goal_id, status=state, reason=reason)
         self._session.put(self.keys.status(goal_id), status.to_json(), encoding=JSON)
 
@@ -265,5 +299,5 @@ class ActionServer(Generic[G, R, F]):
             await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
         for task in list(self._tasks):
             task.cancel()
-        for queryable in self._queryables:
-            _z.undeclare(queryable)
+        for entity in [*self._queryables, *self._watches.values()]:
+            _z.undeclare(entity)

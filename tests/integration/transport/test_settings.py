@@ -1,0 +1,110 @@
+"""Bus settings, flags and config files, key layout, and the router command's errors."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from aiobt.testing.bus import free_endpoint
+from aiobt.transport import BusConfigError, BusSettings, Keys, add_bus_arguments
+
+
+def parse(*argv: str) -> BusSettings:
+    parser = argparse.ArgumentParser()
+    add_bus_arguments(parser)
+    return BusSettings.from_args(parser.parse_args(list(argv)))
+
+
+def test_flags_become_settings() -> None:
+    settings = parse(
+        "--connect",
+        "tcp/10.0.0.1:7447",
+        "-e",
+        "tcp/10.0.0.2:7447",
+        "--namespace",
+        "robot2",
+        "--lease-ms",
+        "500",
+        "--mode",
+        "peer",
+    )
+    assert settings.connect == ("tcp/10.0.0.1:7447", "tcp/10.0.0.2:7447")
+    assert (settings.namespace, settings.lease_ms, settings.mode) == ("robot2", 500, "peer")
+
+
+def test_defaults_are_a_local_client_with_a_short_lease(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.delenv("ZENOH_CONFIG", raising=False)
+    config = parse().zenoh_config()
+    assert json.loads(config.get_json("mode")) == "client"
+    assert json.loads(config.get_json("connect/endpoints")) == ["tcp/127.0.0.1:7447"]
+    assert json.loads(config.get_json("transport/link/tx/lease")) == 1000
+    assert json.loads(config.get_json("scouting/multicast/enabled")) is False
+
+
+def test_config_file_from_zenoh_config_env_and_flags_on_top(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    path = tmp_path / "zenoh.json5"
+    path.write_text('{mode: "peer", listen: {endpoints: ["tcp/127.0.0.1:0"]}}')
+    monkeypatch.setenv("ZENOH_CONFIG", str(path))
+    from_file = parse().zenoh_config()
+    assert json.loads(from_file.get_json("mode")) == "peer"
+    overridden = parse("--mode", "client", "--connect", "tcp/127.0.0.1:9").zenoh_config()
+    assert json.loads(overridden.get_json("mode")) == "client"
+    assert json.loads(overridden.get_json("connect/endpoints")) == ["tcp/127.0.0.1:9"]
+
+
+def test_bad_settings_name_the_flag_or_file(tmp_path: Path) -> None:
+    with pytest.raises(BusConfigError, match="--namespace"):
+        BusSettings(namespace="robot/*")
+    with pytest.raises(BusConfigError, match="--lease-ms"):
+        BusSettings(lease_ms=5)
+    with pytest.raises(BusConfigError, match="no such file"):
+        BusSettings(config_file=str(tmp_path / "missing.json5")).zenoh_config()
+    broken = tmp_path / "broken.json5"
+    broken.write_text("{mode: ")
+    with pytest.raises(BusConfigError, match=r"broken\.json5"):
+        BusSettings(config_file=str(broken)).zenoh_config()
+    with pytest.raises(BusConfigError, match="connect/endpoints"):
+        BusSettings(connect=("not an endpoint",)).zenoh_config()
+
+
+def test_key_layout() -> None:
+    keys = Keys("robot")
+    assert keys.topic("odom") == "robot/odom"
+    assert keys.service("global_costmap/clear_entirely_global_costmap") == (
+        "robot/srv/global_costmap/clear_entirely_global_costmap"
+    )
+    action = keys.action("follow_path")
+    assert action.goal_selector("abc") == "robot/action/follow_path/goal?id=abc"
+    assert action.status("abc") == "robot/action/follow_path/status/abc"
+    assert action.result("abc") == "robot/action/follow_path/result/abc"
+    with pytest.raises(ValueError, match="topic"):
+        keys.topic("a//b")
+
+
+@pytest.mark.integration
+def test_router_command_reports_a_bad_config_file(tmp_path: Path) -> None:
+    broken = tmp_path / "router.json5"
+    broken.write_text("{listen: ")
+    done = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "aiobt.cli.router",
+            "--config",
+            str(broken),
+            "--listen",
+            free_endpoint(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
+    assert done.returncode == 2
+    assert "router.json5" in done.stderr
