@@ -247,10 +247,8 @@ class ActionClient(Generic[G, R, F]):
                 payload=payload,
                 encoding=JSON,
             )
-            with contextlib.suppress(TimeoutError):
-                async with asyncio.timeout_at(deadline):
-                    if await asyncio.shield(handle._accepted):
-                        return handle
+            if await self._accepted(handle, deadline):
+                return handle
             self._forget(goal_id)
             if loop.time() >= deadline:
                 self._cancel_quietly(goal_id)  # it may still arrive: do not let it run
@@ -260,6 +258,17 @@ class ActionClient(Generic[G, R, F]):
             f"action server {self.keys.base} did not accept the goal within {server_timeout} s"
             f" ({'present' if self.server_present else 'not present'})"
         )
+
+    async def _accepted(self, handle: ClientGoal[G, R, F], deadline: float) -> bool:
+        """True once accepted; False when the stream ended unanswered or at the deadline."""
+        timer = asyncio.get_running_loop().call_at(deadline, _settle, handle._accepted, None)
+        try:
+            return bool(await handle._accepted)
+        except asyncio.CancelledError:
+            self._cancel_quietly(handle.goal_id)  # the caller gave up: do not leave it running
+            raise
+        finally:
+            timer.cancel()
 
     def _forget(self, goal_id: str) -> None:
         self._goals.pop(goal_id, None)

@@ -60,3 +60,21 @@ class ResultStore:
 
     def __contains__(self, goal_id: str) -> bool:
         return goal_id in self._results
+
+
+class RecentIds:
+    """Goal ids seen lately, to refuse a duplicate. One writer: the goal intake."""
+
+    __slots__ = ("_ids",)
+
+    def __init__(self) -> None:
+        self._ids: OrderedDict[str, None] = OrderedDict()
+
+    def add(self, goal_id: str) -> bool:
+        """False if ``goal_id`` was seen already."""
+        if goal_id in self._ids:
+            return False
+        self._ids[goal_id] = None
+        if len(self._ids) > 4 * _KEEP_RESULTS:
+            self._ids.popitem(last=False)
+        return True

@@ -18,7 +18,7 @@ import zenoh
 from aiobt.msgs import ActionDef, ActionResult, GoalState, GoalStatus, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import GoalRecord, ResultStore
+from aiobt.transport.actions.goals import GoalRecord, RecentIds, ResultStore
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.services import query_payload
@@ -93,9 +93,10 @@ class ActionServer(Generic[G, R, F]):
         self._handle: GoalHandle[G, R, F] | None = None
         self._lock = asyncio.Lock()
         self._results = ResultStore()
+        self._recent_ids = RecentIds()
         self._tasks: set[asyncio.Task[None]] = set()
         self._queryables = [
-            session.declare_queryable(keys.goal, callback(self._from_zenoh(self._on_goal))),
+            session.declare_queryable(keys.goal, callback(self._on_goal_query)),
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
             session.declare_queryable(keys.results, callback(self._from_zenoh(self._on_result))),
         ]
@@ -128,25 +129,42 @@ class ActionServer(Generic[G, R, F]):
 
     # -- goal intake -------------------------------------------------------------------------
 
-    def _on_goal(self, query: zenoh.Query) -> None:
-        """In the loop, synchronously: decode, accept or reject, start (or hand to take-over)."""
+    def _on_goal_query(self, query: zenoh.Query) -> None:
+        """Zenoh thread. Without a user ``accept`` callback, the goal is checked and
+        accepted right here (as fast as a raw reply); the rest happens in the loop."""
+        if self._accept is not None:
+            self._bridge.call(self._intake, query)  # user code runs in the loop
+        else:
+            self._intake(query)
+
+    def _intake(self, query: zenoh.Query) -> None:
+        checked = self._check_goal(query)
+        if checked is None:
+            return
+        goal_id, goal = checked
+        query.reply(query.key_expr, b"", attachment=p.ACCEPTED)
+        self._bridge.call(self._begin, GoalRecord(goal_id, query), goal)
+
+    def _check_goal(self, query: zenoh.Query) -> tuple[str, G] | None:
+        """The goal, or None once it has been answered with an error or a rejection."""
         goal_id = query.parameters.get("id") or ""
         try:
             goal = self._decode_goal(goal_id, query)
         except (MessageError, PayloadTooLarge, ValueError) as exc:
             query.reply_err(f"bad goal: {exc}")
             _z.drop(query)
-            return
+            return None
         reason = self._accept(goal) if self._accept else None
-        if reason is None and (goal_id in self._results or self.active_goal_id == goal_id):
+        if reason is None and not self._recent_ids.add(goal_id):
             reason = f"duplicate goal id {goal_id}"
         if reason is not None:
             query.reply(query.key_expr, reason.encode(), attachment=p.REJECTED)
             _z.drop(query)
-            return
-        query.reply(query.key_expr, b"", attachment=p.ACCEPTED)
-        record = GoalRecord(goal_id, query)
-        self._publish_status(goal_id, GoalState.ACCEPTED)
+            return None
+        return goal_id, goal
+
+    def _begin(self, record: GoalRecord, goal: G) -> None:
+        self._publish_status(record.goal_id, GoalState.ACCEPTED)
         if self._lock.locked() or (self._running() and not self._replaceable()):
             self._spawn(self._take_over_in_order, record, goal)  # must wait for the old goal
         elif self._replaceable():
