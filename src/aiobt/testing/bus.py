@@ -73,6 +73,17 @@ class ServiceProcess:
     def output(self) -> str:
         return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""
 
+    def wait_for_output(self, text: str, timeout: float = 10.0) -> bool:
+        """True once ``text`` appears in the process's output (False on timeout or exit)."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            if text in self.output():
+                return True
+            if not self.running:
+                return text in self.output()
+            time.sleep(0.02)
+        return False
+
     def kill(self) -> None:
         """SIGKILL by PID (a crash), and reap."""
         if self.running:

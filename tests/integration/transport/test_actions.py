@@ -241,3 +241,22 @@ async def test_status_is_published_for_observers(bus: Bus, client_bus: Bus) -> N
         GoalState.SUCCEEDED,
     ]
     assert {s.goal_id for s in statuses} == {goal.goal_id}
+
+
+async def test_oversized_goal_is_refused(bus_settings: BusSettings, client_bus: Bus) -> None:
+    small = BusSettings(
+        connect=bus_settings.connect, namespace=bus_settings.namespace, max_payload=2000
+    )
+    async with open_bus(small) as server_bus:
+
+        async def follow(goal: FollowPath.Goal, handle: object) -> FollowPath.Result:
+            return FollowPath.Result()
+
+        server_bus.action_server("follow_path", FollowPath, follow)
+        client = client_bus.action_client("follow_path", FollowPath)
+        long_path = Path(poses=[PoseStamped.from_xy_yaw(i, 0) for i in range(50)])
+        with pytest.raises(GoalRejected, match="exceeds the limit of 2000 bytes"):
+            await client.send_goal(FollowPath.Goal(path=long_path), server_timeout=5.0)
+        short = await client.send_goal(FollowPath.Goal(path=Path()), server_timeout=5.0)
+        await short.result(timeout=5.0)
+        assert short.status is GoalState.SUCCEEDED
