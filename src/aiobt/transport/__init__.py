@@ -1,11 +1,20 @@
 """Everything Zenoh: the bus (one session per process), topics, services, actions.
 
-async with open_bus(BusSettings.from_args(args)) as bus:
-    bus.publisher("odom", Odometry).put(msg)
-    async for twist in bus.subscribe("cmd_vel", Twist): ...
-    client = bus.action_client("follow_path", FollowPath)
-    goal = await client.send_goal(FollowPath.Goal(path=path), server_timeout=1.0)
-    result = await goal.result()
+    parser = argparse.ArgumentParser(); add_bus_arguments(parser)
+    async with open_bus(BusSettings.from_args(parser.parse_args())) as bus:
+        bus.publisher("odom", Odometry).put(msg)                 # {ns}/odom
+        bus.latched_publisher("map", OccupancyGrid).put(grid)    # late joiners get it
+        sub = bus.subscribe("cmd_vel", Twist)                    # async for / sub.latest
+        bus.subscribe("map", OccupancyGrid, on_map, latched=True)
+        bus.serve("is_path_valid", IsPathValid.Request, IsPathValid.Response, handler)
+        resp = await bus.call("is_path_valid", req, IsPathValid.Response, timeout=2.0)
+        bus.action_server("follow_path", FollowPath, execute, preemption="replace")
+        client = bus.action_client("follow_path", FollowPath)
+        goal = await client.send_goal(FollowPath.Goal(path=path), server_timeout=1.0)
+        result = await goal.result()        # goal.status: SUCCEEDED / ABORTED / CANCELED
+        await goal.cancel()
+
+See docs/transport.md for the wire format and the action protocol.
 """
 
 from aiobt.transport.actions import (

@@ -74,13 +74,18 @@ class ClientGoal(Generic[G, R, F]):
     async def feedback(self) -> AsyncIterator[F]:
         """Feedback messages until the goal ends."""
         while not self.done or not self._feedback.empty():
+            if not self._feedback.empty():
+                yield self._feedback.get_nowait()
+                continue
             getter: asyncio.Future[Any] = asyncio.ensure_future(self._feedback.get())
             ending: asyncio.Future[Any] = self._result
-            await asyncio.wait({getter, ending}, return_when=asyncio.FIRST_COMPLETED)
-            if not getter.done():
-                getter.cancel()
-                continue
-            yield getter.result()
+            try:
+                await asyncio.wait({getter, ending}, return_when=asyncio.FIRST_COMPLETED)
+            finally:
+                if not getter.done():
+                    getter.cancel()
+            if getter.done() and not getter.cancelled():
+                yield getter.result()
 
     # -- the goal's reply stream (called in the loop) ----------------------------------------
 
