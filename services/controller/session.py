@@ -42,6 +42,7 @@ class RobotState:
 class ControllerConfig:
     control_period: float = 0.05
     pose_timeout: float = 0.5
+    initial_pose_wait: float = 1.0  # a goal may arrive before the first pose does
     failure_tolerance: float = 0.3
     time_allowance: float = 0.0  # 0: no limit on a goal's duration
     known_frames: tuple[str, ...] = ("map", "odom")
@@ -169,6 +170,8 @@ class FollowPathSession:
                 FollowPathCode.CONTROLLER_TIMED_OUT,
                 f"goal not reached within the time allowance of {cfg.time_allowance:.1f} s",
             )
+        if path.frame_id not in states and now - self._started <= cfg.initial_pose_wait:
+            return StepResult(STOP)
         state = self._fresh_state(now, states, path.frame_id)
         feedback = tracking_feedback(path, state.pose, project_onto_path(path, state.pose))
         if self._goal_checker.is_goal_reached(state.pose, path.goal, state.velocity):
@@ -181,7 +184,9 @@ class FollowPathSession:
         state = states.get(frame)
         if state is None:
             raise ControllerError(
-                FollowPathCode.TF_ERROR, f"no robot pose received in frame {frame!r}"
+                FollowPathCode.TF_ERROR,
+                f"no robot pose received in frame {frame!r} "
+                f"within {self._config.initial_pose_wait:.1f} s",
             )
         age = now - state.stamp
         if age > self._config.pose_timeout:

@@ -93,9 +93,12 @@ def test_stale_pose_stops_robot_with_tf_error():
     assert "stale" in step.error.message
 
 
-def test_missing_pose_frame_is_a_tf_error():
+def test_missing_pose_is_awaited_briefly_then_a_tf_error():
     session = _start(FollowRequest(straight()))
-    step = session.step(0.0, {})
+    waiting = session.step(0.5, {})
+    assert waiting.error is None
+    assert waiting.cmd == Velocity(0.0, 0.0)
+    step = session.step(1.1, {})
     assert step.error is not None
     assert step.error.code == FollowPathCode.TF_ERROR
     assert "no robot pose received in frame 'map'" in step.error.message

@@ -1,0 +1,123 @@
+"""The local costmap: the costmap library's rolling window, fed by lidar, as a CostQuery.
+
+The window lives in the ``map`` frame (the robot pose from ``{ns}/pose``), so
+paths from the planner are checked without a transform; :class:`FrameShift`
+serves a path given in ``odom`` by moving query points through odom -> map.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from aiobt_services.costmap import InflationParams, ObstacleParams, RollingCostmap, Scan
+from numpy.typing import NDArray
+
+from aiobt.msgs import LaserScan
+
+from .collision import NO_INFORMATION, CostQuery
+from .geometry import FloatArray, Pose2D
+
+
+@dataclass(slots=True, frozen=True)
+class LocalCostmapParams:
+    size: float = 5.0
+    resolution: float = 0.05
+    robot_radius: float = 0.22
+    inflation_radius: float = 0.55
+    cost_scaling_factor: float = 3.0
+    obstacle_max_range: float = 2.5
+    raytrace_max_range: float = 3.0
+
+
+class LocalCostmap:
+    """A rolling window around the robot; outside the window reads as unknown."""
+
+    __slots__ = ("_costmap",)
+
+    def __init__(self, params: LocalCostmapParams | None = None) -> None:
+        p = params or LocalCostmapParams()
+        self._costmap = RollingCostmap(
+            p.size,
+            p.size,
+            p.resolution,
+            InflationParams(p.robot_radius, p.inflation_radius, p.cost_scaling_factor),
+            ObstacleParams(
+                obstacle_max_range=p.obstacle_max_range, raytrace_max_range=p.raytrace_max_range
+            ),
+            track_unknown_space=False,
+        )
+
+    @property
+    def resolution(self) -> float:
+        return self._costmap.geometry.resolution
+
+    @property
+    def costmap(self) -> RollingCostmap:
+        return self._costmap
+
+    def costs_at(self, points: FloatArray) -> NDArray[np.uint8]:
+        cols, rows, ok = self._costmap.geometry.world_to_cells(points[:, 0], points[:, 1])
+        master = self._costmap.master
+        return np.where(ok, master[rows, cols], NO_INFORMATION).astype(np.uint8)
+
+    def follow(self, pose: Pose2D) -> None:
+        """Keep the window centred on the robot."""
+        self._costmap.update_origin(pose.x, pose.y)
+
+    def add_scan(self, scan: LaserScan, sensor: Pose2D) -> None:
+        """Clear and mark from a scan taken at ``sensor`` (the robot pose in map)."""
+        self.follow(sensor)
+        self._costmap.update_from_scan(
+            Scan.create(
+                (sensor.x, sensor.y, sensor.yaw),
+                scan.angle_min,
+                scan.angle_increment,
+                scan.ranges_array(),
+                scan.range_min,
+                scan.range_max,
+            )
+        )
+
+    def clear_entirely(self) -> None:
+        self._costmap.clear_entirely()
+
+    def clear_around(self, pose: Pose2D, reset_distance: float) -> None:
+        self._costmap.clear_around(pose.x, pose.y, reset_distance)
+
+    def clear_except(self, pose: Pose2D, reset_distance: float) -> None:
+        self._costmap.clear_except(pose.x, pose.y, reset_distance)
+
+
+class FrameShift:
+    """A CostQuery in another frame: points are moved by ``transform`` before the look-up."""
+
+    __slots__ = ("inner", "transform")
+
+    def __init__(self, inner: CostQuery, transform: Pose2D | None = None) -> None:
+        self.inner = inner
+        self.transform = transform or Pose2D(0.0, 0.0, 0.0)
+
+    @property
+    def resolution(self) -> float:
+        return self.inner.resolution
+
+    def costs_at(self, points: FloatArray) -> NDArray[np.uint8]:
+        t = self.transform
+        c, s = math.cos(t.yaw), math.sin(t.yaw)
+        moved = np.column_stack(
+            (t.x + c * points[:, 0] - s * points[:, 1], t.y + s * points[:, 0] + c * points[:, 1])
+        )
+        return self.inner.costs_at(moved)
+
+
+def frame_transform(in_target: Pose2D, in_source: Pose2D) -> Pose2D:
+    """The source -> target transform, given the same robot pose in both frames."""
+    yaw = in_target.yaw - in_source.yaw
+    c, s = math.cos(yaw), math.sin(yaw)
+    return Pose2D(
+        in_target.x - (c * in_source.x - s * in_source.y),
+        in_target.y - (s * in_source.x + c * in_source.y),
+        yaw,
+    )

@@ -1,0 +1,142 @@
+"""``aiobt controller``: the controller service on Zenoh.
+
+Serves the ``follow_path`` action (controller ids ``FollowPath`` = regulated
+pure pursuit, ``DWB`` = sampling; goal checkers ``general_goal_checker``,
+``precise_goal_checker``; progress checker ``progress_checker``) and
+``{ns}/srv/local_costmap/clear_{entirely,except,around}_local_costmap``;
+publishes ``{ns}/cmd_vel`` and ``{ns}/tracking_feedback``; reads
+``{ns}/odom``, ``{ns}/pose`` and ``{ns}/scan``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import math
+import signal
+from dataclasses import replace
+
+from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+
+from .local_costmap import LocalCostmap, LocalCostmapParams
+from .robot_io import add_clock_arguments, make_clock
+from .rpp import RegulatedPurePursuit, RPPParams
+from .service import ControllerService, ServiceOptions
+from .session import ControllerConfig
+
+log = logging.getLogger("aiobt_services.controller.main")
+
+
+def _positive(text: str) -> float:
+    value = float(text)
+    if not (math.isfinite(value) and value > 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
+    return value
+
+
+def _non_negative(text: str) -> float:
+    value = float(text)
+    if not (math.isfinite(value) and value >= 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    return value
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_bus_arguments(parser)
+    add_clock_arguments(parser)
+    group = parser.add_argument_group("controller")
+    add = group.add_argument
+    add("--rate", type=_positive, default=20.0, help="control rate, Hz (default: %(default)s)")
+    add(
+        "--max-speed",
+        type=_positive,
+        default=0.5,
+        help="RPP desired speed, m/s (default: %(default)s)",
+    )
+    add(
+        "--pose-timeout",
+        type=_positive,
+        default=0.5,
+        help="stale-pose limit, s (default: %(default)s)",
+    )
+    add(
+        "--failure-tolerance",
+        type=_non_negative,
+        default=0.3,
+        help="stopped, no valid control this long fails the goal, s (default: %(default)s)",
+    )
+    add(
+        "--time-allowance",
+        type=_non_negative,
+        default=0.0,
+        help="CONTROLLER_TIMED_OUT after this long, s; 0: no limit (default: %(default)s)",
+    )
+    add("--robot-radius", type=_positive, default=0.22, help="m (default: %(default)s)")
+    add("--inflation-radius", type=_positive, default=0.55, help="m (default: %(default)s)")
+    add(
+        "--costmap-size",
+        type=_positive,
+        default=5.0,
+        help="local window side, m (default: %(default)s)",
+    )
+
+
+def config_from(args: argparse.Namespace) -> ControllerConfig:
+    rpp = RPPParams(desired_linear_vel=args.max_speed, inscribed_radius=args.robot_radius)
+    config = ControllerConfig(
+        control_period=1.0 / args.rate,
+        pose_timeout=args.pose_timeout,
+        failure_tolerance=args.failure_tolerance,
+        time_allowance=args.time_allowance,
+    )
+    config.controllers["FollowPath"] = lambda: RegulatedPurePursuit(replace(rpp))
+    return config
+
+
+def costmap_from(args: argparse.Namespace) -> LocalCostmap:
+    return LocalCostmap(
+        LocalCostmapParams(
+            size=args.costmap_size,
+            robot_radius=args.robot_radius,
+            inflation_radius=max(args.inflation_radius, args.robot_radius),
+        )
+    )
+
+
+async def serve(args: argparse.Namespace) -> None:
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    async with open_bus(BusSettings.from_args(args)) as bus:
+        clock_task = asyncio.create_task(make_clock(bus, args.sim_time))
+        stopper = asyncio.create_task(stop.wait())
+        await asyncio.wait({clock_task, stopper}, return_when=asyncio.FIRST_COMPLETED)
+        if not clock_task.done():
+            clock_task.cancel()
+            return
+        clock, _ = clock_task.result()
+        service = ControllerService(
+            bus, clock, config_from(args), costmap_from(args), ServiceOptions(args.clock_timeout)
+        )
+        service.start()
+        bus.declare_token("nodes/controller")
+        log.info(
+            "controller up on namespace '%s' at %g Hz (%s time)",
+            bus.namespace,
+            args.rate,
+            "sim" if args.sim_time else "wall",
+        )
+        await stopper
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        asyncio.run(serve(args))
+    except KeyboardInterrupt:
+        pass
+    except (BusUnavailable, BusConfigError) as exc:
+        log.error("controller: %s", exc)
+        return 1
+    return 0

@@ -1,0 +1,119 @@
+"""What the controller and behavior services read from the robot, and time-keeping.
+
+:class:`RobotTracker` keeps the newest robot state per frame (``map`` from
+``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped on the injected clock at
+arrival, so a stale pose is detected against the same clock the loop runs on.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import math
+from typing import TYPE_CHECKING
+
+from aiobt.core.clock import Clock, ManualClock, SystemClock
+from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
+
+from .geometry import STOP, Pose2D, Velocity
+from .local_costmap import LocalCostmap
+from .session import RobotState
+
+if TYPE_CHECKING:
+    from aiobt.transport import Bus, SimClockFollower
+
+log = logging.getLogger("aiobt_services.controller.robot_io")
+
+
+def pose_of(position_x: float, position_y: float, yaw: float) -> Pose2D:
+    return Pose2D(position_x, position_y, yaw)
+
+
+def twist_of(cmd: Velocity) -> Twist:
+    return Twist.planar(cmd.v, cmd.w)
+
+
+class RobotTracker:
+    """Newest pose per frame, the measured velocity, and the lidar into a local costmap."""
+
+    __slots__ = ("_clock", "_velocity", "costmap", "states")
+
+    def __init__(self, clock: Clock, costmap: LocalCostmap | None = None) -> None:
+        self._clock = clock
+        self.costmap = costmap
+        self.states: dict[str, RobotState] = {}
+        self._velocity = STOP
+
+    def attach(self, bus: Bus) -> None:
+        bus.subscribe("odom", Odometry, self.on_odom)
+        bus.subscribe("pose", PoseStamped, self.on_pose)
+        if self.costmap is not None:
+            bus.subscribe("scan", LaserScan, self.on_scan)
+
+    def on_odom(self, msg: Odometry) -> None:
+        self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)
+        pose = Pose2D(msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
+        self.states["odom"] = RobotState(pose, self._velocity, self._clock.now())
+
+    def on_pose(self, msg: PoseStamped) -> None:
+        pose = Pose2D(msg.x, msg.y, msg.yaw)
+        self.states["map"] = RobotState(pose, self._velocity, self._clock.now())
+        if self.costmap is not None:
+            self.costmap.follow(pose)
+
+    def on_scan(self, msg: LaserScan) -> None:
+        state = self.states.get("map")
+        if self.costmap is None or state is None:
+            return
+        try:
+            self.costmap.add_scan(msg, state.pose)
+        except ValueError as exc:
+            log.warning("scan dropped: %s", exc)
+
+
+def add_clock_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--sim-time",
+        action="store_true",
+        help="run on the simulation's time from {ns}/clock instead of the wall clock",
+    )
+    parser.add_argument(
+        "--clock-timeout",
+        type=float,
+        default=2.0,
+        metavar="SECONDS",
+        help="wall seconds without clock progress before a goal fails (default: %(default)s)",
+    )
+
+
+async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower | None]:
+    """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp)."""
+    if not sim_time:
+        return SystemClock(), None
+    from aiobt.transport import SimClockFollower
+
+    follower = SimClockFollower(bus, ManualClock())
+    while True:
+        try:
+            await follower.wait_started(timeout=5.0)
+            return follower.clock, follower
+        except TimeoutError:
+            log.info("waiting for sim time on %s/clock", bus.namespace)
+
+
+async def sleep_bounded(clock: Clock, seconds: float, wall_timeout: float) -> bool:
+    """Sleep ``seconds`` of robot time; False if the clock stalls for ``wall_timeout`` s.
+
+    A simulation that died stops its clock; without this bound a loop on sim
+    time would wait forever instead of failing its goal.
+    """
+    if not math.isfinite(wall_timeout) or wall_timeout <= 0.0:
+        await clock.sleep(seconds)
+        return True
+    try:
+        async with asyncio.timeout(wall_timeout):
+            await clock.sleep(seconds)
+    except TimeoutError:
+        return False
+    return True

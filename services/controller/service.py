@@ -1,0 +1,196 @@
+"""The controller service over Zenoh: ``follow_path`` and the local-costmap clearing services.
+
+One control loop per goal, at a fixed rate on the injected clock. A newer goal
+takes the running one over (preemption "replace") without stopping the robot;
+cancel, failure or success always leave a zero twist on ``{ns}/cmd_vel``.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+from aiobt.core.clock import Clock
+from aiobt.msgs import (
+    ClearCostmapAroundRobot,
+    ClearCostmapExceptRegion,
+    ClearCostmapResponse,
+    ClearEntireCostmap,
+    FollowPath,
+    FollowPathError,
+    Path,
+    Twist,
+)
+from aiobt.transport import Bus, GoalHandle, Publisher
+
+from .collision import CollisionChecker
+from .errors import ControllerError, FollowPathCode
+from .geometry import STOP, PlanarPath, Velocity
+from .local_costmap import FrameShift, LocalCostmap, frame_transform
+from .robot_io import RobotTracker, sleep_bounded, twist_of
+from .session import ControllerConfig, FollowPathSession, FollowRequest, StepResult
+from .wire import TrackingFeedbackMsg
+
+log = logging.getLogger("aiobt_services.controller.service")
+Handle = GoalHandle[FollowPath.Goal, FollowPath.Result, FollowPath.Feedback]
+
+
+def path_of(msg: Path) -> PlanarPath:
+    """The wire path as arrays, in the path header's frame."""
+    poses = [(p.x, p.y, p.yaw) for p in msg.poses]
+    return PlanarPath.from_poses(msg.header.frame_id, poses)
+
+
+def request_of(goal: FollowPath.Goal) -> FollowRequest:
+    return FollowRequest(
+        path_of(goal.path), goal.controller_id, goal.goal_checker_id, goal.progress_checker_id
+    )
+
+
+def result_of(error: ControllerError | None) -> FollowPath.Result:
+    if error is None:
+        return FollowPath.Result()
+    code = FollowPathError[error.code.name]
+    return FollowPath.Result(error_code=int(code), error_msg=error.message)
+
+
+@dataclass(slots=True)
+class ServiceOptions:
+    clock_timeout: float = 2.0
+    clear_default_distance: float = 1.0
+
+
+class ControllerService:
+    """Wires the FollowPath session logic to the bus."""
+
+    def __init__(
+        self,
+        bus: Bus,
+        clock: Clock,
+        config: ControllerConfig | None = None,
+        costmap: LocalCostmap | None = None,
+        options: ServiceOptions | None = None,
+    ) -> None:
+        self.bus = bus
+        self.clock = clock
+        self.config = config or ControllerConfig()
+        self.costmap = costmap or LocalCostmap()
+        self.options = options or ServiceOptions()
+        self.tracker = RobotTracker(clock, self.costmap)
+        self._shift = FrameShift(self.costmap)
+        self._cmd: Publisher[Twist] | None = None
+        self._tracking: Publisher[TrackingFeedbackMsg] | None = None
+
+    def start(self) -> None:
+        self.tracker.attach(self.bus)
+        self._cmd = self.bus.publisher("cmd_vel", Twist)
+        self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
+        self.bus.action_server(FollowPath.name, FollowPath, self.execute, preemption="replace")
+        self._serve_clearing()
+
+    # -- follow_path ------------------------------------------------------------------------
+    async def execute(self, goal: FollowPath.Goal, handle: Handle) -> FollowPath.Result:
+        try:
+            session = self._open(request_of(goal))
+        except ControllerError as error:
+            log.warning("follow_path goal rejected: %s", error.message)
+            return result_of(error)
+        try:
+            return await self._run(session, handle)
+        finally:
+            self._publish(STOP)
+
+    def _open(self, request: FollowRequest) -> FollowPathSession:
+        checker = self._checker_for(request.path.frame_id)
+        return FollowPathSession(request, self.config, self.clock.now(), checker)
+
+    def _checker_for(self, frame: str) -> CollisionChecker:
+        return CollisionChecker(self.costmap if frame == "map" else self._shift)
+
+    async def _run(self, session: FollowPathSession, handle: Handle) -> FollowPath.Result:
+        period = self.config.control_period
+        while True:
+            newer = handle.take_new_goal()
+            if newer is not None:
+                try:
+                    session.replace(request_of(newer), self.clock.now())
+                except ControllerError as error:
+                    return result_of(error)
+            step = self._step(session)
+            self._publish(step.cmd)
+            self._feedback(step, handle, session.request.path.frame_id)
+            if step.finished:
+                return result_of(step.error)
+            if not await sleep_bounded(self.clock, period, self.options.clock_timeout):
+                return result_of(
+                    ControllerError(
+                        FollowPathCode.TF_ERROR,
+                        f"robot clock stopped for {self.options.clock_timeout:.1f} s "
+                        "(simulation gone?); stopping",
+                    )
+                )
+
+    def _step(self, session: FollowPathSession) -> StepResult:
+        states = self.tracker.states
+        if session.request.path.frame_id == "odom" and {"map", "odom"} <= states.keys():
+            self._shift.transform = frame_transform(states["map"].pose, states["odom"].pose)
+        return session.step(self.clock.now(), states)
+
+    def _publish(self, cmd: Velocity) -> None:
+        if self._cmd is not None:
+            self._cmd.put(twist_of(cmd))
+
+    def _feedback(self, step: StepResult, handle: Handle, frame_id: str) -> None:
+        fb = step.feedback
+        if fb is None:
+            return
+        handle.publish_feedback(
+            FollowPath.Feedback(distance_to_goal=fb.distance_to_goal, speed=abs(step.cmd.v))
+        )
+        if self._tracking is not None:
+            self._tracking.put(TrackingFeedbackMsg.of(fb, self.clock.now(), frame_id))
+
+    # -- local costmap clearing -------------------------------------------------------------
+    def _serve_clearing(self) -> None:
+        name = "local_costmap"
+        self.bus.serve(
+            ClearEntireCostmap.service_name(name),
+            ClearEntireCostmap.Request,
+            ClearCostmapResponse,
+            self._clear_entirely,
+        )
+        self.bus.serve(
+            ClearCostmapExceptRegion.service_name(name),
+            ClearCostmapExceptRegion.Request,
+            ClearCostmapResponse,
+            self._clear_except,
+        )
+        self.bus.serve(
+            ClearCostmapAroundRobot.service_name(name),
+            ClearCostmapAroundRobot.Request,
+            ClearCostmapResponse,
+            self._clear_around,
+        )
+
+    def _clear_entirely(self, _: ClearEntireCostmap.Request) -> ClearCostmapResponse:
+        self.costmap.clear_entirely()
+        return ClearCostmapResponse(success=True, message="local costmap cleared")
+
+    def _clear_except(self, req: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
+        return self._clear_region(req.reset_distance, keep_inside=True)
+
+    def _clear_around(self, req: ClearCostmapAroundRobot.Request) -> ClearCostmapResponse:
+        return self._clear_region(req.reset_distance, keep_inside=False)
+
+    def _clear_region(self, distance: float, keep_inside: bool) -> ClearCostmapResponse:
+        state = self.tracker.states.get("map")
+        if state is None:
+            return ClearCostmapResponse(success=False, message="no robot pose in 'map' yet")
+        if keep_inside:
+            self.costmap.clear_except(state.pose, distance)
+        else:
+            self.costmap.clear_around(state.pose, distance)
+        verb = "outside" if keep_inside else "inside"
+        return ClearCostmapResponse(
+            success=True, message=f"local costmap cleared {verb} a {distance:.2f} m square"
+        )

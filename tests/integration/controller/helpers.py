@@ -1,0 +1,48 @@
+"""Shared by the controller/behaviors service tests: start robot + service, paths, poses."""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable, Sequence
+
+import numpy as np
+import pytest
+
+from aiobt.msgs import Path, PoseStamped
+from aiobt.testing.bus import ServiceProcess
+from aiobt.transport import Bus, BusSettings
+
+Spawn = Callable[[Sequence[str]], ServiceProcess]
+SPEED = "4"
+
+
+async def start(spawn: Spawn, bus: Bus, settings: BusSettings, service: str, *extra: str) -> None:
+    """The robot (small world, --speed) and one of our services on sim time."""
+    common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
+    robot = spawn(["-m", "aiobt_services.robot", "--world", "small", "--speed", SPEED, *common])
+    ours = spawn(["-m", f"aiobt_services.{service}", "--sim-time", *common, *extra])
+    for name, proc in (("robot", robot), (service, ours)):
+        if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):
+            pytest.fail(f"{name} did not come up:\n{proc.output()}")
+
+
+def path_through(points: Sequence[tuple[float, float]], spacing: float = 0.05) -> Path:
+    """A dense map-frame path through ``points``, yaw along the path."""
+    xy: list[tuple[float, float]] = []
+    for (x0, y0), (x1, y1) in itertools.pairwise(points):
+        n = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / spacing))
+        xy.extend((x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n) for i in range(n))
+    xy.append(points[-1])
+    arr = np.asarray(xy)
+    d = np.diff(arr, axis=0)
+    yaw = np.append(np.arctan2(d[:, 1], d[:, 0]), math.atan2(d[-1, 1], d[-1, 0]))
+    poses = [
+        PoseStamped.from_xy_yaw(float(x), float(y), float(a))
+        for (x, y), a in zip(arr, yaw, strict=True)
+    ]
+    return Path(poses=poses)
+
+
+def yaw_error(a: float, b: float) -> float:
+    return abs((a - b + math.pi) % (2 * math.pi) - math.pi)

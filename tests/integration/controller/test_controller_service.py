@@ -1,0 +1,164 @@
+"""The controller service process driving the robot service process, over a real router."""
+
+from __future__ import annotations
+
+import asyncio
+import math
+
+import pytest
+
+from aiobt.msgs import (
+    ClearCostmapResponse,
+    ClearEntireCostmap,
+    FollowPath,
+    FollowPathError,
+    GoalState,
+    Odometry,
+    Path,
+    PoseStamped,
+    Twist,
+)
+from aiobt.transport import Bus, BusSettings
+
+from .helpers import Spawn, path_through, start, yaw_error
+
+pytestmark = [pytest.mark.integration, pytest.mark.e2e]
+
+
+async def _follow(bus: Bus, path: Path, **ids: str):
+    client = bus.action_client("follow_path", FollowPath)
+    return await client.send_goal(FollowPath.Goal(path=path, **ids), server_timeout=10.0)
+
+
+async def test_follows_a_curved_path_to_the_goal(spawn: Spawn, bus: Bus, bus_settings: BusSettings):
+    pose = bus.subscribe("pose", PoseStamped)
+    await start(spawn, bus, bus_settings, "controller")
+    path = path_through([(0.0, 0.0), (1.0, 0.0), (1.5, 0.5), (1.5, 1.5)])
+    goal = await _follow(bus, path)
+    feedback_seen: list[FollowPath.Feedback] = []
+    goal.on_feedback = feedback_seen.append
+    result = await goal.result(timeout=40.0)
+    assert goal.status is GoalState.SUCCEEDED, result
+    final = await pose.wait_latest(2.0)
+    assert math.hypot(final.x - 1.5, final.y - 1.5) <= 0.25
+    assert yaw_error(final.yaw, math.pi / 2) <= 0.3
+    assert feedback_seen
+    assert feedback_seen[0].distance_to_goal > 1.5
+
+
+async def test_obstacle_ahead_stops_before_contact_with_no_valid_control(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    from aiobt_services.robot.messages import Ack, SpawnObstacle
+
+    pose = bus.subscribe("pose", PoseStamped)
+    await start(spawn, bus, bus_settings, "controller")
+    ack = await bus.call(
+        "obstacles/spawn", SpawnObstacle(x=1.4, y=0.0, size_x=0.2, size_y=0.6), Ack
+    )
+    assert ack.ok, ack.message
+    goal = await _follow(bus, path_through([(0.0, 0.0), (2.1, 0.0)]))
+    result = await goal.result(timeout=40.0)
+    assert goal.status is GoalState.ABORTED
+    assert result.error_code == FollowPathError.NO_VALID_CONTROL
+    assert "collision ahead" in result.error_msg
+    final = await pose.wait_latest(2.0)
+    assert final.x < 1.3 - 0.22  # obstacle face at 1.3, robot radius 0.22: no contact
+
+
+async def test_cancel_stops_the_robot_within_one_control_period(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    from aiobt.msgs import Clock
+
+    clock = bus.subscribe("clock", Clock)
+    odom = bus.subscribe("odom", Odometry)
+    twists: list[tuple[float, Twist]] = []
+    moving = asyncio.Event()
+
+    def on_twist(twist: Twist) -> None:
+        twists.append((_now(clock), twist))
+        if twist.linear.x > 0.3:
+            moving.set()
+
+    bus.subscribe("cmd_vel", Twist, on_twist)
+    await start(spawn, bus, bus_settings, "controller")
+    goal = await _follow(bus, path_through([(0.0, 0.0), (2.0, 0.0)]))
+    await asyncio.wait_for(moving.wait(), 20.0)
+    cancelled_at = _now(clock)
+    result = await goal.cancel(timeout=5.0)
+    answered_at = _now(clock)
+    assert result is not None
+    assert goal.status is GoalState.CANCELED
+    await asyncio.sleep(0.3)
+    after = [(t, tw) for t, tw in twists if t >= cancelled_at]
+    first_zero = next(t for t, tw in after if tw.linear.x == 0.0 and tw.angular.z == 0.0)
+    # the zero twist goes out as the cancel is handled, not at the next control tick:
+    # no later than one 20 Hz period after the cancel was answered (sim time)
+    assert first_zero <= answered_at + 0.05
+    assert after[-1][1].linear.x == 0.0
+    assert abs((await odom.wait_latest(2.0)).twist.linear.x) < 0.05  # the base has stopped
+
+
+async def test_new_path_takes_over_without_stopping(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    pose = bus.subscribe("pose", PoseStamped)
+    twists: list[Twist] = []
+    bus.subscribe("cmd_vel", Twist, twists.append)
+    await start(spawn, bus, bus_settings, "controller")
+    first = await _follow(bus, path_through([(0.0, 0.0), (2.0, 0.0)]))
+    async with asyncio.timeout(20.0):
+        async for p in pose:
+            if p.x >= 0.6:
+                break
+    seen = len(twists)
+    second = await _follow(bus, path_through([(p.x, 0.0), (1.5, 0.0), (1.5, -1.5)]))
+    result = await second.result(timeout=40.0)
+    assert second.status is GoalState.SUCCEEDED, result
+    old = await first.result(timeout=2.0)
+    assert first.status is GoalState.ABORTED
+    assert "preempted" in old.error_msg
+    takeover = [t.linear.x for t in twists[seen : seen + 10]]
+    assert min(takeover) > 0.2  # kept driving through the hand-over
+    final = await pose.wait_latest(2.0)
+    assert math.hypot(final.x - 1.5, final.y + 1.5) <= 0.25
+
+
+async def test_bad_goals_get_nav2_codes_and_clearing_services_answer(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    await start(spawn, bus, bus_settings, "controller")
+    cases = [
+        (Path(), {}, FollowPathError.INVALID_PATH, "empty"),
+        (
+            path_through([(0.0, 0.0), (1.0, 0.0)]),
+            {"controller_id": "MPPI"},
+            FollowPathError.INVALID_CONTROLLER,
+            "MPPI",
+        ),
+        (
+            Path.model_validate(
+                {"header": {"frame_id": "base_link"}, "poses": path_through([(0, 0), (1, 0)]).poses}
+            ),
+            {},
+            FollowPathError.TF_ERROR,
+            "base_link",
+        ),
+    ]
+    for path, ids, code, words in cases:
+        goal = await _follow(bus, path, **ids)
+        result = await goal.result(timeout=5.0)
+        assert result.error_code == code
+        assert words in result.error_msg
+    reply = await bus.call(
+        "local_costmap/clear_entirely_local_costmap",
+        ClearEntireCostmap.Request(),
+        ClearCostmapResponse,
+    )
+    assert reply.success
+
+
+def _now(clock) -> float:
+    latest = clock.latest
+    return latest.clock if latest is not None else 0.0
