@@ -16,8 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from aiobt.msgs import PoseStamped, Wait
-from aiobt.testing.bus import ServiceProcess, running_router
+from aiobt.msgs import PoseStamped, Twist, Wait
+from aiobt.testing.bus import ServiceProcess, running_router, start_router
 from aiobt.transport import Bus, BusSettings, BusUnavailable, GoalLost, open_bus
 
 pytestmark = pytest.mark.integration
@@ -172,3 +172,22 @@ async def test_no_threads_left_after_the_bus_closes(bus_settings: BusSettings) -
     assert events == ["ran"]
     leftover = [t.name for t in threading.enumerate() if t.ident not in before]
     assert leftover == []
+
+
+async def test_sessions_reconnect_after_a_router_restart() -> None:
+    router, endpoint = start_router()
+    try:
+        settings = BusSettings(connect=(endpoint,), namespace="restart", connect_timeout=10.0)
+        async with open_bus(settings) as talker, open_bus(settings) as listener:
+            sub = listener.subscribe("cmd_vel", Twist)
+            pub = talker.publisher("cmd_vel", Twist)
+            await pub.wait_for_subscribers(5.0)
+            pub.put(Twist.planar(1.0, 0.0))
+            assert (await sub.next(timeout=5.0)).linear.x == 1.0
+            router.kill()
+            router, _ = start_router(endpoint)
+            await pub.wait_for_subscribers(10.0)
+            pub.put(Twist.planar(2.0, 0.0))
+            assert (await sub.next(timeout=5.0)).linear.x == 2.0
+    finally:
+        router.cleanup()
