@@ -1,13 +1,15 @@
 """The action protocol over Zenoh: server, client, errors (see ``protocol``)."""
 
-from aiobt.transport.actions.client import ActionClient, ClientGoal
+from aiobt.transport.actions.client import ActionClient
+from aiobt.transport.actions.client_goal import ClientGoal
+from aiobt.transport.actions.goals import GoalHandle
 from aiobt.transport.actions.protocol import (
     ActionError,
     GoalLost,
     GoalRejected,
     ServerUnavailable,
 )
-from aiobt.transport.actions.server import ActionServer, Execute, GoalHandle
+from aiobt.transport.actions.server import ActionServer, Execute
 
 __all__ = [
     "ActionClient",

@@ -3,16 +3,16 @@
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
-from collections.abc import AsyncIterator, Callable
-from typing import Any, Generic, TypeVar
+from collections.abc import Callable
+from typing import Generic, TypeVar
 
 import zenoh
 
 from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
+from aiobt.transport.actions.client_goal import ClientGoal, settle
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.presence import Presence
@@ -25,140 +25,6 @@ T = TypeVar("T")
 log = logging.getLogger("aiobt.transport.actions")
 _GOAL_STREAM_TIMEOUT = 7 * 24 * 3600.0  # the goal's query lives as long as the goal
 _RETRY_PAUSE = 0.02
-
-
-def _retrieve(future: asyncio.Future[Any]) -> None:
-    if not future.cancelled():
-        future.exception()
-
-
-class ClientGoal(Generic[G, R, F]):
-    """One sent goal: ``await result()``, ``await cancel()``, feedback, status."""
-
-    def __init__(self, client: ActionClient[G, R, F], goal_id: str, goal: G) -> None:
-        self.goal_id = goal_id
-        self.goal = goal
-        self.status = GoalState.UNKNOWN
-        self.latest_feedback: F | None = None
-        self.on_feedback: Callable[[F], object] | None = None
-        self._client = client
-        loop = asyncio.get_running_loop()
-        self._accepted: asyncio.Future[bool | None] = loop.create_future()
-        self._result: asyncio.Future[R] = loop.create_future()
-        self._feedback: asyncio.Queue[F] = asyncio.Queue(maxsize=100)
-        for future in (self._accepted, self._result):  # no "exception never retrieved"
-            future.add_done_callback(_retrieve)
-
-    @property
-    def done(self) -> bool:
-        return self._result.done()
-
-    async def result(self, timeout: float | None = None) -> R:  # noqa: ASYNC109
-        """The Result (check ``status``: SUCCEEDED, ABORTED or CANCELED).
-
-        Raises :class:`GoalLost` if the server went away, ``TimeoutError`` after ``timeout``.
-        """
-        async with asyncio.timeout(timeout):
-            return await asyncio.shield(self._result)
-
-    async def cancel(self, timeout: float = 2.0) -> R | None:  # noqa: ASYNC109
-        """Ask the server to cancel, then wait (bounded) for the final result."""
-        if self.done:
-            return self._result.result() if not self._result.exception() else None
-        with contextlib.suppress(ServiceError, TimeoutError):
-            await self._client.request_cancel(self.goal_id, timeout)
-        with contextlib.suppress(p.GoalLost, TimeoutError):
-            return await self.result(timeout)
-        return None
-
-    async def feedback(self) -> AsyncIterator[F]:
-        """Feedback messages until the goal ends."""
-        while not self.done or not self._feedback.empty():
-            if not self._feedback.empty():
-                yield self._feedback.get_nowait()
-                continue
-            getter: asyncio.Future[Any] = asyncio.ensure_future(self._feedback.get())
-            ending: asyncio.Future[Any] = self._result
-            try:
-                await asyncio.wait({getter, ending}, return_when=asyncio.FIRST_COMPLETED)
-            finally:
-                if not getter.done():
-                    getter.cancel()
-            if getter.done() and not getter.cancelled():
-                yield getter.result()
-
-    # -- the goal's reply stream (called in the loop) ----------------------------------------
-
-    def on_reply(self, reply: zenoh.Reply) -> None:
-        if reply.err is not None:
-            self._fail_or_reject(reply.err.payload.to_string())
-            return
-        sample = reply.ok
-        assert sample is not None
-        tag = sample.attachment.to_bytes() if sample.attachment is not None else b""
-        payload = sample.payload.to_bytes()
-        if tag == p.ACCEPTED:
-            self.status = GoalState.ACCEPTED
-            _settle(self._accepted, True)
-        elif tag == p.REJECTED:
-            reason = payload.decode(errors="replace")
-            _fail(self._accepted, p.GoalRejected(self._client.keys.base, self.goal_id, reason))
-        elif tag == p.FEEDBACK:
-            self._on_feedback(payload)
-        elif (state := p.parse_result_tag(tag)) is not None:
-            self._on_result(state, payload)
-
-    def _fail_or_reject(self, message: str) -> None:
-        if not self._accepted.done():
-            error = p.GoalRejected(self._client.keys.base, self.goal_id, message)
-            _fail(self._accepted, error)
-        else:
-            self.lost(f"error on the goal stream: {message}")
-
-    def _on_feedback(self, payload: bytes) -> None:
-        try:
-            feedback = decode(self._client.feedback_model, payload, key=self._client.keys.base)
-        except MessageError as exc:
-            log.warning("dropped bad feedback: %s", exc)
-            return
-        self.status = GoalState.EXECUTING
-        self.latest_feedback = feedback
-        if self._feedback.full():
-            self._feedback.get_nowait()
-        self._feedback.put_nowait(feedback)
-        if self.on_feedback is not None:
-            self.on_feedback(feedback)
-
-    def _on_result(self, state: GoalState, payload: bytes) -> None:
-        try:
-            result = decode(self._client.result_model, payload, key=self._client.keys.base)
-        except MessageError as exc:
-            self.lost(f"malformed result: {exc}")
-            return
-        self.status = state
-        _settle(self._result, result)
-
-    def on_stream_end(self) -> None:
-        if not self._accepted.done():
-            _settle(self._accepted, None)  # nobody answered: maybe not routed yet
-        elif not self.done:
-            self.lost("the goal stream ended without a result (server process gone?)")
-
-    def lost(self, why: str) -> None:
-        if not self.done:
-            self.status = GoalState.ABORTED
-            base = self._client.keys.base
-            _fail(self._result, p.GoalLost(f"action {base}: goal {self.goal_id} lost: {why}"))
-
-
-def _settle(future: asyncio.Future[T], value: T) -> None:
-    if not future.done():
-        future.set_result(value)
-
-
-def _fail(future: asyncio.Future[Any], error: BaseException) -> None:
-    if not future.done():
-        future.set_exception(error)
 
 
 class _Stream(Generic[G, R, F]):
@@ -266,7 +132,7 @@ class ActionClient(Generic[G, R, F]):
 
     async def _accepted(self, handle: ClientGoal[G, R, F], deadline: float) -> bool:
         """True once accepted; False when the stream ended unanswered or at the deadline."""
-        timer = asyncio.get_running_loop().call_at(deadline, _settle, handle._accepted, None)
+        timer = asyncio.get_running_loop().call_at(deadline, settle, handle._accepted, None)
         try:
             return bool(await handle._accepted)
         except asyncio.CancelledError:

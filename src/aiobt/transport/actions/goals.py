@@ -1,14 +1,21 @@
-"""Server-side bookkeeping: one record per accepted goal, and recent results."""
+"""Server-side goals: the handle ``execute`` gets, one record per accepted goal, results."""
 
 from __future__ import annotations
 
+import asyncio
 from collections import OrderedDict
+from collections.abc import Callable
+from typing import Generic, TypeVar
 
 import zenoh
 
+from aiobt.msgs import ActionResult, Msg
 from aiobt.transport import _z
 from aiobt.transport.bridge import JSON
 
+G = TypeVar("G", bound=Msg)
+R = TypeVar("R", bound=ActionResult)
+F = TypeVar("F", bound=Msg)
 _KEEP_RESULTS = 128
 
 
@@ -78,3 +85,35 @@ class RecentIds:
         if len(self._ids) > 4 * _KEEP_RESULTS:
             self._ids.popitem(last=False)
         return True
+
+
+class GoalHandle(Generic[G, R, F]):
+    """What ``execute`` gets: the goal, feedback publishing, and (replace) newer goals."""
+
+    def __init__(self, publish: Callable[[str, F], None], record: GoalRecord, goal: G) -> None:
+        self.goal_id = record.goal_id
+        self.goal = goal
+        self.record = record
+        self._publish = publish
+        self._new_goals: asyncio.Queue[G] = asyncio.Queue()
+
+    def publish_feedback(self, feedback: F) -> None:
+        self._publish(self.goal_id, feedback)
+
+    def take_new_goal(self) -> G | None:
+        """The newest goal that took this execution over since the last call, if any."""
+        newest: G | None = None
+        while not self._new_goals.empty():
+            newest = self._new_goals.get_nowait()
+        return newest
+
+    async def wait_new_goal(self) -> G:
+        """Wait for a newer goal to take this execution over (replace policy)."""
+        newest = await self._new_goals.get()
+        return self.take_new_goal() or newest
+
+    def _switch(self, record: GoalRecord, goal: G) -> None:
+        self.record = record
+        self.goal_id = record.goal_id
+        self.goal = goal
+        self._new_goals.put_nowait(goal)

@@ -18,7 +18,7 @@ import zenoh
 from aiobt.msgs import ActionDef, ActionResult, GoalState, GoalStatus, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import GoalRecord, RecentIds, ResultStore
+from aiobt.transport.actions.goals import GoalHandle, GoalRecord, RecentIds, ResultStore
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.services import query_payload
@@ -28,38 +28,6 @@ R = TypeVar("R", bound=ActionResult)
 F = TypeVar("F", bound=Msg)
 log = logging.getLogger("aiobt.transport.actions")
 _STOP_TIMEOUT = 5.0
-
-
-class GoalHandle(Generic[G, R, F]):
-    """What ``execute`` gets: the goal, feedback publishing, and (replace) newer goals."""
-
-    def __init__(self, server: ActionServer[G, R, F], record: GoalRecord, goal: G) -> None:
-        self.goal_id = record.goal_id
-        self.goal = goal
-        self.record = record
-        self._server = server
-        self._new_goals: asyncio.Queue[G] = asyncio.Queue()
-
-    def publish_feedback(self, feedback: F) -> None:
-        self._server.publish_feedback(self.goal_id, feedback)
-
-    def take_new_goal(self) -> G | None:
-        """The newest goal that took this execution over since the last call, if any."""
-        newest: G | None = None
-        while not self._new_goals.empty():
-            newest = self._new_goals.get_nowait()
-        return newest
-
-    async def wait_new_goal(self) -> G:
-        """Wait for a newer goal to take this execution over (replace policy)."""
-        newest = await self._new_goals.get()
-        return self.take_new_goal() or newest
-
-    def _switch(self, record: GoalRecord, goal: G) -> None:
-        self.record = record
-        self.goal_id = record.goal_id
-        self.goal = goal
-        self._new_goals.put_nowait(goal)
 
 
 Execute = Callable[[G, GoalHandle[G, R, F]], Awaitable[R]]
@@ -200,7 +168,7 @@ class ActionServer(Generic[G, R, F]):
 
     def _start(self, record: GoalRecord, goal: G) -> None:
         self._active = record
-        self._handle = GoalHandle(self, record, goal)
+        self._handle = GoalHandle(self.publish_feedback, record, goal)
         self._task = asyncio.get_running_loop().create_task(self._run(self._handle))
 
     def _decode_goal(self, goal_id: str, query: zenoh.Query) -> G:
