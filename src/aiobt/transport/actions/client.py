@@ -189,14 +189,10 @@ async def _fetch_result(
 ) -> tuple[GoalState, R]:
     future: asyncio.Future[zenoh.Reply | None] = bridge.loop.create_future()
 
-    def settle(reply: zenoh.Reply | None) -> None:
-        if not future.done():
-            future.set_result(reply)
-
     def on_reply(reply: zenoh.Reply) -> None:
-        bridge.call(settle, reply)
+        bridge.call(settle, future, reply)
 
-    session.get(key, callback(on_reply, lambda: bridge.call(settle, None)), timeout=timeout)
+    session.get(key, callback(on_reply, lambda: bridge.call(settle, future, None)), timeout=timeout)
     async with asyncio.timeout(timeout + 0.5):
         reply = await future
     if reply is None or reply.err is not None:
