@@ -67,6 +67,7 @@ class Safety:
 
     simulate_ahead_time: float = 2.0
     pose_timeout: float = 0.5
+    initial_pose_wait: float = 1.0  # a goal may arrive before the first odometry does
 
 
 def require_finite(name: str, value: float) -> float:
@@ -110,8 +111,13 @@ class TimedBehavior:
             return self.fail(
                 Outcome.TIMEOUT, f"exceeded time allowance of {self.time_allowance:.2f} s"
             )
+        if inputs.pose is None and elapsed <= self.safety.initial_pose_wait:
+            return BehaviorStep(STOP, self.progress())
         if inputs.pose is None or not inputs.pose.is_finite():
-            return self.fail(Outcome.TF_ERROR, "no valid robot pose (odometry) received")
+            return self.fail(
+                Outcome.TF_ERROR,
+                f"no valid robot pose (odometry) within {self.safety.initial_pose_wait:.1f} s",
+            )
         age = inputs.now - inputs.pose_stamp
         if age > self.safety.pose_timeout:
             return self.fail(

@@ -143,7 +143,9 @@ def test_stale_odometry_stops_with_tf_error():
     assert step.outcome is Outcome.TF_ERROR
     assert "stale" in step.message
     assert step.cmd == Velocity(0.0, 0.0)
-    assert DriveOnHeading(1.0, 0.1).step(Inputs(0.0)).outcome is Outcome.TF_ERROR
+    drive = DriveOnHeading(1.0, 0.1)
+    assert not drive.step(Inputs(0.0)).done  # odometry may still be on its way
+    assert drive.step(Inputs(1.1)).outcome is Outcome.TF_ERROR
 
 
 def test_wait_counts_clock_time_and_never_commands():
