@@ -17,14 +17,17 @@ Spawn = Callable[[Sequence[str]], ServiceProcess]
 SPEED = "4"
 
 
-async def start(spawn: Spawn, bus: Bus, settings: BusSettings, service: str, *extra: str) -> None:
-    """The robot (small world, --speed) and one of our services on sim time."""
+async def start(
+    spawn: Spawn, bus: Bus, settings: BusSettings, service: str, *extra: str
+) -> ServiceProcess:
+    """The robot (small world, --speed) and one of our services on sim time; returns the robot."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     robot = spawn(["-m", "aiobt_services.robot", "--world", "small", "--speed", SPEED, *common])
     ours = spawn(["-m", f"aiobt_services.{service}", "--sim-time", *common, *extra])
     for name, proc in (("robot", robot), (service, ours)):
         if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):
             pytest.fail(f"{name} did not come up:\n{proc.output()}")
+    return robot
 
 
 def path_through(points: Sequence[tuple[float, float]], spacing: float = 0.05) -> Path:

@@ -162,3 +162,20 @@ async def test_bad_goals_get_nav2_codes_and_clearing_services_answer(
 def _now(clock) -> float:
     latest = clock.latest
     return latest.clock if latest is not None else 0.0
+
+
+async def test_robot_gone_mid_goal_fails_with_tf_error(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    pose = bus.subscribe("pose", PoseStamped)
+    robot = await start(spawn, bus, bus_settings, "controller")
+    goal = await _follow(bus, path_through([(0.0, 0.0), (2.0, 0.0)]))
+    async with asyncio.timeout(20.0):
+        async for p in pose:
+            if p.x >= 0.3:
+                break
+    robot.kill()
+    result = await goal.result(timeout=6.0)  # --clock-timeout 2 s of wall time
+    assert goal.status is GoalState.ABORTED
+    assert result.error_code == FollowPathError.TF_ERROR
+    assert "clock stopped" in result.error_msg
