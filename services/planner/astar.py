@@ -1,0 +1,54 @@
+"""GridBased: cost-aware 8-connected A* on a :class:`Traversal` (optimal for its metric).
+
+A step into a cell costs ``step_length * weight(cell)``, ``step_length`` 1 or
+sqrt(2) cells and ``weight >= 1``, so the octile heuristic is admissible and
+consistent, and the first time the goal is popped its cost is optimal. The
+neighbour loop is unrolled: this is the hot path of the planner service.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+from .errors import PlanningError
+from .traversal import CHECK_EVERY, SQRT2, Budget, Traversal, trace_back
+
+NO_PATH = "no valid path: the goal cannot be reached from the start"
+
+
+def astar(traversal: Traversal, start: int, goal: int, budget: Budget | None = None) -> list[int]:
+    """Flat indices from ``start`` to ``goal`` (both included); raises PlanningError."""
+    budget = budget or Budget()
+    weights, s, diag = traversal.weights, traversal.stride, SQRT2
+    h = traversal.heuristic(goal)
+    n = len(weights)
+    cost = [math.inf] * n
+    parents = [-1] * n
+    closed = bytearray(n)
+    cost[start], parents[start] = 0.0, start
+    heap: list[tuple[float, int]] = [(h[start], start)]
+    pop, push = heapq.heappop, heapq.heappush
+    countdown = CHECK_EVERY
+    while heap:
+        node = pop(heap)[1]
+        if closed[node]:
+            continue
+        if node == goal:
+            return trace_back(parents, goal)
+        closed[node] = 1
+        countdown -= 1
+        if not countdown:
+            budget.check()
+            countdown = CHECK_EVERY
+        base = cost[node]
+        for nxt, step in (
+            (node + 1, 1.0), (node - 1, 1.0), (node + s, 1.0), (node - s, 1.0),
+            (node + s + 1, diag), (node + s - 1, diag), (node - s + 1, diag), (node - s - 1, diag),
+        ):  # fmt: skip
+            c = base + step * weights[nxt]
+            if c < cost[nxt]:
+                cost[nxt] = c
+                parents[nxt] = node
+                push(heap, (c + h[nxt], nxt))
+    raise PlanningError("NO_VALID_PATH", NO_PATH)

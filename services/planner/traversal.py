@@ -1,0 +1,153 @@
+"""A cost grid prepared for search: padded flat arrays of step weights.
+
+Flat indices address a grid padded by one blocked cell on every side, so the
+search never bounds-checks: cell (col, row) is ``(row + 1) * stride + col + 1``.
+With ``downsample`` > 1 the search runs on blocks of that many cells a side,
+each as costly as its worst cell (Nav2's costmap downsampler).
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import numpy.typing as npt
+from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, GridGeometry
+
+from .errors import PlanningCancelled, PlanningError
+
+SQRT2 = math.sqrt(2.0)
+CHECK_EVERY = 1024
+
+
+@dataclass(frozen=True, slots=True)
+class SearchParams:
+    """Smac-2D-like knobs: a cell of cost ``c`` weighs ``1 + cost_penalty * c / 252``."""
+
+    cost_penalty: float = 2.0
+    allow_unknown: bool = True
+    downsample: int = 1
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.cost_penalty) and self.cost_penalty >= 0.0):
+            raise ValueError(f"cost_penalty must be finite and >= 0, got {self.cost_penalty!r}")
+        if self.downsample < 1:
+            raise ValueError(f"downsample must be >= 1, got {self.downsample!r}")
+
+
+@dataclass(slots=True)
+class Budget:
+    """Cancellation flag and a compute-time deadline (wall time: it bounds CPU work)."""
+
+    max_seconds: float = math.inf
+    cancel: threading.Event = field(default_factory=threading.Event)
+    started: float = field(default_factory=time.monotonic)
+
+    def check(self) -> None:
+        if self.cancel.is_set():
+            raise PlanningCancelled
+        if time.monotonic() - self.started > self.max_seconds:
+            raise PlanningError(
+                "TIMEOUT", f"planning exceeded its time budget of {self.max_seconds:.3f} s"
+            )
+
+
+def downsample_costs(costs: npt.NDArray[np.uint8], factor: int) -> npt.NDArray[np.uint8]:
+    """Block maximum (unknown counts as unknown only where the block is all unknown)."""
+    if factor == 1:
+        return costs
+    height, width = costs.shape
+    rows, cols = -(-height // factor), -(-width // factor)
+    padded = np.full((rows * factor, cols * factor), NO_INFORMATION, dtype=np.uint8)
+    padded[:height, :width] = costs
+    blocks = padded.reshape(rows, factor, cols, factor).swapaxes(1, 2).reshape(rows, cols, -1)
+    known = np.where(blocks == NO_INFORMATION, 0, blocks).max(axis=2)
+    all_unknown = (blocks == NO_INFORMATION).all(axis=2)
+    result: npt.NDArray[np.uint8] = np.where(all_unknown, NO_INFORMATION, known).astype(np.uint8)
+    return result
+
+
+class Traversal:
+    """Step weights of a :class:`CostGrid` (``inf`` = impassable), padded and flat."""
+
+    __slots__ = ("_coords", "costs", "fine", "geometry", "params", "passable", "stride", "weights")
+
+    def __init__(self, grid: CostGrid, params: SearchParams | None = None) -> None:
+        self.params = params or SearchParams()
+        self.fine = grid
+        factor = self.params.downsample
+        g = grid.geometry
+        self.costs = downsample_costs(grid.costs, factor)
+        self.geometry = GridGeometry(
+            self.costs.shape[1], self.costs.shape[0], g.resolution * factor, g.origin_x, g.origin_y
+        )
+        self.passable = self._passable(self.costs)
+        weight = 1.0 + self.params.cost_penalty * np.minimum(self.costs, 252) / 252.0
+        padded = np.full((self.costs.shape[0] + 2, self.costs.shape[1] + 2), math.inf)
+        padded[1:-1, 1:-1] = np.where(self.passable, weight, math.inf)
+        self.stride = int(padded.shape[1])
+        self.weights: list[float] = padded.ravel().tolist()
+        self._coords: tuple[npt.NDArray[np.intp], npt.NDArray[np.intp]] | None = None
+
+    def _passable(self, costs: npt.NDArray[np.uint8]) -> npt.NDArray[np.bool_]:
+        unknown = costs == NO_INFORMATION
+        passable: npt.NDArray[np.bool_] = (costs < INSCRIBED) | (
+            unknown & self.params.allow_unknown
+        )
+        return passable
+
+    def index(self, col: int, row: int) -> int:
+        return (row + 1) * self.stride + col + 1
+
+    def cell(self, index: int) -> tuple[int, int]:
+        row, col = divmod(index, self.stride)
+        return (col - 1, row - 1)
+
+    def heuristic(self, goal: int) -> list[float]:
+        """Octile distance to ``goal`` for every padded cell (admissible: weight >= 1)."""
+        if self._coords is None:
+            self._coords = np.divmod(np.arange(len(self.weights)), self.stride)
+        rows, cols = self._coords
+        grow, gcol = divmod(goal, self.stride)
+        dx = np.abs(cols - gcol)
+        dy = np.abs(rows - grow)
+        h: list[float] = ((dx + dy) + (SQRT2 - 2.0) * np.minimum(dx, dy)).tolist()
+        return h
+
+    def locate(self, x: float, y: float, which: str) -> int:
+        """Flat index of a world point, or a PlanningError naming start or goal.
+
+        Occupancy is judged on the full-resolution grid; a downsampled block
+        that is worse than its free fine cell is opened for this search.
+        """
+        is_start = which.lower() == "start"
+        fine_cell = self.fine.geometry.world_to_cell(x, y)
+        if fine_cell is None:
+            reason = "START_OUTSIDE_MAP" if is_start else "GOAL_OUTSIDE_MAP"
+            raise PlanningError(reason, f"{which} ({x:.3f}, {y:.3f}) is outside the costmap")
+        fine_cost = self.fine.costs[fine_cell[1], fine_cell[0]]
+        if not bool(self._passable(np.asarray(fine_cost))):
+            reason = "START_OCCUPIED" if is_start else "GOAL_OCCUPIED"
+            raise PlanningError(
+                reason, f"{which} ({x:.3f}, {y:.3f}) is in an occupied cell (cost {fine_cost})"
+            )
+        factor = self.params.downsample
+        index = self.index(fine_cell[0] // factor, fine_cell[1] // factor)
+        if self.weights[index] == math.inf:
+            self.weights[index] = 1.0 + self.params.cost_penalty * min(int(fine_cost), 252) / 252
+        return index
+
+    def to_world(self, indices: list[int]) -> list[tuple[float, float]]:
+        return [self.geometry.cell_to_world(*self.cell(i)) for i in indices]
+
+
+def trace_back(parents: list[int], goal: int) -> list[int]:
+    """Follow parent links from ``goal`` to the start (whose parent is itself)."""
+    path = [goal]
+    while parents[path[-1]] != path[-1]:
+        path.append(parents[path[-1]])
+    path.reverse()
+    return path
