@@ -18,11 +18,16 @@ SPEED = "4"
 
 
 async def start(
-    spawn: Spawn, bus: Bus, settings: BusSettings, service: str, *extra: str
+    spawn: Spawn,
+    bus: Bus,
+    settings: BusSettings,
+    service: str,
+    *extra: str,
+    world: str = "small",
 ) -> ServiceProcess:
-    """The robot (small world, --speed) and one of our services on sim time; returns the robot."""
+    """The robot (``world``, --speed) and one of our services on sim time; returns the robot."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
-    robot = spawn(["-m", "aiobt_services.robot", "--world", "small", "--speed", SPEED, *common])
+    robot = spawn(["-m", "aiobt_services.robot", "--world", world, "--speed", SPEED, *common])
     ours = spawn(["-m", f"aiobt_services.{service}", "--sim-time", *common, *extra])
     for name, proc in (("robot", robot), (service, ours)):
         if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):

@@ -30,11 +30,14 @@ async def _follow(bus: Bus, path: Path, **ids: str):
     return await client.send_goal(FollowPath.Goal(path=path, **ids), server_timeout=10.0)
 
 
-async def test_follows_a_curved_path_to_the_goal(spawn: Spawn, bus: Bus, bus_settings: BusSettings):
+@pytest.mark.parametrize("controller_id", ["FollowPath", "DWB"])
+async def test_follows_a_curved_path_to_the_goal(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings, controller_id: str
+):
     pose = bus.subscribe("pose", PoseStamped)
     await start(spawn, bus, bus_settings, "controller")
     path = path_through([(0.0, 0.0), (1.0, 0.0), (1.5, 0.5), (1.5, 1.5)])
-    goal = await _follow(bus, path)
+    goal = await _follow(bus, path, controller_id=controller_id)
     feedback_seen: list[FollowPath.Feedback] = []
     goal.on_feedback = feedback_seen.append
     result = await goal.result(timeout=40.0)
@@ -44,6 +47,20 @@ async def test_follows_a_curved_path_to_the_goal(spawn: Spawn, bus: Bus, bus_set
     assert yaw_error(final.yaw, math.pi / 2) <= 0.3
     assert feedback_seen
     assert feedback_seen[0].distance_to_goal > 1.5
+
+
+async def test_follows_the_office_corridor_between_its_walls(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    pose = bus.subscribe("pose", PoseStamped)
+    await start(spawn, bus, bus_settings, "controller", world="office")
+    start_pose = await pose.wait_latest(5.0)  # the office world's start: (2.0, 9.75, 0)
+    path = path_through([(start_pose.x, start_pose.y), (5.0, 9.75), (8.0, 9.75)])
+    goal = await _follow(bus, path)
+    result = await goal.result(timeout=60.0)
+    assert goal.status is GoalState.SUCCEEDED, result
+    final = await pose.wait_latest(2.0)
+    assert math.hypot(final.x - 8.0, final.y - 9.75) <= 0.25
 
 
 async def test_obstacle_ahead_stops_before_contact_with_no_valid_control(
