@@ -121,10 +121,9 @@ class Subscription(Generic[M]):
         if sample.kind != zenoh.SampleKind.PUT:
             return
         payload = sample.payload.to_bytes()
-        key = str(sample.key_expr)
         try:
-            self._bridge.check_size(key, payload)
-            message = decode(self.model, payload, key=key)
+            self._bridge.check_size(self.key, payload)
+            message = decode(self.model, payload, key=self.key)  # the key has no wildcards
         except (MessageError, PayloadTooLarge) as exc:
             self._bridge.call(self._reject, exc)
             return
