@@ -1,0 +1,45 @@
+"""Path following (Nav2's controller server): controllers, checkers, the FollowPath session.
+
+The pure logic is importable without Zenoh; the service lives in ``.service``
+and ``.main`` (``aiobt controller``).
+"""
+
+from .base import ControlContext, Controller
+from .checkers import SimpleGoalChecker, SimpleProgressChecker, default_checkers
+from .collision import CollisionChecker, CostQuery, GridCostmap
+from .dwb import DWBController, DWBParams
+from .errors import ControllerError, FollowPathCode
+from .geometry import PlanarPath, Pose2D, Velocity, wrap_angle
+from .rpp import RegulatedPurePursuit, RPPParams
+from .session import ControllerConfig, FollowPathSession, FollowRequest, RobotState, StepResult
+from .tracking import TrackingFeedback, tracking_feedback
+from .unicycle import Unicycle
+
+__all__ = [
+    "CollisionChecker",
+    "ControlContext",
+    "Controller",
+    "ControllerConfig",
+    "ControllerError",
+    "CostQuery",
+    "DWBController",
+    "DWBParams",
+    "FollowPathCode",
+    "FollowPathSession",
+    "FollowRequest",
+    "GridCostmap",
+    "PlanarPath",
+    "Pose2D",
+    "RPPParams",
+    "RegulatedPurePursuit",
+    "RobotState",
+    "SimpleGoalChecker",
+    "SimpleProgressChecker",
+    "StepResult",
+    "TrackingFeedback",
+    "Unicycle",
+    "Velocity",
+    "default_checkers",
+    "tracking_feedback",
+    "wrap_angle",
+]
