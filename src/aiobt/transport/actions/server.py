@@ -34,6 +34,19 @@ Execute = Callable[[G, GoalHandle[G, R, F]], Awaitable[R]]
 
 
 class ActionServer(Generic[G, R, F]):
+    """Serves one action, one goal at a time (Nav2's simple action server).
+
+    - ``execute(goal, handle) -> Result`` runs as a task per goal; ``error_code``
+      0 ends the goal SUCCEEDED, anything else ABORTED; an exception ends it
+      ABORTED with the action's UNKNOWN code. Cancel ends it CANCELED.
+    - ``preemption="abort"``: a newer goal cancels the running task (awaited,
+      up to 5 s) and the old goal ends ABORTED "preempted by goal ...".
+      ``"replace"``: the running execute continues with the newer goal
+      (``handle.take_new_goal()``); the old goal ends ABORTED the same way.
+    - ``accept(goal) -> reason | None`` (in the loop) may reject a goal with a
+      reason; without it goals are accepted in the Zenoh thread (faster).
+    """
+
     def __init__(
         self,
         session: zenoh.Session,
