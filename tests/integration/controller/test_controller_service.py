@@ -70,17 +70,22 @@ async def test_obstacle_ahead_stops_before_contact_with_no_valid_control(
 
     pose = bus.subscribe("pose", PoseStamped)
     await start(spawn, bus, bus_settings, "controller")
-    ack = await bus.call(
-        "obstacles/spawn", SpawnObstacle(x=1.4, y=0.0, size_x=0.2, size_y=0.6), Ack
-    )
-    assert ack.ok, ack.message
     goal = await _follow(bus, path_through([(0.0, 0.0), (2.1, 0.0)]))
+    async with asyncio.timeout(20.0):
+        async for p in pose:
+            if p.x >= 0.3:
+                break
+    # dropped 1.1 m ahead of the moving robot: its near face at x + 1.0
+    face = p.x + 1.0
+    obstacle = SpawnObstacle(x=face + 0.1, y=0.0, size_x=0.2, size_y=0.6)
+    ack = await bus.call("obstacles/spawn", obstacle, Ack)
+    assert ack.ok, ack.message
     result = await goal.result(timeout=40.0)
     assert goal.status is GoalState.ABORTED
     assert result.error_code == FollowPathError.NO_VALID_CONTROL
     assert "collision ahead" in result.error_msg
     final = await pose.wait_latest(2.0)
-    assert final.x < 1.3 - 0.22  # obstacle face at 1.3, robot radius 0.22: no contact
+    assert final.x < face - 0.22  # robot radius 0.22: no contact
 
 
 async def test_cancel_stops_the_robot_within_one_control_period(
