@@ -71,13 +71,14 @@ def plan_through(
     traversal = grid if isinstance(grid, Traversal) else Traversal(grid, params)
     budget = budget or Budget()
     points: list[tuple[float, float]] = [(start[0], start[1])]
-    here = traversal.locate(start[0], start[1], "start")
+    here, origin = traversal.locate(start[0], start[1], "start"), start
     for goal in goals:
         there = traversal.locate(goal[0], goal[1], "goal")
-        cells = search(traversal, here, there, budget)
+        leg = traversal.opened(origin[0], origin[1]).opened(goal[0], goal[1])
+        cells = search(leg, here, there, budget)
         points.extend(_densify(traversal.to_world(cells)[1:-1], traversal.fine.geometry.resolution))
         points.append((goal[0], goal[1]))
-        here = there
+        here, origin = there, goal
     return _with_headings(_dedupe(points), goals[-1][2])
 
 

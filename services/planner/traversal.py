@@ -8,6 +8,7 @@ each as costly as its worst cell (Nav2's costmap downsampler).
 
 from __future__ import annotations
 
+import copy
 import math
 import threading
 import time
@@ -135,10 +136,27 @@ class Traversal:
                 reason, f"{which} ({x:.3f}, {y:.3f}) is in an occupied cell (cost {fine_cost})"
             )
         factor = self.params.downsample
-        index = self.index(fine_cell[0] // factor, fine_cell[1] // factor)
-        if self.weights[index] == math.inf:
-            self.weights[index] = 1.0 + self.params.cost_penalty * min(int(fine_cost), 252) / 252
-        return index
+        return self.index(fine_cell[0] // factor, fine_cell[1] // factor)
+
+    def opened(self, x: float, y: float) -> Traversal:
+        """This traversal with the block holding (x, y) passable (a copy if it changes).
+
+        After downsampling a block can be blocked while the fine cell of the
+        start or goal is free; the search opens just that block, on a copy, so
+        a cached traversal is never modified (it may serve several threads).
+        """
+        cell = self.fine.geometry.world_to_cell(x, y)
+        if cell is None:
+            return self
+        factor = self.params.downsample
+        index = self.index(cell[0] // factor, cell[1] // factor)
+        if self.weights[index] != math.inf:
+            return self
+        clone = copy.copy(self)
+        clone.weights = list(self.weights)
+        fine_cost = min(int(self.fine.costs[cell[1], cell[0]]), 252)
+        clone.weights[index] = 1.0 + self.params.cost_penalty * fine_cost / 252
+        return clone
 
     def to_world(self, indices: list[int]) -> list[tuple[float, float]]:
         return [self.geometry.cell_to_world(*self.cell(i)) for i in indices]

@@ -1,0 +1,112 @@
+"""Wires the planner onto the bus: topics in, action servers and services out."""
+
+from __future__ import annotations
+
+import logging
+
+from aiobt.msgs import (
+    ClearCostmapAroundPose,
+    ClearCostmapAroundRobot,
+    ClearCostmapExceptRegion,
+    ClearCostmapResponse,
+    ClearEntireCostmap,
+    ComputeCoveragePath,
+    ComputePathThroughPoses,
+    ComputePathToPose,
+    IsPathValid,
+    LaserScan,
+    OccupancyGrid,
+    PoseStamped,
+    SmoothPath,
+)
+from aiobt.transport import Bus
+
+from .actions import PlannerActions
+from .state import MAP_FRAMES, GlobalCostmap
+from .validity import invalid_poses
+
+log = logging.getLogger("aiobt_services.planner.service")
+COSTMAP = "global_costmap"
+Request = ClearCostmapExceptRegion.Request
+
+
+class PlannerService:
+    """The planner server: a global costmap plus Nav2's planner-server interface."""
+
+    def __init__(self, bus: Bus, world: GlobalCostmap, actions: PlannerActions) -> None:
+        self.bus = bus
+        self.world = world
+        self.actions = actions
+
+    def start(self) -> None:
+        bus, world, act = self.bus, self.world, self.actions
+        bus.subscribe("map", OccupancyGrid, world.on_map, latched=True)
+        bus.subscribe("pose", PoseStamped, world.on_pose)
+        bus.subscribe("scan", LaserScan, world.on_scan, queue_size=4)
+        bus.action_server(ComputePathToPose.name, ComputePathToPose, act.compute_path_to_pose)
+        bus.action_server(
+            ComputePathThroughPoses.name, ComputePathThroughPoses, act.compute_path_through_poses
+        )
+        bus.action_server(SmoothPath.name, SmoothPath, act.smooth_path)
+        bus.action_server(ComputeCoveragePath.name, ComputeCoveragePath, act.compute_coverage_path)
+        self._serve_clearing()
+        bus.serve(IsPathValid.service_name, IsPathValid.Request, IsPathValid.Response,
+                  self.is_path_valid)  # fmt: skip
+        bus.declare_token("nodes/planner")
+
+    def _serve_clearing(self) -> None:
+        serve, name = self.bus.serve, COSTMAP
+        serve(ClearEntireCostmap.service_name(name), ClearEntireCostmap.Request,
+              ClearCostmapResponse, self.clear_entirely)  # fmt: skip
+        serve(ClearCostmapExceptRegion.service_name(name), Request, ClearCostmapResponse,
+              self.clear_except)  # fmt: skip
+        serve(ClearCostmapAroundRobot.service_name(name), Request, ClearCostmapResponse,
+              self.clear_around)  # fmt: skip
+        serve(ClearCostmapAroundPose.service_name(name), ClearCostmapAroundPose.Request,
+              ClearCostmapResponse, self.clear_around_pose)  # fmt: skip
+
+    def clear_entirely(self, _req: ClearEntireCostmap.Request) -> ClearCostmapResponse:
+        if self.world.costmap is None:
+            return ClearCostmapResponse(success=False, message="no map received yet")
+        self.world.costmap.clear_entirely()
+        return ClearCostmapResponse(message="cleared the obstacle layer")
+
+    def _clear_region(self, req: Request, keep_inside: bool) -> ClearCostmapResponse:
+        robot = self.world.robot_xy()
+        if self.world.costmap is None or robot is None:
+            return ClearCostmapResponse(success=False, message="no map or robot pose yet")
+        if keep_inside:
+            self.world.costmap.clear_except(*robot, req.reset_distance)
+        else:
+            self.world.costmap.clear_around(*robot, req.reset_distance)
+        where = "outside" if keep_inside else "inside"
+        return ClearCostmapResponse(
+            message=f"cleared {where} the {req.reset_distance:g} m square around the robot"
+        )
+
+    def clear_except(self, req: Request) -> ClearCostmapResponse:
+        return self._clear_region(req, keep_inside=True)
+
+    def clear_around(self, req: Request) -> ClearCostmapResponse:
+        return self._clear_region(req, keep_inside=False)
+
+    def clear_around_pose(self, req: ClearCostmapAroundPose.Request) -> ClearCostmapResponse:
+        if self.world.costmap is None:
+            return ClearCostmapResponse(success=False, message="no map received yet")
+        if req.pose.header.frame_id not in MAP_FRAMES:
+            msg = f"pose is in frame '{req.pose.header.frame_id}', not 'map'"
+            return ClearCostmapResponse(success=False, message=msg)
+        self.world.costmap.clear_around(req.pose.x, req.pose.y, req.reset_distance)
+        return ClearCostmapResponse(message="cleared around the pose")
+
+    def is_path_valid(self, req: IsPathValid.Request) -> IsPathValid.Response:
+        grid = self.world.snapshot()
+        poses = [(p.x, p.y, p.yaw) for p in req.path.poses]
+        if grid is None or req.path.header.frame_id not in MAP_FRAMES:
+            return IsPathValid.Response(
+                is_valid=False, invalid_pose_indices=list(range(len(poses)))
+            )
+        bad = invalid_poses(
+            grid, poses, req.max_cost, req.consider_unknown_as_obstacle, self.world.robot_xy()
+        )
+        return IsPathValid.Response(is_valid=not bad, invalid_pose_indices=bad)
