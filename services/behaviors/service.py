@@ -115,7 +115,7 @@ class BehaviorService:
 
     def start(self) -> None:
         self.tracker.attach(self.bus)
-        self._cmd = self.bus.publisher("cmd_vel", Twist)
+        self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self.bus.subscribe("cmd_vel_teleop", Twist, self._on_teleop)
         self.bus.subscribe("preempt_teleop", Empty, self._on_preempt_teleop)
         s, c = self.safety, self.checker
@@ -157,8 +157,17 @@ class BehaviorService:
         run = self._claim(spec)
         if isinstance(behavior, AssistedTeleop):
             self._teleop_run = behavior
+        log.info("%s: goal %s started", spec.name, handle.goal_id)
         try:
-            return await self._loop(spec, behavior, run, handle, started)
+            result = await self._loop(spec, behavior, run, handle, started)
+            log.info(
+                "%s: goal %s ended %d %s",
+                spec.name,
+                handle.goal_id,
+                result.error_code,
+                result.error_msg,
+            )
+            return result
         finally:
             if self._owner is run:
                 self._owner = None

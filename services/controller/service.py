@@ -83,7 +83,7 @@ class ControllerService:
 
     def start(self) -> None:
         self.tracker.attach(self.bus)
-        self._cmd = self.bus.publisher("cmd_vel", Twist)
+        self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
         self.bus.action_server(FollowPath.name, FollowPath, self.execute, preemption="replace")
         self._serve_clearing()
@@ -95,10 +95,20 @@ class ControllerService:
         except ControllerError as error:
             log.warning("follow_path goal rejected: %s", error.message)
             return result_of(error)
+        log.info(
+            "follow_path: goal %s, %d poses in '%s', controller %s",
+            handle.goal_id,
+            len(session.request.path),
+            session.request.path.frame_id,
+            goal.controller_id or self.config.default_controller,
+        )
         try:
-            return await self._run(session, handle)
+            result = await self._run(session, handle)
         finally:
             self._publish(STOP)
+        outcome = FollowPathError(result.error_code).name
+        log.info("follow_path: goal %s ended %s %s", handle.goal_id, outcome, result.error_msg)
+        return result
 
     def _open(self, request: FollowRequest) -> FollowPathSession:
         checker = self._checker_for(request.path.frame_id)
