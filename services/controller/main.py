@@ -19,6 +19,7 @@ from dataclasses import replace
 
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 
+from .dwb import DWBController, DWBParams
 from .local_costmap import LocalCostmap, LocalCostmapParams
 from .robot_io import add_clock_arguments, make_clock
 from .rpp import RegulatedPurePursuit, RPPParams
@@ -52,7 +53,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--max-speed",
         type=_positive,
         default=0.5,
-        help="RPP desired speed, m/s (default: %(default)s)",
+        help="top speed (RPP desired, DWB max), m/s (default: %(default)s)",
     )
     add(
         "--pose-timeout",
@@ -90,7 +91,9 @@ def config_from(args: argparse.Namespace) -> ControllerConfig:
         failure_tolerance=args.failure_tolerance,
         time_allowance=args.time_allowance,
     )
+    dwb = DWBParams(max_vel_x=args.max_speed)
     config.controllers["FollowPath"] = lambda: RegulatedPurePursuit(replace(rpp))
+    config.controllers["DWB"] = lambda: DWBController(replace(dwb))
     return config
 
 
