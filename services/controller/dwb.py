@@ -18,7 +18,7 @@ from .base import ControlContext
 from .collision import NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
 from .geometry import FloatArray, PlanarPath, Pose2D, Velocity, wrap_angle
-from .tracking import project_onto_path
+from .tracking import project_onto_path, search_stop
 
 
 @dataclass(slots=True)
@@ -66,7 +66,8 @@ class DWBController:
         goal = path.goal
         if pose.distance_to(goal) < ctx.goal_xy_tolerance:
             return self._rotate_to(wrap_angle(goal.yaw - pose.yaw), speed, ctx)
-        self._segment = project_onto_path(path, pose, self._segment, self._segment + 40).segment
+        stop = search_stop(path, self._segment, self.params.local_path_length)
+        self._segment = project_onto_path(path, pose, self._segment, stop).segment
         local = self._local_path(path)
         v, w = self._samples(speed, ctx.dt)
         xs, ys, yaws = self._rollout(pose, v, w)

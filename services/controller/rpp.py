@@ -19,7 +19,7 @@ from .base import ControlContext
 from .collision import INSCRIBED, NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
 from .geometry import PlanarPath, Pose2D, Velocity, to_robot_frame, wrap_angle
-from .tracking import project_onto_path, remaining_length
+from .tracking import project_onto_path, remaining_length, search_stop
 
 
 @dataclass(slots=True)
@@ -72,7 +72,8 @@ class RegulatedPurePursuit:
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity:
         path = self._require_path()
-        projection = project_onto_path(path, pose, self._segment, self._search_stop(path))
+        stop = search_stop(path, self._segment, self.params.max_robot_pose_search_dist)
+        projection = project_onto_path(path, pose, self._segment, stop)
         self._segment = projection.segment
         goal = path.goal
         if self.params.use_rotate_to_heading and pose.distance_to(goal) < ctx.goal_xy_tolerance:
@@ -99,11 +100,6 @@ class RegulatedPurePursuit:
         if self._path is None:
             raise no_valid_control("RegulatedPurePursuit has no path to follow")
         return self._path
-
-    def _search_stop(self, path: PlanarPath) -> int:
-        seg = path.segment_lengths()[self._segment :]
-        within = np.cumsum(seg) <= self.params.max_robot_pose_search_dist
-        return self._segment + int(within.sum()) + 1
 
     def _lookahead(self, speed: Velocity) -> float:
         p = self.params

@@ -18,7 +18,9 @@ from .dwb import DWBController
 from .errors import ControllerError, FollowPathCode
 from .geometry import STOP, PlanarPath, Pose2D, Velocity
 from .rpp import RegulatedPurePursuit
-from .tracking import TrackingFeedback, project_onto_path, tracking_feedback
+from .tracking import TrackingFeedback, project_onto_path, search_stop, tracking_feedback
+
+TRACKING_SEARCH_DISTANCE = 2.0  # m along the path from the last foot point
 
 
 @dataclass(slots=True, frozen=True)
@@ -102,7 +104,7 @@ class FollowPathSession:
 
     __slots__ = (
         "_collision", "_config", "_controller", "_failing_since", "_goal_checker",
-        "_ids", "_progress", "_request", "_started",
+        "_ids", "_progress", "_request", "_started", "_track_segment",
     )  # fmt: skip
 
     def __init__(
@@ -153,6 +155,7 @@ class FollowPathSession:
             self._progress: ProgressChecker = cfg.checkers.progress_checkers[ids[2]]()
         self._ids = ids
         self._request = request
+        self._track_segment = 0
         self._controller.set_plan(request.path)
         self._goal_checker.reset()
 
@@ -173,12 +176,19 @@ class FollowPathSession:
         if path.frame_id not in states and now - self._started <= cfg.initial_pose_wait:
             return StepResult(STOP)
         state = self._fresh_state(now, states, path.frame_id)
-        feedback = tracking_feedback(path, state.pose, project_onto_path(path, state.pose))
+        feedback = self._track(path, state.pose)
         if self._goal_checker.is_goal_reached(state.pose, path.goal, state.velocity):
             return StepResult(STOP, feedback, succeeded=True)
         if not self._progress.check(state.pose, now):
             raise ControllerError(FollowPathCode.FAILED_TO_MAKE_PROGRESS, "failed to make progress")
         return StepResult(self._compute(now, state), feedback)
+
+    def _track(self, path: PlanarPath, pose: Pose2D) -> TrackingFeedback:
+        # search forward from the last foot point, so a U-turn's return leg is not taken early
+        stop = search_stop(path, self._track_segment, TRACKING_SEARCH_DISTANCE)
+        projection = project_onto_path(path, pose, self._track_segment, stop)
+        self._track_segment = projection.segment
+        return tracking_feedback(path, pose, projection)
 
     def _fresh_state(self, now: float, states: Mapping[str, RobotState], frame: str) -> RobotState:
         state = states.get(frame)

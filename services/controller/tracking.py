@@ -58,6 +58,12 @@ def project_onto_path(
     )
 
 
+def search_stop(path: PlanarPath, start: int, distance: float) -> int:
+    """Index of the last pose within ``distance`` along the path from pose ``start``."""
+    seg = path.segment_lengths()[start:]
+    return start + int((np.cumsum(seg) <= distance).sum()) + 1
+
+
 def remaining_length(path: PlanarPath, projection: PathProjection) -> float:
     seg = path.segment_lengths()
     if seg.size == 0:

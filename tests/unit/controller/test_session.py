@@ -198,3 +198,18 @@ def test_feedback_reports_signed_cross_track_and_remaining_length():
     assert fb.heading_error == pytest.approx(0.1)
     assert fb.remaining_path_length == pytest.approx(3.0)
     assert fb.distance_to_goal == pytest.approx(float(np.hypot(3.0, 0.2)))
+
+
+def test_tracking_feedback_does_not_jump_to_a_u_turns_return_leg():
+    path = polyline(
+        [(0.0, 0.0), (3.0, 0.0)]
+        + [(3.0 + 0.2 * math.sin(a), 0.2 - 0.2 * math.cos(a)) for a in np.linspace(0, math.pi, 20)]
+        + [(0.0, 0.4)]
+    )
+    session = _start(FollowRequest(path))
+    step = session.step(0.0, _state(Pose2D(0.5, 0.25, 0.0)))  # 0.15 m from the return leg
+    fb = step.feedback
+    assert fb is not None
+    assert fb.cross_track_error == pytest.approx(0.25, abs=1e-6)  # left of the outbound leg
+    assert fb.current_path_index in (9, 10)  # the foot point is pose 10 itself
+    assert fb.remaining_path_length == pytest.approx(path.length() - 0.5, abs=0.01)
