@@ -1,0 +1,155 @@
+"""The planner service process over a real router: with the robot service, and alone."""
+
+from __future__ import annotations
+
+import asyncio
+import math
+from collections.abc import Callable, Sequence
+
+import numpy as np
+import pytest
+from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
+
+from aiobt.msgs import (
+    ClearCostmapResponse,
+    ClearEntireCostmap,
+    ComputePathToPose,
+    GoalState,
+    IsPathValid,
+    OccupancyGrid,
+    Path,
+    PoseStamped,
+)
+from aiobt.testing.bus import ServiceProcess
+from aiobt.transport import Bus, BusSettings
+
+pytestmark = pytest.mark.integration
+Spawn = Callable[[Sequence[str]], ServiceProcess]
+To = ComputePathToPose.ErrorCode
+BOX = (4.0, 9.75, 0.4, 1.0)  # x, y, size_x, size_y: in the corridor, 2 m ahead of the robot
+
+
+def common(settings: BusSettings) -> list[str]:
+    return ["--connect", settings.connect[0], "--namespace", settings.namespace]
+
+
+async def up(bus: Bus, name: str, proc: ServiceProcess) -> None:
+    if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):
+        pytest.fail(f"{name} did not come up:\n{proc.output()}")
+
+
+async def plan(bus: Bus, x: float, y: float, **kw: object) -> ComputePathToPose.Result:
+    client = bus.action_client("compute_path_to_pose", ComputePathToPose)
+    goal = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(x, y, 0.0), **kw)
+    handle = await client.send_goal(goal, server_timeout=10.0)
+    return await handle.result(timeout=20.0)
+
+
+async def plan_when_ready(bus: Bus, x: float, y: float) -> ComputePathToPose.Result:
+    """Plan, retrying while the planner has no map or pose yet (bounded)."""
+    async with asyncio.timeout(20.0):
+        while True:
+            result = await plan(bus, x, y)
+            if result.error_code not in (To.UNKNOWN, To.TF_ERROR):
+                return result
+            await asyncio.sleep(0.2)
+
+
+async def is_valid(bus: Bus, path: Path) -> bool:
+    reply = await bus.call("is_path_valid", IsPathValid.Request(path=path), IsPathValid.Response)
+    return reply.is_valid
+
+
+async def wait_validity(bus: Bus, path: Path, wanted: bool, polls: int = 100) -> None:
+    """Poll is_path_valid every 0.1 s until it says ``wanted`` (fails after ``polls``)."""
+    for _ in range(polls):
+        if await is_valid(bus, path) == wanted:
+            return
+        await asyncio.sleep(0.1)
+    pytest.fail(f"is_path_valid never became {wanted}")
+
+
+def clearance_to_box(path: Path) -> float:
+    x, y, sx, sy = BOX
+    xy = path.xy_array()
+    dx = np.maximum(np.abs(xy[:, 0] - x) - sx / 2, 0.0)
+    dy = np.maximum(np.abs(xy[:, 1] - y) - sy / 2, 0.0)
+    return float(np.hypot(dx, dy).min())
+
+
+@pytest.mark.e2e
+async def test_plans_around_a_new_obstacle_and_clearing_removes_it(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+) -> None:
+    robot = spawn(["-m", "aiobt_services.robot", "--speed", "4", *common(bus_settings)])
+    # clear only up to 1 m: a removed obstacle 2 m away stays marked until cleared
+    planner = spawn(["-m", "aiobt_services.planner", "--raytrace-range", "1.0",
+                     *common(bus_settings)])  # fmt: skip
+    await up(bus, "robot", robot)
+    await up(bus, "planner", planner)
+
+    across = await plan_when_ready(bus, 17.5, 2.0)  # corridor to the far south-east room
+    assert across.error_code == 0, across.error_msg
+    assert across.path.poses[-1].x == 17.5
+    assert 16.0 < sum(np.hypot(*np.diff(across.path.xy_array(), axis=0).T)) < 30.0
+
+    straight = await plan(bus, 7.0, 9.75)
+    assert straight.error_code == 0, straight.error_msg
+    assert clearance_to_box(straight.path) == 0.0  # runs through where the box will be
+    assert await is_valid(bus, straight.path)
+
+    x, y, sx, sy = BOX
+    ack = await bus.call(
+        "obstacles/spawn", SpawnObstacle(id="box", x=x, y=y, size_x=sx, size_y=sy), Ack
+    )
+    assert ack.ok, ack.message
+    await wait_validity(bus, straight.path, wanted=False)
+    around = await plan(bus, 7.0, 9.75)
+    assert around.error_code == 0, around.error_msg
+    assert clearance_to_box(around.path) > 0.2
+
+    ack = await bus.call("obstacles/remove", RemoveObstacle(id="box"), Ack)
+    assert ack.ok, ack.message
+    await asyncio.sleep(0.5)  # a few scans: the stale marks are beyond the raytrace range
+    assert not await is_valid(bus, straight.path)
+    name = ClearEntireCostmap.service_name("global_costmap")
+    cleared = await bus.call(name, ClearEntireCostmap.Request(), ClearCostmapResponse)
+    assert cleared.success
+    assert await is_valid(bus, straight.path)
+    again = await plan(bus, 7.0, 9.75)
+    assert clearance_to_box(again.path) == 0.0
+
+
+async def test_error_codes_and_cancel_over_the_wire(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+) -> None:
+    cells = np.zeros((200, 200), dtype=np.int8)
+    cells[:, 100] = 100
+    cells[20:40, 100] = 0
+    bus.latched_publisher("map", OccupancyGrid).put(OccupancyGrid.from_array(cells, 0.05))
+    pose = bus.publisher("pose", PoseStamped)
+    planner = spawn(["-m", "aiobt_services.planner", "--downsample", "1", *common(bus_settings)])
+    await up(bus, "planner", planner)
+    async with asyncio.timeout(20.0):
+        while True:
+            pose.put(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0))
+            result = await plan(bus, 9.0, 9.0)
+            if result.error_code not in (To.UNKNOWN, To.TF_ERROR):
+                break
+            await asyncio.sleep(0.2)
+    assert result.error_code == 0, result.error_msg
+    assert (await plan(bus, 11.0, 1.0)).error_code == To.GOAL_OUTSIDE_MAP
+    assert (await plan(bus, 5.02, 5.0)).error_code == To.GOAL_OCCUPIED
+    assert (await plan(bus, 3.0, 3.0, planner_id="Bogus")).error_code == To.INVALID_PLANNER
+    odom = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(3.0, 3.0, frame_id="odom"))
+    client = bus.action_client("compute_path_to_pose", ComputePathToPose)
+    wrong_frame = await (await client.send_goal(odom, server_timeout=5.0)).result(timeout=10.0)
+    assert wrong_frame.error_code == To.TF_ERROR
+
+    slow = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(9.0, 9.0), planner_id="ThetaStar")
+    handle = await client.send_goal(slow, server_timeout=5.0)
+    await asyncio.sleep(0.05)
+    await handle.cancel(timeout=2.0)
+    assert handle.status is GoalState.CANCELED
+    assert (await plan(bus, 9.0, 9.0)).error_code == 0  # the server is still healthy
+    assert math.isfinite(result.planning_time)
