@@ -130,3 +130,22 @@ async def test_bad_goals_wait_and_assisted_teleop(
     assert result.error_code == AssistedTeleopAction.ErrorCode.TIMEOUT
     final = await pose.wait_latest(2.0)
     assert 0.5 < final.x < 2.35 - 0.22  # drove, but stopped short of the wall
+
+
+async def test_robot_gone_mid_spin_fails_with_tf_error(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    odom = bus.subscribe("odom", Odometry)
+    robot = await start(spawn, bus, bus_settings, "behaviors")
+    spin = bus.action_client("spin", Spin)
+    goal = await spin.send_goal(
+        Spin.Goal(target_yaw=6 * math.pi, time_allowance=60.0), server_timeout=10.0
+    )
+    async with asyncio.timeout(20.0):
+        async for o in odom:
+            if abs(o.twist.angular.z) > 0.3:
+                break
+    robot.kill()
+    result = await goal.result(timeout=6.0)  # --clock-timeout 2 s of wall time
+    assert result.error_code == SpinError.TF_ERROR
+    assert "clock stopped" in result.error_msg
