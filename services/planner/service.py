@@ -27,7 +27,6 @@ from .validity import invalid_poses
 
 log = logging.getLogger("aiobt_services.planner.service")
 COSTMAP = "global_costmap"
-Request = ClearCostmapExceptRegion.Request
 
 
 class PlannerService:
@@ -55,15 +54,15 @@ class PlannerService:
         bus.declare_token("nodes/planner")
 
     def _serve_clearing(self) -> None:
-        serve, name = self.bus.serve, COSTMAP
-        serve(ClearEntireCostmap.service_name(name), ClearEntireCostmap.Request,
-              ClearCostmapResponse, self.clear_entirely)  # fmt: skip
-        serve(ClearCostmapExceptRegion.service_name(name), Request, ClearCostmapResponse,
-              self.clear_except)  # fmt: skip
-        serve(ClearCostmapAroundRobot.service_name(name), Request, ClearCostmapResponse,
-              self.clear_around)  # fmt: skip
-        serve(ClearCostmapAroundPose.service_name(name), ClearCostmapAroundPose.Request,
-              ClearCostmapResponse, self.clear_around_pose)  # fmt: skip
+        region, response = ClearCostmapExceptRegion.Request, ClearCostmapResponse
+        services = (
+            (ClearEntireCostmap, ClearEntireCostmap.Request, self.clear_entirely),
+            (ClearCostmapExceptRegion, region, self.clear_except),
+            (ClearCostmapAroundRobot, region, self.clear_around),
+            (ClearCostmapAroundPose, ClearCostmapAroundPose.Request, self.clear_around_pose),
+        )
+        for kind, request, handler in services:
+            self.bus.serve(kind.service_name(COSTMAP), request, response, handler)  # type: ignore[arg-type]
 
     def clear_entirely(self, _req: ClearEntireCostmap.Request) -> ClearCostmapResponse:
         if self.world.costmap is None:
@@ -71,7 +70,9 @@ class PlannerService:
         self.world.costmap.clear_entirely()
         return ClearCostmapResponse(message="cleared the obstacle layer")
 
-    def _clear_region(self, req: Request, keep_inside: bool) -> ClearCostmapResponse:
+    def _clear_region(
+        self, req: ClearCostmapExceptRegion.Request, keep_inside: bool
+    ) -> ClearCostmapResponse:
         robot = self.world.robot_xy()
         if self.world.costmap is None or robot is None:
             return ClearCostmapResponse(success=False, message="no map or robot pose yet")
@@ -84,10 +85,10 @@ class PlannerService:
             message=f"cleared {where} the {req.reset_distance:g} m square around the robot"
         )
 
-    def clear_except(self, req: Request) -> ClearCostmapResponse:
+    def clear_except(self, req: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
         return self._clear_region(req, keep_inside=True)
 
-    def clear_around(self, req: Request) -> ClearCostmapResponse:
+    def clear_around(self, req: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
         return self._clear_region(req, keep_inside=False)
 
     def clear_around_pose(self, req: ClearCostmapAroundPose.Request) -> ClearCostmapResponse:
