@@ -9,7 +9,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .collision import footprint_cost, point_cost, segment_max_cost
-from .grid import FREE, NO_INFORMATION, CostArray, CostGrid, FloatArray, GridGeometry
+from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, CostGrid, FloatArray, GridGeometry
 from .inflation import InflationParams, inflate
 from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max
 from .static_layer import StaticParams, occupancy_to_costs
@@ -88,8 +88,6 @@ class Costmap:
 
     def mark_points(self, xs: npt.ArrayLike, ys: npt.ArrayLike) -> None:
         """Mark world points as lethal obstacles (e.g. from another sensor)."""
-        from .grid import LETHAL
-
         cols, rows, ok = self.geometry.world_to_cells(np.asarray(xs), np.asarray(ys))
         self.obstacles[rows[ok], cols[ok]] = LETHAL
         self._dirty = True
