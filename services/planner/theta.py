@@ -16,28 +16,36 @@ from .astar import NO_PATH
 from .errors import PlanningError
 from .traversal import CHECK_EVERY, SQRT2, Budget, Traversal, trace_back
 
+MOVES = ((0, 1, 1.0), (0, -1, 1.0), (1, 0, 1.0), (-1, 0, 1.0),
+         (1, 1, SQRT2), (1, -1, SQRT2), (-1, 1, SQRT2), (-1, -1, SQRT2))  # fmt: skip
+
 
 def line_cost(weights: list[float], stride: int, a: int, b: int) -> float:
-    """Cost of the straight leg a -> b (inf if any cell on it is blocked)."""
+    """Cost of the straight leg a -> b (inf if any cell on it is blocked): an integer
+    Bresenham walk over flat indices, the mean weight of the cells times the length."""
     ar, ac = divmod(a, stride)
     br, bc = divmod(b, stride)
     dr, dc = br - ar, bc - ac
-    steps = max(abs(dr), abs(dc))
-    if steps == 0:
+    row_step = stride if dr > 0 else -stride
+    col_step = 1 if dc > 0 else -1
+    if abs(dc) >= abs(dr):
+        major, minor, major_step, minor_step = abs(dc), abs(dr), col_step, row_step
+    else:
+        major, minor, major_step, minor_step = abs(dr), abs(dc), row_step, col_step
+    if major == 0:
         return 0.0
-    total = 0.0
-    for i in range(1, steps + 1):
-        w = weights[(ar + round(dr * i / steps)) * stride + ac + round(dc * i / steps)]
-        if w == math.inf:
-            return math.inf
+    error, index, total, inf = major // 2, a, 0.0, math.inf
+    for _ in range(major):
+        index += major_step
+        error -= minor
+        if error < 0:
+            index += minor_step
+            error += major
+        w = weights[index]
+        if w == inf:
+            return inf
         total += w
-    return total / steps * math.hypot(dr, dc)
-
-
-def distance(stride: int, a: int, b: int) -> float:
-    ar, ac = divmod(a, stride)
-    br, bc = divmod(b, stride)
-    return math.hypot(br - ar, bc - ac)
+    return total / major * math.hypot(dr, dc)
 
 
 def theta_star(
@@ -53,8 +61,7 @@ def theta_star(
     closed = bytearray(n)
     cost[start], parents[start] = 0.0, start
     heap: list[tuple[float, int]] = [(h[start], start)]
-    steps = ((1, 1.0), (-1, 1.0), (s, 1.0), (-s, 1.0),
-             (s + 1, SQRT2), (s - 1, SQRT2), (-s + 1, SQRT2), (-s - 1, SQRT2))  # fmt: skip
+    steps = tuple((dr * s + dc, step) for dr, dc, step in MOVES)
     countdown = CHECK_EVERY
     while heap:
         node = heapq.heappop(heap)[1]
@@ -69,18 +76,22 @@ def theta_star(
             budget.check()
             countdown = CHECK_EVERY
         grand = parents[node]
-        reach = distance(s, grand, node)
-        for offset, step in steps:
-            nxt = node + offset
+        gr, gc = divmod(grand, s)
+        nr, nc = divmod(node, s)
+        reach = math.hypot(nr - gr, nc - gc)
+        here = cost[node]
+        for dr, dc, step in MOVES:
+            nxt = node + dr * s + dc
             w = weights[nxt]
             if w == math.inf or closed[nxt]:
                 continue
             # optimistic: the leg from ``grand`` extended to ``nxt``; checked on expansion
-            c = cost[node] + (distance(s, grand, nxt) - reach) * w
-            c = min(c, cost[node] + step * w)
+            via_grand = here + (math.hypot(nr + dr - gr, nc + dc - gc) - reach) * w
+            via_node = here + step * w
+            c = via_grand if via_grand < via_node else via_node
             if c < cost[nxt]:
                 cost[nxt] = c
-                parents[nxt] = grand if c < cost[node] + step * w else node
+                parents[nxt] = grand if via_grand < via_node else node
                 heapq.heappush(heap, (c + h[nxt], nxt))
     raise PlanningError("NO_VALID_PATH", NO_PATH)
 

@@ -123,32 +123,33 @@ async def test_plans_around_a_new_obstacle_and_clearing_removes_it(
 async def test_error_codes_and_cancel_over_the_wire(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
-    cells = np.zeros((200, 200), dtype=np.int8)
-    cells[:, 100] = 100
-    cells[20:40, 100] = 0
+    cells = np.zeros((400, 400), dtype=np.int8)  # 20 x 20 m, a wall at x = 10 m
+    cells[:, 200] = 100
+    cells[20:40, 200] = 0  # its only door, at y = 1..2 m
     bus.latched_publisher("map", OccupancyGrid).put(OccupancyGrid.from_array(cells, 0.05))
     pose = bus.publisher("pose", PoseStamped)
     planner = spawn(["-m", "aiobt_services.planner", "--downsample", "1", *common(bus_settings)])
     await up(bus, "planner", planner)
     async with asyncio.timeout(20.0):
         while True:
-            pose.put(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0))
+            pose.put(PoseStamped.from_xy_yaw(1.0, 19.0, 0.0))
             result = await plan(bus, 9.0, 9.0)
             if result.error_code not in (To.UNKNOWN, To.TF_ERROR):
                 break
             await asyncio.sleep(0.2)
     assert result.error_code == 0, result.error_msg
-    assert (await plan(bus, 11.0, 1.0)).error_code == To.GOAL_OUTSIDE_MAP
-    assert (await plan(bus, 5.02, 5.0)).error_code == To.GOAL_OCCUPIED
+    assert (await plan(bus, 21.0, 1.0)).error_code == To.GOAL_OUTSIDE_MAP
+    assert (await plan(bus, 10.02, 5.0)).error_code == To.GOAL_OCCUPIED
     assert (await plan(bus, 3.0, 3.0, planner_id="Bogus")).error_code == To.INVALID_PLANNER
     odom = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(3.0, 3.0, frame_id="odom"))
     client = bus.action_client("compute_path_to_pose", ComputePathToPose)
     wrong_frame = await (await client.send_goal(odom, server_timeout=5.0)).result(timeout=10.0)
     assert wrong_frame.error_code == To.TF_ERROR
 
-    slow = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(9.0, 9.0), planner_id="ThetaStar")
+    # ~2 s of ThetaStar at full resolution: down to the door and back up
+    slow = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(19.0, 19.0), planner_id="ThetaStar")
     handle = await client.send_goal(slow, server_timeout=5.0)
-    await asyncio.sleep(0.05)
+    await asyncio.sleep(0.1)
     await handle.cancel(timeout=2.0)
     assert handle.status is GoalState.CANCELED
     assert (await plan(bus, 9.0, 9.0)).error_code == 0  # the server is still healthy
