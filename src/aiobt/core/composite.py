@@ -1,0 +1,100 @@
+"""Bases of the nodes with children: control nodes and decorators.
+
+Reset rules are BT.CPP's: a parent halts only RUNNING children; every other
+child is reset to IDLE without a halt.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from aiobt.core.node import NodeKind, TreeNode
+from aiobt.core.status import Status
+
+IDLE = Status.IDLE
+RUNNING = Status.RUNNING
+
+
+async def reset_node(node: TreeNode) -> None:
+    """Halt ``node`` if it is RUNNING, else put it back to IDLE."""
+    status = node._status
+    if status is RUNNING:
+        await node.halt()
+    elif status is not IDLE:
+        node._set_status(IDLE)
+
+
+class ControlNode(TreeNode):
+    """A node with one or more children, ticked in an order it decides."""
+
+    __slots__ = ("children",)
+    KIND = NodeKind.CONTROL
+    MIN_CHILDREN = 1
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.children: list[TreeNode] = []
+
+    def add_child(self, child: TreeNode) -> None:
+        self.children.append(child)
+
+    def children_nodes(self) -> tuple[TreeNode, ...]:
+        return tuple(self.children)
+
+    async def halt_child(self, index: int) -> None:
+        await reset_node(self.children[index])
+
+    async def halt_children_from(self, start: int) -> None:
+        for child in self.children[start:]:
+            if child._status is not IDLE:
+                await reset_node(child)
+
+    async def halt_others(self, keep: int) -> None:
+        """Reset every child but ``keep`` (inline: this runs on every reactive tick)."""
+        for index, child in enumerate(self.children):
+            status = child._status
+            if index == keep or status is IDLE:
+                continue
+            if status is RUNNING:
+                await child.halt()
+            else:
+                child._set_status(IDLE)
+
+    async def reset_children(self) -> None:
+        for child in self.children:
+            if child._status is not IDLE:
+                await reset_node(child)
+
+    async def on_halt(self) -> None:
+        await self.reset_children()
+
+
+class DecoratorNode(TreeNode):
+    """A node with exactly one child, whose result it transforms or repeats."""
+
+    __slots__ = ("child",)
+    KIND = NodeKind.DECORATOR
+    MIN_CHILDREN = 1
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.child: TreeNode | None = None
+
+    def add_child(self, child: TreeNode) -> None:
+        self.child = child
+
+    def children_nodes(self) -> tuple[TreeNode, ...]:
+        return () if self.child is None else (self.child,)
+
+    async def reset_child(self) -> None:
+        child = self.child
+        if child is not None and child._status is not IDLE:
+            await reset_node(child)
+
+    async def on_halt(self) -> None:
+        await self.reset_child()
+
+    async def tick_child(self) -> Status:
+        child = self.child
+        assert child is not None
+        return child.tick_sync() if child.is_sync else await child.tick()

@@ -1,0 +1,266 @@
+"""The node base: status bookkeeping, ports, tick and halt.
+
+The framework owns :meth:`TreeNode.tick` and :meth:`TreeNode.halt`; node
+authors implement :meth:`TreeNode.execute` (control nodes, decorators) or the
+hooks of a leaf base in :mod:`aiobt.core.leaves`.
+
+Hot path: a parent ticks a child with::
+
+    status = child.tick_sync() if child.is_sync else await child.tick()
+
+so synchronous leaves (conditions, sync actions, stateful actions) cost a
+plain call instead of a coroutine. Status changes notify the tree's listeners
+only when the status really changes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, ClassVar, Protocol
+
+from aiobt.core.blackboard import Blackboard
+from aiobt.core.clock import Clock, SystemClock
+from aiobt.core.errors import LogicError, NodeError, PortError
+from aiobt.core.ports import NO_DEFAULT, PortInfo
+from aiobt.core.status import Status
+
+if TYPE_CHECKING:
+    from aiobt.core.conditions import NodeConditions
+
+IDLE = Status.IDLE
+RUNNING = Status.RUNNING
+SKIPPED = Status.SKIPPED
+
+StatusListener = Callable[[float, "TreeNode", Status, Status], None]
+
+
+class NodeKind:
+    """BT.CPP's node types, as written in XML (``<Action ID=...>``)."""
+
+    ACTION = "Action"
+    CONDITION = "Condition"
+    CONTROL = "Control"
+    DECORATOR = "Decorator"
+    SUBTREE = "SubTree"
+
+
+class TreeContext:
+    """What every node of one tree shares: clock, wake-up, listeners."""
+
+    __slots__ = ("clock", "enums", "halt_timeout", "listeners", "wake_up")
+
+    def __init__(self, clock: Clock | None = None, halt_timeout: float = 2.0) -> None:
+        self.clock: Clock = clock if clock is not None else SystemClock()
+        self.listeners: list[StatusListener] = []
+        self.wake_up: Callable[[], None] = _no_wake_up
+        self.enums: dict[str, int] = {}
+        self.halt_timeout = halt_timeout
+
+
+def _no_wake_up() -> None:
+    return None
+
+
+@dataclass(slots=True)
+class PortBinding:
+    """An input port as loaded: a converted literal, or a blackboard key."""
+
+    key: str | None
+    value: Any = None
+    converter: Callable[[str], Any] | None = None
+    text: str = ""
+
+
+@dataclass(slots=True)
+class NodeConfig:
+    """Everything a node needs from the tree that built it."""
+
+    blackboard: Blackboard = field(default_factory=Blackboard.create)
+    inputs: dict[str, PortBinding] = field(default_factory=dict)
+    outputs: dict[str, str] = field(default_factory=dict)
+    ports: dict[str, PortInfo] = field(default_factory=dict)
+    path: str = ""
+    uid: int = 0
+    registration_id: str = ""
+    attributes: dict[str, str] = field(default_factory=dict)
+    context: TreeContext = field(default_factory=TreeContext)
+
+
+class PortSource(Protocol):
+    """Anything that declares ports (a node class, a manifest)."""
+
+    @classmethod
+    def provided_ports(cls) -> tuple[PortInfo, ...]: ...
+
+
+class TreeNode:
+    """Base of every node. Subclasses implement ``async def execute()``."""
+
+    __slots__ = ("_conditions", "_ctx", "_status", "config", "name")
+
+    KIND: ClassVar[str] = NodeKind.ACTION
+    PORTS: ClassVar[tuple[PortInfo, ...]] = ()
+    is_sync: ClassVar[bool] = False
+
+    def __init__(self, name: str, config: NodeConfig | None = None) -> None:
+        self.name = name
+        self.config = config if config is not None else NodeConfig()
+        self._ctx = self.config.context
+        self._status = IDLE
+        self._conditions: NodeConditions | None = None
+
+    @classmethod
+    def provided_ports(cls) -> tuple[PortInfo, ...]:
+        return cls.PORTS
+
+    # -- identity and status --------------------------------------------------
+    @property
+    def status(self) -> Status:
+        return self._status
+
+    @property
+    def path(self) -> str:
+        return self.config.path or self.name
+
+    @property
+    def uid(self) -> int:
+        return self.config.uid
+
+    @property
+    def clock(self) -> Clock:
+        return self._ctx.clock
+
+    @property
+    def blackboard(self) -> Blackboard:
+        return self.config.blackboard
+
+    def children_nodes(self) -> tuple[TreeNode, ...]:
+        return ()
+
+    def _set_status(self, status: Status) -> None:
+        previous = self._status
+        if previous is status:
+            return
+        self._status = status
+        listeners = self._ctx.listeners
+        if listeners:
+            now = self._ctx.clock.now()
+            for listener in listeners:
+                listener(now, self, previous, status)
+
+    def reset_status(self) -> None:
+        """Back to IDLE without halting (BT.CPP's resetStatus)."""
+        self._set_status(IDLE)
+
+    def emit_wake_up(self) -> None:
+        """Ask the tree to tick again now instead of after its period."""
+        self._ctx.wake_up()
+
+    def logic_error(self, message: str) -> NodeError:
+        """A LogicError naming this node, to raise from ``execute``."""
+        return NodeError(self.path, LogicError(message))
+
+    def attach_conditions(self, conditions: NodeConditions | None) -> None:
+        self._conditions = conditions
+
+    # -- tick and halt ------------------------------------------------------------
+    async def tick(self) -> Status:
+        """Tick once: pre-conditions, :meth:`execute`, status, post-conditions."""
+        conditions = self._conditions
+        if conditions is not None:
+            return await conditions.tick(self)
+        status = await self.execute()
+        if status is not SKIPPED:
+            self._set_status(status)
+        return status
+
+    def tick_sync(self) -> Status:
+        """The synchronous tick of nodes whose ``is_sync`` is true."""
+        raise LogicError(f"{self.path}: {type(self).__name__} has no synchronous tick")
+
+    async def execute(self) -> Status:
+        """The node's own logic; returns its new status."""
+        raise LogicError(f"{type(self).__name__} does not implement execute()")
+
+    async def halt(self) -> None:
+        """Stop the node and reset it to IDLE (BT.CPP's haltNode)."""
+        try:
+            await self.on_halt()
+        except NodeError:
+            raise
+        except Exception as exc:
+            raise NodeError(self.path, exc) from exc
+        self._set_status(IDLE)
+        if self._conditions is not None:
+            self._conditions.on_halted(self)
+
+    async def on_halt(self) -> None:
+        """Node-specific halt work; the default has none."""
+        return
+
+    # -- ports ------------------------------------------------------------------------
+    def get_input(self, name: str, default: Any = NO_DEFAULT) -> Any:
+        """The value of input port ``name``, converted to the port's type."""
+        binding = self.config.inputs.get(name)
+        if binding is None:
+            if default is not NO_DEFAULT:
+                return default
+            if name not in self.config.ports:
+                raise PortError(f"{self.path}: input port [{name}] is not declared")
+            raise PortError(f"{self.path}: input port [{name}] is not set and has no default")
+        if binding.key is None:
+            return binding.value
+        entry = self.config.blackboard.entry(binding.key)
+        if entry is None or not entry.has_value:
+            if default is not NO_DEFAULT:
+                return default
+            raise PortError(
+                f"{self.path}: input port [{name}] reads blackboard key "
+                f"[{binding.key}], which has no value"
+            )
+        value = entry.value
+        if binding.converter is not None and isinstance(value, str):
+            try:
+                value = binding.converter(value)
+            except (TypeError, ValueError) as exc:
+                raise PortError(
+                    f"{self.path}: input port [{name}]: cannot convert {value!r} "
+                    f"from blackboard key [{binding.key}]: {exc}"
+                ) from exc
+        return value
+
+    def get_input_or_blackboard(self, name: str, default: Any = NO_DEFAULT) -> Any:
+        """Nav2's fallback: the port if set, else the blackboard key of its name."""
+        if name in self.config.inputs:
+            return self.get_input(name, default)
+        entry = self.config.blackboard.entry(name)
+        if entry is not None and entry.has_value:
+            return entry.value
+        if default is not NO_DEFAULT:
+            return default
+        raise PortError(f"{self.path}: neither port [{name}] nor blackboard key [{name}] is set")
+
+    def has_input(self, name: str) -> bool:
+        return name in self.config.inputs
+
+    def set_output(self, name: str, value: Any) -> bool:
+        """Write output port ``name``; False when the port is not connected."""
+        key = self.config.outputs.get(name)
+        if key is None:
+            info = self.config.ports.get(name)
+            if info is None or not info.is_output:
+                raise PortError(f"{self.path}: output port [{name}] is not declared")
+            return False
+        self.config.blackboard.set(key, value)
+        return True
+
+    def __repr__(self) -> str:
+        return f"<{type(self).__name__} {self.path} {self._status.name}>"
+
+
+def tick_error(node: TreeNode, exc: BaseException) -> NodeError:
+    """Wrap an exception raised by node code, naming the node once."""
+    if isinstance(exc, NodeError):
+        return exc
+    return NodeError(node.path, exc)

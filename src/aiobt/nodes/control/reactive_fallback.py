@@ -1,0 +1,39 @@
+"""ReactiveFallback: re-try every child from the first on each tick."""
+
+from __future__ import annotations
+
+from aiobt.core.composite import ControlNode, reset_node
+from aiobt.core.status import Status
+
+RUNNING, SUCCESS, FAILURE, SKIPPED = Status.RUNNING, Status.SUCCESS, Status.FAILURE, Status.SKIPPED
+
+
+class ReactiveFallback(ControlNode):
+    """``<ReactiveFallback>``: tick all children from the first, every tick.
+
+    - a child RUNNING: every other child is reset (a RUNNING one is halted), RUNNING;
+    - a child SUCCESS: reset all, SUCCESS;
+    - all FAILURE (or SKIPPED): reset all, FAILURE (SKIPPED if all skipped).
+    """
+
+    __slots__ = ()
+
+    async def execute(self) -> Status:
+        self._set_status(RUNNING)
+        all_skipped = True
+        for index, child in enumerate(self.children):
+            status = child.tick_sync() if child.is_sync else await child.tick()
+            if status is RUNNING:
+                await self.halt_others(index)
+                return RUNNING
+            if status is SUCCESS:
+                await self.reset_children()
+                return SUCCESS
+            if status is SKIPPED:
+                await reset_node(child)
+            elif status is FAILURE:
+                all_skipped = False
+            else:
+                raise self.logic_error(f"child {child.path} returned IDLE")
+        await self.reset_children()
+        return SKIPPED if all_skipped else FAILURE

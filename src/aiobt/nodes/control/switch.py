@@ -1,0 +1,104 @@
+"""Switch2..Switch6: tick the child whose case matches a variable."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+from aiobt.core.composite import ControlNode
+from aiobt.core.convert import to_text
+from aiobt.core.ports import PortInfo, input_port
+from aiobt.core.status import Status
+
+RUNNING, SKIPPED = Status.RUNNING, Status.SKIPPED
+
+
+def values_equal(a: str, b: str, enums: dict[str, int]) -> bool:
+    """BT.CPP's CheckStringEquality: as text, as registered enums, or as numbers."""
+    if a == b:
+        return True
+    if a in enums or b in enums:
+        left, right = enums.get(a, a), enums.get(b, b)
+        return str(left) == str(right)
+    try:
+        return int(a) == int(b)
+    except ValueError:
+        pass
+    try:
+        return math.isclose(float(a), float(b), rel_tol=0.0, abs_tol=1e-9)
+    except ValueError:
+        return False
+
+
+class Switch(ControlNode):
+    """``<SwitchN variable="{var}" case_1=".." ... case_N="..">`` with N+1 children.
+
+    Ticks the child of the first case equal to ``variable`` (compared as text,
+    enum or number), else the last (default) child. A different case than the
+    one running halts the running child. A SKIPPED child makes the switch
+    SKIPPED; a finished child resets every child.
+    """
+
+    __slots__ = ("_running",)
+    CASES: ClassVar[int] = 0
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._running = -1
+
+    @classmethod
+    def provided_ports(cls) -> tuple[PortInfo, ...]:
+        return (
+            input_port("variable", str),
+            *(input_port(f"case_{i}", str) for i in range(1, cls.CASES + 1)),
+        )
+
+    def _match(self) -> int:
+        variable = self.get_input("variable", None)
+        if variable is None:
+            return self.CASES
+        enums = self._ctx.enums
+        for index in range(self.CASES):
+            case = self.get_input(f"case_{index + 1}", None)
+            if case is not None and values_equal(to_text(variable), to_text(case), enums):
+                return index
+        return self.CASES
+
+    async def execute(self) -> Status:
+        if len(self.children) != self.CASES + 1:
+            raise self.logic_error(
+                f"Switch{self.CASES} must have {self.CASES + 1} children "
+                f"({self.CASES} cases and the default), it has {len(self.children)}"
+            )
+        match = self._match()
+        if self._running not in (-1, match):
+            await self.halt_child(self._running)
+        child = self.children[match]
+        status = child.tick_sync() if child.is_sync else await child.tick()
+        if status is SKIPPED:
+            self._running = -1
+        elif status is RUNNING:
+            self._running = match
+        else:
+            await self.reset_children()
+            self._running = -1
+        return status
+
+    async def on_halt(self) -> None:
+        self._running = -1
+        await self.reset_children()
+
+
+def _switch(cases: int) -> type[Switch]:
+    cls = type(
+        f"Switch{cases}", (Switch,), {"__slots__": (), "CASES": cases, "__doc__": Switch.__doc__}
+    )
+    cls.__module__ = __name__
+    return cls
+
+
+Switch2 = _switch(2)
+Switch3 = _switch(3)
+Switch4 = _switch(4)
+Switch5 = _switch(5)
+Switch6 = _switch(6)

@@ -1,0 +1,32 @@
+"""ForceSuccess and ForceFailure: replace the child's result."""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from aiobt.core.composite import DecoratorNode
+from aiobt.core.status import Status
+
+RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
+
+
+class ForceSuccess(DecoratorNode):
+    """``<ForceSuccess>``: a finished child gives SUCCESS; RUNNING and SKIPPED pass."""
+
+    __slots__ = ()
+    RESULT: ClassVar[Status] = SUCCESS
+
+    async def execute(self) -> Status:
+        self._set_status(RUNNING)
+        status = await self.tick_child()
+        if status.is_completed:
+            await self.reset_child()
+            return self.RESULT
+        return status
+
+
+class ForceFailure(ForceSuccess):
+    """``<ForceFailure>``: a finished child gives FAILURE; RUNNING and SKIPPED pass."""
+
+    __slots__ = ()
+    RESULT = FAILURE

@@ -1,0 +1,27 @@
+"""KeepRunningUntilFailure: restart the child after each success."""
+
+from __future__ import annotations
+
+from aiobt.core.composite import DecoratorNode
+from aiobt.core.status import Status
+
+RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
+
+
+class KeepRunningUntilFailure(DecoratorNode):
+    """``<KeepRunningUntilFailure>``: RUNNING after the child succeeds (it is
+    reset and ticked again next time), FAILURE when it fails. A SKIPPED child
+    also gives RUNNING, as in BT.CPP."""
+
+    __slots__ = ()
+
+    async def execute(self) -> Status:
+        self._set_status(RUNNING)
+        status = await self.tick_child()
+        if status is SUCCESS:
+            await self.reset_child()
+            return RUNNING
+        if status is FAILURE:
+            await self.reset_child()
+            return FAILURE
+        return RUNNING
