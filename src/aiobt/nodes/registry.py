@@ -42,9 +42,11 @@ BUILTINS: tuple[type[TreeNode], ...] = (
     RetryUntilSuccessful, Repeat, Timeout, Delay, RunOnce,
     # leaves
     AlwaysSuccess, AlwaysFailure, SetBlackboard, UnsetBlackboard, Sleep,
+    # -- scripting and BT.CPP language nodes (issue 3) --
+    # -- Nav2 generic control flow and conditions (issue 3) --
 )  # fmt: skip
 
-# Further built-ins (scripting, Nav2 control nodes) add themselves here.
+# Built-ins registered under an ID other than their class name.
 EXTENSIONS: list[tuple[str, type[TreeNode]]] = []
 
 
