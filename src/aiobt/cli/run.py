@@ -1,0 +1,238 @@
+"""``aiobt run``: load an XML tree and tick it until it finishes.
+
+    aiobt run mission.xml --plugin mypkg.nodes
+    aiobt run trees/nav2/navigate_to_pose_w_replanning_and_recovery.xml \\
+        --nodes-model trees/nav2/nav2_tree_nodes.xml --stub '*=SUCCESS:0.5'
+
+Exit status: 0 when the tree succeeds, 1 when it fails or is stopped, 2 when
+the tree cannot be loaded.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import importlib
+import logging
+import sys
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TextIO
+
+from aiobt.core.blackboard import Blackboard
+from aiobt.core.clock import Clock, ScaledClock, SystemClock
+from aiobt.core.errors import LogicError, NodeError, TreeLoadError
+from aiobt.core.manifest import TestNodeConfig
+from aiobt.core.node import TreeNode
+from aiobt.core.status import Status
+from aiobt.core.tree import Tree
+from aiobt.factory import BehaviorTreeFactory
+from aiobt.nodes.subtree import SubTreeNode
+
+log = logging.getLogger("aiobt.cli.run")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("file", help="the XML file (BTCPP_format 4 or 3)")
+    add_tree_arguments(parser)
+
+
+def add_tree_arguments(parser: argparse.ArgumentParser) -> None:
+    """Options shared by ``run`` and ``demo``."""
+    parser.add_argument("--tree", metavar="ID", help="tree to run (default: main_tree_to_execute)")
+    parser.add_argument(
+        "--plugin", action="append", default=[], metavar="MODULE",
+        help="import MODULE and call its register(factory); repeatable",
+    )  # fmt: skip
+    parser.add_argument(
+        "--nodes-model", action="append", default=[], metavar="XML",
+        help="declare the nodes of a <TreeNodesModel> file (their ports validate the tree)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--stub", action="append", default=[], metavar="PATTERN=STATUS[:SECONDS]",
+        help="replace nodes whose path, name or ID matches PATTERN by a stub returning STATUS "
+        "after SECONDS of clock time; repeatable",
+    )  # fmt: skip
+    parser.add_argument(
+        "--set", action="append", default=[], metavar="KEY=VALUE", dest="entries",
+        help="set a root blackboard entry (text) before the first tick; repeatable",
+    )  # fmt: skip
+    parser.add_argument(
+        "--period", type=float, default=0.05, help="tick period in seconds of clock time"
+    )
+    parser.add_argument(
+        "--speed", type=float, default=1.0, help="clock speed-up factor (1: wall time)"
+    )
+    parser.add_argument(
+        "--max-time", type=float, default=None, metavar="SECONDS",
+        help="halt the tree after this much clock time",
+    )  # fmt: skip
+    parser.add_argument(
+        "--trace", choices=("all", "leaves", "none"), default="leaves",
+        help="which status changes to print (default: leaves)",
+    )  # fmt: skip
+
+
+@dataclass(slots=True)
+class RunReport:
+    status: Status
+    clock_time: float
+    transitions: int
+
+
+def build_factory(args: argparse.Namespace) -> BehaviorTreeFactory:
+    factory = BehaviorTreeFactory()
+    for module_name in args.plugin:
+        module = importlib.import_module(module_name)
+        register = getattr(module, "register", None)
+        if not callable(register):
+            raise TreeLoadError(
+                f"--plugin {module_name}: the module has no register(factory) function"
+            )
+        register(factory)
+    for model in args.nodes_model:
+        factory.register_tree_nodes_model(model)
+    for spec in args.stub:
+        pattern, replacement = parse_stub(spec)
+        factory.add_substitution_rule(pattern, replacement)
+    return factory
+
+
+def parse_stub(spec: str) -> tuple[str, TestNodeConfig]:
+    """``PATTERN=STATUS[:SECONDS]`` -> (pattern, TestNodeConfig)."""
+    pattern, sep, rest = spec.partition("=")
+    status_text, _, delay_text = (rest or "SUCCESS").partition(":")
+    try:
+        status = Status[status_text.strip().upper()]
+        delay = float(delay_text) if delay_text else 0.0
+    except (KeyError, ValueError):
+        raise TreeLoadError(
+            f"--stub {spec!r}: expected PATTERN=STATUS[:SECONDS] with STATUS SUCCESS or FAILURE"
+        ) from None
+    if not pattern or (not sep and rest) or status not in (Status.SUCCESS, Status.FAILURE):
+        raise TreeLoadError(
+            f"--stub {spec!r}: expected PATTERN=STATUS[:SECONDS], STATUS SUCCESS or FAILURE"
+        )
+    return pattern, TestNodeConfig(status=status, delay=delay)
+
+
+def make_clock(speed: float) -> Clock:
+    if speed <= 0:
+        raise TreeLoadError(f"--speed must be > 0, got {speed}")
+    return SystemClock() if speed == 1.0 else ScaledClock(speed)
+
+
+def root_blackboard(entries: list[str]) -> Blackboard:
+    bb = Blackboard.create()
+    for item in entries:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            raise TreeLoadError(f"--set {item!r}: expected KEY=VALUE")
+        bb.set(key, value)
+    return bb
+
+
+def short_names(tree: Tree) -> dict[int, str]:
+    """Node id -> ``subtree_instance/name``: the node's name under its nearest SubTree."""
+    names: dict[int, str] = {}
+    stack: list[tuple[TreeNode, str]] = [(tree.root, "")]
+    while stack:
+        node, prefix = stack.pop()
+        names[id(node)] = f"{prefix}{node.name}"
+        inner = f"{prefix}{node.name}/" if isinstance(node, SubTreeNode) else prefix
+        stack.extend((child, inner) for child in node.children_nodes())
+    return names
+
+
+def transition_printer(
+    tree: Tree, which: str, out: TextIO
+) -> Callable[[float, TreeNode, Status, Status], None]:
+    """Print status changes; ``leaves`` shows each leaf's results and halts only."""
+    start = tree.clock.now()
+    names = short_names(tree)
+    shown: dict[int, Status] = {}
+
+    def show(stamp: float, node: TreeNode, previous: Status, status: Status) -> None:
+        halted = status is Status.IDLE and previous is Status.RUNNING
+        if which == "leaves":
+            if node.children_nodes() or (status is Status.IDLE and not halted):
+                return
+            if not halted and shown.get(id(node)) is status:
+                return
+            shown[id(node)] = status
+        change = "halted" if halted else status.name
+        out.write(f"{stamp - start:8.2f}s  {change:<8} {names.get(id(node), node.path)}\n")
+
+    return show
+
+
+async def run_tree(tree: Tree, args: argparse.Namespace, out: TextIO) -> RunReport:
+    transitions = 0
+
+    def count(*_: object) -> None:
+        nonlocal transitions
+        transitions += 1
+
+    tree.add_status_listener(count)
+    if args.trace != "none":
+        tree.add_status_listener(transition_printer(tree, args.trace, out))
+    start = tree.clock.now()
+    try:
+        if args.max_time is None:
+            status = await tree.tick_while_running(args.period)
+        else:
+            status = await _bounded(tree, args.period, args.max_time)
+    finally:
+        if tree.status is Status.RUNNING:
+            await tree.halt_tree("aiobt run stopped")
+    return RunReport(status, tree.clock.now() - start, transitions)
+
+
+async def _bounded(tree: Tree, period: float, max_time: float) -> Status:
+    ticking = asyncio.ensure_future(tree.tick_while_running(period))
+    timer = asyncio.ensure_future(tree.clock.sleep(max_time))
+    try:
+        await asyncio.wait({ticking, timer}, return_when=asyncio.FIRST_COMPLETED)
+    finally:
+        timer.cancel()
+    if ticking.done():
+        return ticking.result()
+    ticking.cancel()
+    await asyncio.gather(ticking, return_exceptions=True)
+    await tree.halt_tree(f"--max-time {max_time} s reached")
+    log.warning("halted: --max-time %.1f s of clock time reached", max_time)
+    return Status.FAILURE
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        factory = build_factory(args)
+        clock = make_clock(args.speed)
+        tree = factory.create_tree_from_file(
+            args.file, blackboard=root_blackboard(args.entries), clock=clock
+        )
+        if args.tree:
+            tree = factory.create_tree(
+                args.tree, blackboard=root_blackboard(args.entries), clock=clock
+            )
+    except (TreeLoadError, ImportError, OSError) as exc:
+        print(f"aiobt run: {exc}", file=sys.stderr)
+        return 2
+    return finish(tree, args)
+
+
+def finish(tree: Tree, args: argparse.Namespace) -> int:
+    """Tick ``tree`` to the end, print a summary, and return the exit status."""
+    try:
+        report = asyncio.run(run_tree(tree, args, sys.stdout))
+    except (NodeError, LogicError) as exc:
+        print(f"aiobt: the tree stopped on an error: {exc}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print("aiobt: interrupted", file=sys.stderr)
+        return 1
+    print(
+        f"tree {tree.tree_id}: {report.status.name} after {report.clock_time:.2f} s of clock time, "
+        f"{report.transitions} status changes"
+    )
+    return 0 if report.status is Status.SUCCESS else 1

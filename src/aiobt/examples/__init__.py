@@ -1,0 +1,1 @@
+"""Example nodes and trees: the mission ``aiobt demo`` runs."""

@@ -1,0 +1,111 @@
+"""The ``aiobt`` command line: demo, run, nodes (in-process, through ``main``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from aiobt.cli.main import main
+
+REPO = Path(__file__).resolve().parents[3]
+NAV2 = REPO / "trees" / "nav2"
+
+
+def test_demo_patrols_charges_when_the_battery_runs_low_and_succeeds(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["demo", "--speed", "200"]) == 0
+    out = capsys.readouterr().out
+    lines = [
+        line.split(maxsplit=2)[1:]
+        for line in out.splitlines()
+        if line.strip().endswith(("move", "charge", "battery_ok"))
+    ]
+    events = [" ".join(parts) for parts in lines]
+    # lap 1 visits the three waypoints without trouble
+    assert events[:3] == [
+        "SUCCESS visit_a/battery_ok",
+        "RUNNING visit_a/move",
+        "SUCCESS visit_a/move",
+    ]
+    # on lap 2 the battery check fails mid-move: the move is halted, the robot charges, and retries
+    low = events.index("FAILURE visit_a/battery_ok")
+    assert events[low + 1 : low + 4] == [
+        "halted visit_a/move",
+        "RUNNING visit_a/charge",
+        "SUCCESS visit_a/charge",
+    ]
+    assert events[-1] == "SUCCESS visit_home/move"
+    assert "tree Patrol: SUCCESS" in out
+    assert "robot at (0.00, 0.00)" in out
+
+
+def test_run_reports_a_bad_port_with_file_and_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    tree = tmp_path / "bad.xml"
+    tree.write_text(
+        '<root BTCPP_format="4">\n  <BehaviorTree ID="T">\n'
+        '    <Sleep msecs="10"/>\n  </BehaviorTree>\n</root>\n'
+    )
+    assert main(["run", str(tree)]) == 2
+    err = capsys.readouterr().err
+    assert f"{tree}:3" in err
+    assert "[msecs]" in err
+    assert "did you mean [msec]" in err
+
+
+def test_run_halts_at_max_time_and_fails(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    tree = tmp_path / "long.xml"
+    tree.write_text(
+        '<root BTCPP_format="4"><BehaviorTree ID="T"><Sleep msec="100000"/></BehaviorTree></root>'
+    )
+    assert main(["run", str(tree), "--speed", "100", "--max-time", "1", "--trace", "all"]) == 1
+    out = capsys.readouterr().out
+    assert "halted" in out
+    assert "tree T: FAILURE" in out
+
+
+def test_run_nav2_tree_with_stubbed_leaves_validates_ports_against_the_manifest(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    text = (NAV2 / "navigate_to_pose_w_replanning_and_recovery.xml").read_text()
+    assert 'path="{path}"' in text
+    broken = tmp_path / "nav.xml"
+    broken.write_text(text.replace('path="{path}"', 'pathh="{path}"', 1))
+    args = [
+        "run",
+        str(broken),
+        "--nodes-model",
+        str(NAV2 / "nav2_tree_nodes.xml"),
+        "--stub",
+        "*=SUCCESS",
+    ]
+    assert main(args) == 2
+    assert "[pathh]" in capsys.readouterr().err
+
+
+def test_stub_spec_errors_are_named(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    tree = tmp_path / "t.xml"
+    tree.write_text(
+        '<root BTCPP_format="4"><BehaviorTree ID="T"><AlwaysSuccess/></BehaviorTree></root>'
+    )
+    assert main(["run", str(tree), "--stub", "X=MAYBE"]) == 2
+    assert "--stub 'X=MAYBE'" in capsys.readouterr().err
+
+
+def test_nodes_lists_the_builtins(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["nodes", "--builtins", "--list"]) == 0
+    ids = {line.split()[1] for line in capsys.readouterr().out.splitlines()}
+    assert {"Sequence", "ReactiveFallback", "Switch6", "RetryUntilSuccessful", "Sleep"} <= ids
+
+
+def test_nodes_model_of_a_plugin_is_xml_with_its_ports(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["nodes", "--plugin", "aiobt.examples.patrol"]) == 0
+    out = capsys.readouterr().out
+    assert "<TreeNodesModel>" in out
+    assert '<Action ID="MoveTo"' in out
+    assert 'name="goal"' in out
