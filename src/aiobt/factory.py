@@ -5,7 +5,7 @@ from __future__ import annotations
 import inspect
 from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock
@@ -19,9 +19,13 @@ from aiobt.core.manifest import (
 )
 from aiobt.core.node import NodeConfig, NodeKind, TreeContext, TreeNode
 from aiobt.core.ports import PortInfo
+from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.xml.builder import ScriptCompiler, TreeBuilder
 from aiobt.xml.document import ParsedDocument, TreeDefinition, parse_file, parse_text
+
+if TYPE_CHECKING:
+    from aiobt.nodes.actions.simple import StatefulCallbacks
 
 SimpleFunction = Callable[[TreeNode], Any]
 
@@ -77,8 +81,26 @@ class BehaviorTreeFactory:
     ) -> None:
         self._register_simple(node_id, fn, tuple(ports), NodeKind.CONDITION)
 
+    def register_simple_stateful_action(
+        self,
+        node_id: str,
+        on_start: Callable[[TreeNode], Status],
+        on_running: Callable[[TreeNode], Status],
+        on_halted: Callable[[TreeNode], None] | None = None,
+        ports: Iterable[PortInfo] = (),
+    ) -> None:
+        """BT.CPP's StatefulActionNode from callbacks that each receive the node."""
+        from aiobt.nodes.actions.simple import StatefulCallbacks
+
+        callbacks = StatefulCallbacks(on_start, on_running, on_halted)
+        self._register_simple(node_id, callbacks, tuple(ports), NodeKind.ACTION)
+
     def _register_simple(
-        self, node_id: str, fn: SimpleFunction, ports: tuple[PortInfo, ...], kind: str
+        self,
+        node_id: str,
+        fn: SimpleFunction | StatefulCallbacks,
+        ports: tuple[PortInfo, ...],
+        kind: str,
     ) -> None:
         from aiobt.nodes.actions.simple import simple_node_class
 
@@ -88,7 +110,9 @@ class BehaviorTreeFactory:
     def add_substitution_rule(self, pattern: str, replacement: Substitution) -> None:
         """Swap nodes whose path, name or ID matches ``pattern`` (wildcards).
 
-        ``replacement`` is another node ID or a :class:`TestNodeConfig`.
+        ``replacement`` is another node ID of the same family (leaf for
+        leaf), or a :class:`TestNodeConfig`, which replaces leaves only
+        (control nodes and decorators a pattern matches are kept).
         """
         self.substitutions.add(pattern, replacement)
 
@@ -103,7 +127,10 @@ class BehaviorTreeFactory:
     def _substitute(
         self, manifest: NodeManifest, replacement: Substitution, path: str
     ) -> NodeManifest:
+        leaf = manifest.kind in (NodeKind.ACTION, NodeKind.CONDITION)
         if isinstance(replacement, TestNodeConfig):
+            if not leaf:  # a stub has no children: only leaves are stubbed
+                return manifest
             from aiobt.nodes.actions.test_node import test_node_builder
 
             builder = test_node_builder(replacement)
@@ -112,6 +139,12 @@ class BehaviorTreeFactory:
             if target is None:
                 raise TreeLoadError(
                     f"substitution for {path}: unknown node ID [{replacement}]", node_path=path
+                )
+            if leaf != (target.kind in (NodeKind.ACTION, NodeKind.CONDITION)):
+                raise TreeLoadError(
+                    f"substitution for {path}: [{replacement}] is a {target.kind}, "
+                    f"it cannot replace the {manifest.kind} [{manifest.id}]",
+                    node_path=path,
                 )
             builder = target.builder
         # keep the original ports, so the XML is validated as written
@@ -191,6 +224,13 @@ class BehaviorTreeFactory:
     ) -> Tree:
         ids = self._register_document(document)
         main = document.main_tree_to_execute or (ids[0] if len(ids) == 1 else None)
+        if main is None:
+            where = document.trees[0].file if document.trees else None
+            found = ", ".join(ids) or "none"
+            raise TreeLoadError(
+                f"no main_tree_to_execute and not exactly one BehaviorTree (found: {found})",
+                file=where,
+            )
         return self.create_tree(main, blackboard=blackboard, clock=clock)
 
     # -- Groot2 -----------------------------------------------------------------------

@@ -46,8 +46,19 @@ def _to_int(text: str) -> int:
     return int(stripped)
 
 
+# C++ spellings found in Nav2 manifests (``std::`` prefix optional)
+_CPP_FLOATS = {
+    "numeric_limits<double>::infinity()": float("inf"),
+    "numeric_limits<double>::max()": 1.7976931348623157e308,
+    "numeric_limits<double>::lowest()": -1.7976931348623157e308,
+    "numeric_limits<float>::infinity()": float("inf"),
+}
+
+
 def _to_float(text: str) -> float:
-    return float(text.strip())
+    stripped = text.strip()
+    special = _CPP_FLOATS.get(stripped.removeprefix("std::"))
+    return special if special is not None else float(stripped)
 
 
 _BASE: dict[Any, Converter] = {

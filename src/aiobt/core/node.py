@@ -170,7 +170,12 @@ class TreeNode:
         conditions = self._conditions
         if conditions is not None:
             return await conditions.tick(self)
-        status = await self.execute()
+        try:
+            status = await self.execute()
+        except NodeError:
+            raise
+        except Exception as exc:  # a node's own error, named by its path
+            raise NodeError(self.path, exc) from exc
         if status is not SKIPPED:
             self._set_status(status)
         return status

@@ -10,7 +10,7 @@ from __future__ import annotations
 import difflib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, get_origin
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.conditions import NodeConditions
@@ -305,7 +305,10 @@ def _declare_entry(bb: Blackboard, key: str, port: PortInfo, site: _Site) -> Non
 
 
 def _numeric_pair(a: Any, b: Any) -> bool:
-    return {a, b} <= {int, float}
+    """Types one entry may hold for both ports: int/float, or ``list`` and ``list[float]``."""
+    if {a, b} <= {int, float}:
+        return True
+    return (get_origin(a) or a) is (get_origin(b) or b)
 
 
 def _bind_defaults(config: NodeConfig, manifest: NodeManifest, bb: Blackboard, site: _Site) -> None:

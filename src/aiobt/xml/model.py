@@ -8,11 +8,13 @@ from typing import Any
 
 from lxml import etree
 
+from aiobt.core.composite import ControlNode, DecoratorNode
 from aiobt.core.convert import Milliseconds, to_text, type_name
 from aiobt.core.errors import LogicError, TreeLoadError
 from aiobt.core.manifest import NodeManifest
 from aiobt.core.node import NodeConfig, NodeKind, TreeNode
 from aiobt.core.ports import NO_DEFAULT, PortDirection, PortInfo
+from aiobt.core.status import Status
 from aiobt.xml.document import Element, line_of
 
 _KINDS = {
@@ -61,16 +63,44 @@ def python_type(name: str | None) -> Any:
     return _TYPES.get(name.strip(), name.strip())
 
 
+def _unimplemented(node: TreeNode) -> LogicError:
+    return LogicError(
+        f"[{node.config.registration_id}] is declared in a TreeNodesModel "
+        "but has no implementation; register one or add a substitution rule"
+    )
+
+
 class UnimplementedNode(TreeNode):
-    """Stands in for a node known only from a TreeNodesModel; fails when ticked."""
+    """Stands in for a leaf known only from a TreeNodesModel; raises when ticked."""
 
     __slots__ = ()
 
-    async def execute(self):  # type: ignore[no-untyped-def]
-        raise LogicError(
-            f"{self.path}: [{self.config.registration_id}] is declared in a TreeNodesModel "
-            "but has no implementation; register one or add a substitution rule"
-        )
+    async def execute(self) -> Status:
+        raise _unimplemented(self)
+
+
+class UnimplementedControl(ControlNode):
+    """A control node known only from a TreeNodesModel: keeps its children, raises when ticked."""
+
+    __slots__ = ()
+
+    async def execute(self) -> Status:
+        raise _unimplemented(self)
+
+
+class UnimplementedDecorator(DecoratorNode):
+    """A decorator known only from a TreeNodesModel: keeps its child, raises when ticked."""
+
+    __slots__ = ()
+
+    async def execute(self) -> Status:
+        raise _unimplemented(self)
+
+
+_UNIMPLEMENTED: dict[str, type[TreeNode]] = {
+    NodeKind.CONTROL: UnimplementedControl,
+    NodeKind.DECORATOR: UnimplementedDecorator,
+}
 
 
 def read_tree_nodes_model(
@@ -106,8 +136,15 @@ def _manifest(
     for port_element in element:
         if not isinstance(port_element.tag, str):
             continue
-        direction = PortDirection(str(port_element.tag))
+        direction = _DIRECTIONS.get(str(port_element.tag))
         name = port_element.get("name") or ""
+        if direction is None or not name:
+            raise TreeLoadError(
+                f"[{node_id}]: expected <input_port|output_port|inout_port name=...>, "
+                f"got <{port_element.tag}> with name {name!r}",
+                file=file,
+                line=line_of(port_element),
+            )
         default = port_element.get("default", NO_DEFAULT)
         if default == '""':
             default = ""
@@ -118,7 +155,19 @@ def _manifest(
             default,
             (port_element.text or "").strip(),
         )
-    return NodeManifest(node_id, kind, ports, builder or UnimplementedNode, node_class=None)
+    fallback = _UNIMPLEMENTED.get(kind, UnimplementedNode)
+    return NodeManifest(
+        node_id, kind, ports, builder or fallback, node_class=None if builder else fallback
+    )
+
+
+# BT.CPP writes inout_port; Nav2's manifests say bidirectional_port
+_DIRECTIONS = {
+    "input_port": PortDirection.INPUT,
+    "output_port": PortDirection.OUTPUT,
+    "inout_port": PortDirection.INOUT,
+    "bidirectional_port": PortDirection.INOUT,
+}
 
 
 def write_tree_nodes_model(manifests: Iterable[NodeManifest]) -> str:
