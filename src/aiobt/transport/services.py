@@ -53,29 +53,57 @@ class ServiceServer(Generic[Req, Resp]):
         self._token = session.liveliness().declare_token(key)
 
     def _on_query(self, query: zenoh.Query) -> None:
-        self._bridge.call(self._spawn, query)
+        self._bridge.call(self._answer, query)
 
-    def _spawn(self, query: zenoh.Query) -> None:
-        task = asyncio.get_running_loop().create_task(self._answer(query))
-        self._tasks.add(task)
-        task.add_done_callback(self._tasks.discard)
-
-    async def _answer(self, query: zenoh.Query) -> None:
+    def _answer(self, query: zenoh.Query) -> None:
+        """In the loop: a sync handler is answered at once, an awaitable one in a task."""
         try:
             payload = query_payload(query) or b"{}"
             self._bridge.check_size(self.key, payload)
-            request = decode(self._request, payload, key=self.key)
-            response = self._handler(request)
-            if inspect.isawaitable(response):
-                response = await response
+            response = self._handler(decode(self._request, payload, key=self.key))
+        except Exception as exc:
+            self._fail(query, exc)
+            return
+        if inspect.isawaitable(response):
+            task = asyncio.get_running_loop().create_task(self._answer_later(query, response))
+            self._tasks.add(task)
+            task.add_done_callback(self._tasks.discard)
+        else:
+            self._respond(query, response)
+
+    async def _answer_later(self, query: zenoh.Query, pending: Awaitable[Resp]) -> None:
+        try:
+            response = await pending
+        except Exception as exc:
+            self._fail(query, exc)
+        except BaseException:  # cancelled: the server is closing; never leave a query open
+            query.reply_err(f"{self.key}: the service is shutting down")
+            _z.drop(query)
+            raise
+        else:
+            self._respond(query, response)
+
+    def _respond(self, query: zenoh.Query, response: object) -> None:
+        try:
             if not isinstance(response, self._response):
                 raise TypeError(f"handler returned {type(response).__name__}")
-            query.reply(query.key_expr, response.to_json(), encoding=JSON)
-        except (MessageError, PayloadTooLarge) as exc:
-            query.reply_err(f"bad request: {exc}")
+            payload = response.to_json()
         except Exception as exc:
-            log.exception("%s: service handler failed", self.key)
-            query.reply_err(f"{self.key}: handler failed: {type(exc).__name__}: {exc}")
+            self._fail(query, exc)
+            return
+        try:
+            query.reply(query.key_expr, payload, encoding=JSON)
+        finally:
+            _z.drop(query)
+
+    def _fail(self, query: zenoh.Query, exc: Exception) -> None:
+        """Answer with an error naming why (the bad field of a bad request), end the query."""
+        try:
+            if isinstance(exc, MessageError | PayloadTooLarge):
+                query.reply_err(f"bad request: {exc}")
+            else:
+                log.error("%s: service handler failed", self.key, exc_info=exc)
+                query.reply_err(f"{self.key}: handler failed: {type(exc).__name__}: {exc}")
         finally:
             _z.drop(query)
 

@@ -24,11 +24,6 @@ T = TypeVar("T")
 log = logging.getLogger("aiobt.transport.actions")
 
 
-def _retrieve(future: asyncio.Future[Any]) -> None:
-    if not future.cancelled():
-        future.exception()
-
-
 class ClientGoal(Generic[G, R, F]):
     """One sent goal: ``await result()``, ``await cancel()``, feedback, status."""
 
@@ -43,8 +38,7 @@ class ClientGoal(Generic[G, R, F]):
         self._accepted: asyncio.Future[bool | None] = loop.create_future()
         self._result: asyncio.Future[R] = loop.create_future()
         self._feedback: asyncio.Queue[F] = asyncio.Queue(maxsize=100)
-        for future in (self._accepted, self._result):  # no "exception never retrieved"
-            future.add_done_callback(_retrieve)
+        self._waiters: list[asyncio.Future[None]] = []  # woken directly: no extra loop pass
 
     @property
     def done(self) -> bool:
@@ -55,8 +49,15 @@ class ClientGoal(Generic[G, R, F]):
 
         Raises :class:`GoalLost` if the server went away, ``TimeoutError`` after ``timeout``.
         """
-        async with asyncio.timeout(timeout):
-            return await asyncio.shield(self._result)
+        if not self._result.done():
+            waiter: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+            self._waiters.append(waiter)  # cancelling this call leaves the goal's future alone
+            try:
+                async with asyncio.timeout(timeout):
+                    await waiter
+            finally:
+                self._waiters.remove(waiter)
+        return self._result.result()
 
     async def cancel(self, timeout: float = 2.0) -> R | None:  # noqa: ASYNC109
         """Ask the server to cancel, then wait (bounded) for the final result."""
@@ -94,16 +95,23 @@ class ClientGoal(Generic[G, R, F]):
         assert sample is not None
         tag = sample.attachment.to_bytes() if sample.attachment is not None else b""
         payload = sample.payload.to_bytes()
-        if tag == p.ACCEPTED:
-            self.status = GoalState.ACCEPTED
-            settle(self._accepted, True)
-        elif tag == p.REJECTED:
+        if tag == p.REJECTED:
             reason = payload.decode(errors="replace")
             _fail(self._accepted, p.GoalRejected(self._client.keys.base, self.goal_id, reason))
+            return
+        if tag == p.ACCEPTED:
+            self._on_accepted()
         elif tag == p.FEEDBACK:
+            self._on_accepted()  # implied by feedback (or a result) coming first
             self._on_feedback(payload)
         elif (state := p.parse_result_tag(tag)) is not None:
+            self._on_accepted()
             self._on_result(state, payload)
+
+    def _on_accepted(self) -> None:
+        if self.status == GoalState.UNKNOWN:
+            self.status = GoalState.ACCEPTED
+        settle(self._accepted, True)
 
     def _fail_or_reject(self, message: str) -> None:
         if not self._accepted.done():
@@ -134,6 +142,7 @@ class ClientGoal(Generic[G, R, F]):
             return
         self.status = state
         settle(self._result, result)
+        self._wake()
 
     def on_stream_end(self) -> None:
         if not self._accepted.done():
@@ -146,6 +155,11 @@ class ClientGoal(Generic[G, R, F]):
             self.status = GoalState.ABORTED
             base = self._client.keys.base
             _fail(self._result, p.GoalLost(f"action {base}: goal {self.goal_id} lost: {why}"))
+            self._wake()
+
+    def _wake(self) -> None:
+        for waiter in self._waiters:
+            settle(waiter, None)
 
 
 def settle(future: asyncio.Future[T], value: T) -> None:
@@ -156,3 +170,4 @@ def settle(future: asyncio.Future[T], value: T) -> None:
 def _fail(future: asyncio.Future[Any], error: BaseException) -> None:
     if not future.done():
         future.set_exception(error)
+        future.exception()  # retrieved: nobody need await it (no "never retrieved" log)

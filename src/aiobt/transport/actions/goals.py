@@ -11,6 +11,7 @@ import zenoh
 
 from aiobt.msgs import ActionResult, Msg
 from aiobt.transport import _z
+from aiobt.transport.actions.protocol import ACCEPTED
 from aiobt.transport.bridge import JSON
 
 G = TypeVar("G", bound=Msg)
@@ -22,26 +23,43 @@ _KEEP_RESULTS = 128
 class GoalRecord:
     """An accepted goal: its open send_goal query (the goal's stream) and its fate."""
 
-    __slots__ = ("cancel_requested", "done", "goal_id", "preempted_by", "query", "waiters")
+    __slots__ = (
+        "acknowledged",
+        "cancel_requested",
+        "done",
+        "goal_id",
+        "preempted_by",
+        "query",
+        "waiters",
+    )
 
     def __init__(self, goal_id: str, query: zenoh.Query) -> None:
         self.goal_id = goal_id
         self.query = query
         self.preempted_by = ""
         self.cancel_requested = False
+        self.acknowledged = False
         self.done = False
         self.waiters: list[zenoh.Query] = []
 
+    def acknowledge(self) -> None:
+        """Reply ``accepted`` once; a goal whose result went first needs none (implied)."""
+        if not self.acknowledged and not self.done:
+            self.acknowledged = True
+            self.query.reply(self.query.key_expr, b"", attachment=ACCEPTED)
+
     def reply(self, payload: bytes, tag: bytes) -> None:
+        """A reply on the goal's stream (feedback), after the acceptance."""
         if not self.done:
+            self.acknowledge()
             self.query.reply(self.query.key_expr, payload, encoding=JSON, attachment=tag)
 
     def finish(self, tag: bytes, payload: bytes) -> None:
         """Send the result on the goal's stream and to result queries, then end them."""
         if self.done:
             return
-        self.reply(payload, tag)
         self.done = True
+        self.query.reply(self.query.key_expr, payload, encoding=JSON, attachment=tag)
         _z.drop(self.query)
         for waiter in self.waiters:
             waiter.reply(waiter.key_expr, payload, encoding=JSON, attachment=tag)

@@ -17,7 +17,7 @@ and ``result/{id}`` for observers, and ``result/{id}`` answers queries.
 from __future__ import annotations
 
 import re
-import uuid
+import secrets
 from enum import IntEnum
 from typing import Literal
 
@@ -62,7 +62,7 @@ class CancelResponse(Msg):
 
 
 def new_goal_id() -> str:
-    return uuid.uuid4().hex
+    return secrets.token_hex(16)  # 32 hex chars, as a uuid4 hex, at a fraction of its cost
 
 
 def valid_goal_id(goal_id: str) -> bool:

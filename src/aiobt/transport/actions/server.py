@@ -19,6 +19,7 @@ from aiobt.msgs import ActionDef, ActionResult, GoalState, GoalStatus, MessageEr
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.actions.goals import GoalHandle, GoalRecord, RecentIds, ResultStore
+from aiobt.transport.actions.observers import Observers
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.services import query_payload
@@ -44,7 +45,10 @@ class ActionServer(Generic[G, R, F]):
       ``"replace"``: the running execute continues with the newer goal
       (``handle.take_new_goal()``); the old goal ends ABORTED the same way.
     - ``accept(goal) -> reason | None`` (in the loop) may reject a goal with a
-      reason; without it goals are accepted in the Zenoh thread (faster).
+      reason; without it goals are checked in the Zenoh thread (faster).
+    - A starting goal is acknowledged after execute's first step (up to its
+      first real await, which must come soon, as anywhere in an event loop); a
+      goal that finished by then is answered by its result alone.
     """
 
     def __init__(
@@ -81,16 +85,7 @@ class ActionServer(Generic[G, R, F]):
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
             session.declare_queryable(keys.results, callback(self._from_zenoh(self._on_result))),
         ]
-        # wildcard publishers, never put to: their matching status says whether anybody
-        # observes status/feedback/results, so unobserved goals cost no extra puts
-        self._watches = {
-            kind: session.declare_publisher(key)
-            for kind, key in (
-                ("status", keys.any_status),
-                ("feedback", keys.any_feedback),
-                ("result", keys.any_result),
-            )
-        }
+        self._observed = Observers(session, keys)  # unobserved goals cost no extra puts
         self._token = session.liveliness().declare_token(keys.alive)
 
     def _from_zenoh(self, handle: Callable[[zenoh.Query], None]) -> Callable[[zenoh.Query], None]:
@@ -111,20 +106,19 @@ class ActionServer(Generic[G, R, F]):
     # -- goal intake -------------------------------------------------------------------------
 
     def _on_goal_query(self, query: zenoh.Query) -> None:
-        """Zenoh thread. Without a user ``accept`` callback, the goal is checked and
-        accepted right here (as fast as a raw reply); the rest happens in the loop."""
+        """Zenoh thread. Without a user ``accept`` callback the goal is checked right
+        here (a bad or duplicate goal is answered at once); the rest runs in the loop."""
         if self._accept is not None:
             self._bridge.call(self._intake, query)  # user code runs in the loop
-        else:
-            self._intake(query)
+            return
+        checked = self._check_goal(query)
+        if checked is not None:
+            self._bridge.call(self._begin, GoalRecord(checked[0], query), checked[1])
 
     def _intake(self, query: zenoh.Query) -> None:
         checked = self._check_goal(query)
-        if checked is None:
-            return
-        goal_id, goal = checked
-        query.reply(query.key_expr, b"", attachment=p.ACCEPTED)
-        self._bridge.call(self._begin, GoalRecord(goal_id, query), goal)
+        if checked is not None:
+            self._begin(GoalRecord(checked[0], query), checked[1])
 
     def _check_goal(self, query: zenoh.Query) -> tuple[str, G] | None:
         """The goal, or None once it has been answered with an error or a rejection."""
@@ -147,8 +141,10 @@ class ActionServer(Generic[G, R, F]):
     def _begin(self, record: GoalRecord, goal: G) -> None:
         self._publish_status(record.goal_id, GoalState.ACCEPTED)
         if self._lock.locked() or (self._running() and not self._replaceable()):
+            record.acknowledge()
             self._spawn(self._take_over_in_order, record, goal)  # must wait for the old goal
         elif self._replaceable():
+            record.acknowledge()
             self._replace(record, goal)
         else:
             self._start(record, goal)
@@ -182,14 +178,18 @@ class ActionServer(Generic[G, R, F]):
     def _start(self, record: GoalRecord, goal: G) -> None:
         self._active = record
         self._handle = GoalHandle(self.publish_feedback, record, goal)
-        self._task = asyncio.get_running_loop().create_task(self._run(self._handle))
+        loop = asyncio.get_running_loop()
+        self._task = loop.create_task(self._run(self._handle))
+        # acknowledged after execute's first step: a goal done by then (a quick
+        # one) is answered by its result alone, one reply and one client hop less
+        loop.call_soon(record.acknowledge)
 
     def _decode_goal(self, goal_id: str, query: zenoh.Query) -> G:
         if not p.valid_goal_id(goal_id):
             raise ValueError(f"goal id {goal_id!r} must be 1-64 of [A-Za-z0-9_.-]")
         payload = query_payload(query)
-        self._bridge.check_size(str(query.key_expr), payload)
-        return decode(self._goal_model, payload, key=str(query.key_expr))
+        self._bridge.check_size(self.keys.goal, payload)
+        return decode(self._goal_model, payload, key=self.keys.goal)
 
     def _preempted(self, by: str) -> R:
         return self._result_model(error_msg=f"preempted by goal {by}")
@@ -281,9 +281,6 @@ class ActionServer(Generic[G, R, F]):
         if self._observed("feedback"):
             self._session.put(self.keys.feedback(goal_id), payload, encoding=JSON)
 
-    def _observed(self, kind: str) -> bool:
-        return _z.matching(self._watches[kind].matching_status)
-
     def _publish_status(self, goal_id: str, state: GoalState, reason: str = "") -> None:
         if not self._observed("status"):
             return
@@ -298,5 +295,6 @@ class ActionServer(Generic[G, R, F]):
             await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
         for task in list(self._tasks):
             task.cancel()
-        for entity in [*self._queryables, *self._watches.values()]:
+        for entity in self._queryables:
             _z.undeclare(entity)
+        self._observed.close()
