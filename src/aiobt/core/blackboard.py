@@ -27,6 +27,7 @@ class Entry:
     sequence_id: int = 0
     stamp: float = 0.0
     has_value: bool = False
+    watchers: list[Callable[[], None]] | None = None
 
 
 def _is_private(key: str) -> bool:
@@ -131,6 +132,18 @@ class Blackboard:
         entry.has_value = True
         entry.sequence_id += 1
         entry.stamp = self.now()
+        if entry.watchers:
+            for watcher in entry.watchers:
+                watcher()
+
+    def watch(self, key: str, callback: Callable[[], None]) -> Callable[[], None]:
+        """Call ``callback()`` after every write of ``key``; returns the undo."""
+        entry = self.create_entry(key)
+        if entry.watchers is None:
+            entry.watchers = []
+        entry.watchers.append(callback)
+        watchers = entry.watchers
+        return lambda: watchers.remove(callback)
 
     def unset(self, key: str) -> None:
         """Remove ``key`` from this scope (BT.CPP's Blackboard::unset)."""

@@ -1,7 +1,7 @@
 """A loaded tree: its root, its blackboards, and the ways to tick it.
 
 ``tick_exactly_once`` ticks the root once; ``tick_once`` also re-ticks while
-the root is RUNNING and a node asked for a wake-up during the tick (BT.CPP's
+the root is RUNNING and a wake-up is pending (BT.CPP's
 ``tickOnce``); ``tick_while_running`` ticks at a period until the root
 finishes, waking early whenever a leaf finishes or a watched value changes.
 Pausing, resuming and halting carry a reason, kept in :attr:`Tree.events`.
@@ -121,6 +121,13 @@ class Tree:
         self.context.listeners.append(listener)
         return lambda: self.context.listeners.remove(listener)
 
+    def watch(self, key: str) -> Callable[[], None]:
+        """Wake :meth:`tick_while_running` whenever ``key`` (root blackboard) is written.
+
+        Returns a function that stops watching.
+        """
+        return self.root_blackboard.watch(key, self._wake.emit)
+
     def emit_wake_up(self) -> None:
         self._wake.emit()
 
@@ -135,13 +142,15 @@ class Tree:
         return status
 
     async def tick_exactly_once(self) -> Status:
-        """Tick the root once."""
-        self._wake.consume()
+        """Tick the root once (a wake-up it emits stays pending, as in BT.CPP)."""
         return self._finish(await self._tick_root())
 
     async def tick_once(self) -> Status:
-        """Tick, then tick again while RUNNING and a wake-up was emitted."""
-        self._wake.consume()
+        """Tick, then tick again while RUNNING and a wake-up is pending.
+
+        As in BT.CPP, a wake-up left pending by an earlier tick_exactly_once
+        counts too.
+        """
         status = await self._tick_root()
         while status is RUNNING and self._wake.consume():
             status = await self._tick_root()
