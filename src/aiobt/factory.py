@@ -193,14 +193,23 @@ class BehaviorTreeFactory:
         tree_id = tree_id or self.main_tree_id
         if tree_id is None:
             raise TreeLoadError("no tree ID given and no main_tree_to_execute was set")
+        return self._build_tree(tree_id, self.definitions, blackboard, clock)
+
+    def _build_tree(
+        self,
+        tree_id: str,
+        definitions: dict[str, TreeDefinition],
+        blackboard: Blackboard | None,
+        clock: Clock | None,
+    ) -> Tree:
         context = TreeContext(clock)
         bb = blackboard if blackboard is not None else Blackboard.create()
         bb.now = context.clock.now
         builder = TreeBuilder(
-            self.definitions, self._lookup, self.registered_ids, context, self.script_compiler
+            definitions, self._lookup, self.registered_ids, context, self.script_compiler
         )
         root = builder.build(tree_id, bb)
-        definition = self.definitions[tree_id]
+        definition = definitions[tree_id]
         return Tree(root, context, bb, tree_id=tree_id, source=definition.file or "")
 
     def create_tree_from_text(
@@ -222,7 +231,10 @@ class BehaviorTreeFactory:
     def _create_main(
         self, document: ParsedDocument, blackboard: Blackboard | None, clock: Clock | None
     ) -> Tree:
-        ids = self._register_document(document)
+        # as BT.CPP's createTreeFromText: the document's trees are not registered
+        # (creating the same text twice is fine); registered trees stay visible
+        own = _own_definitions(document)
+        ids = list(own)
         main = document.main_tree_to_execute or (ids[0] if len(ids) == 1 else None)
         if main is None:
             where = document.trees[0].file if document.trees else None
@@ -231,7 +243,7 @@ class BehaviorTreeFactory:
                 f"no main_tree_to_execute and not exactly one BehaviorTree (found: {found})",
                 file=where,
             )
-        return self.create_tree(main, blackboard=blackboard, clock=clock)
+        return self._build_tree(main, {**self.definitions, **own}, blackboard, clock)
 
     # -- Groot2 -----------------------------------------------------------------------
     def tree_nodes_model_xml(self, *, include_builtins: bool = False) -> str:
@@ -257,3 +269,19 @@ class BehaviorTreeFactory:
                 self.manifests[manifest.id] = manifest
                 added.append(manifest.id)
         return added
+
+
+def _own_definitions(document: ParsedDocument) -> dict[str, TreeDefinition]:
+    """The document's trees by ID; a repeated ID is a load error."""
+    own: dict[str, TreeDefinition] = {}
+    for definition in document.trees:
+        first = own.get(definition.tree_id)
+        if first is not None:
+            raise TreeLoadError(
+                f"duplicate BehaviorTree ID [{definition.tree_id}] "
+                f"(first defined at {first.file or '<text>'}:{first.line})",
+                file=definition.file,
+                line=definition.line,
+            )
+        own[definition.tree_id] = definition
+    return own

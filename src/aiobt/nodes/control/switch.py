@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from typing import Any, ClassVar
 
 from aiobt.core.composite import ControlNode
@@ -20,14 +21,28 @@ def values_equal(a: str, b: str, enums: dict[str, int]) -> bool:
     if a in enums or b in enums:
         left, right = enums.get(a, a), enums.get(b, b)
         return str(left) == str(right)
+    left_int, right_int = _leading_int(a), _leading_int(b)
+    if left_int is not None and left_int == right_int:
+        return True
     try:
-        return int(a) == int(b)
-    except ValueError:
-        pass
-    try:
-        return math.isclose(float(a), float(b), rel_tol=0.0, abs_tol=1e-9)
+        return math.isclose(float(a), float(b), rel_tol=0.0, abs_tol=_FLOAT_EPSILON)
     except ValueError:
         return False
+
+
+# BT.CPP compares reals within float's epsilon, and reads ints with
+# std::from_chars, which takes the leading integer ("2.5" is 2, "0x2" is 2).
+_FLOAT_EPSILON = 1.1920928955078125e-07
+_LEADING_INT = re.compile(r"\s*(-?)(?:0[xX]([0-9a-fA-F]+)|([0-9]+))")
+
+
+def _leading_int(text: str) -> int | None:
+    match = _LEADING_INT.match(text)
+    if match is None:
+        return None
+    sign, hex_digits, digits = match.groups()
+    value = int(hex_digits, 16) if hex_digits else int(digits)
+    return -value if sign else value
 
 
 class Switch(ControlNode):
