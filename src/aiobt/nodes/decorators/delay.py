@@ -27,8 +27,9 @@ class Delay(DecoratorNode):
         self._done = False
         self._timer: asyncio.Task[None] | None = None
 
-    async def _wait(self, seconds: float) -> None:
-        await self.clock.sleep(seconds)
+    async def _wait(self, deadline: float) -> None:
+        # the deadline is fixed at the tick: the task may first run after time moved
+        await self.clock.sleep(deadline - self.clock.now())
         self._done = True
         self.emit_wake_up()
 
@@ -39,7 +40,7 @@ class Delay(DecoratorNode):
             self._set_status(RUNNING)
             self._done = msec <= 0
             if not self._done:
-                self._timer = asyncio.ensure_future(self._wait(msec / 1000.0))
+                self._timer = asyncio.ensure_future(self._wait(self.clock.now() + msec / 1000.0))
         if not self._done:
             return RUNNING
         status = await self.tick_child()

@@ -33,8 +33,9 @@ class Timeout(DecoratorNode):
         self._expired = False
         self._timer: asyncio.Task[None] | None = None
 
-    async def _expire(self, seconds: float) -> None:
-        await self.clock.sleep(seconds)
+    async def _expire(self, deadline: float) -> None:
+        # the deadline is fixed at the tick: the task may first run after time moved
+        await self.clock.sleep(deadline - self.clock.now())
         child = self.child
         if child is not None and child._status is RUNNING:
             self._expired = True
@@ -52,7 +53,7 @@ class Timeout(DecoratorNode):
             self._expired = False
             self._set_status(RUNNING)
             if msec > 0:
-                self._timer = asyncio.ensure_future(self._expire(msec / 1000.0))
+                self._timer = asyncio.ensure_future(self._expire(self.clock.now() + msec / 1000.0))
         if self._expired:
             self._started = self._expired = False
             self._timer = None
