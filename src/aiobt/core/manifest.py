@@ -31,7 +31,7 @@ class NodeManifest:
         """(minimum, maximum) number of children; None is unbounded."""
         if self.kind == NodeKind.CONTROL:
             minimum = getattr(self.node_class, "MIN_CHILDREN", 1)
-            return (minimum, None)
+            return (minimum, getattr(self.node_class, "MAX_CHILDREN", None))
         if self.kind in (NodeKind.DECORATOR, NodeKind.SUBTREE):
             return (1, 1)
         return (0, 0)

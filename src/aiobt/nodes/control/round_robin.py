@@ -1,0 +1,88 @@
+"""RoundRobin (Nav2): each activation resumes at the child after the last one tried."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from aiobt.core.composite import ControlNode
+from aiobt.core.ports import input_port
+from aiobt.core.status import Status
+
+RUNNING, SUCCESS, FAILURE, SKIPPED = (
+    Status.RUNNING,
+    Status.SUCCESS,
+    Status.FAILURE,
+    Status.SKIPPED,
+)
+
+
+class RoundRobin(ControlNode):
+    """``<RoundRobin wrap_around="false">`` (Nav2).
+
+    - ticks the current child; RUNNING: RUNNING;
+    - SUCCESS: the next activation starts at the following child; reset all
+      children, SUCCESS;
+    - FAILURE (or SKIPPED): the following child is ticked in the same tick;
+      once every child failed in a row: reset, FAILURE.
+
+    ``wrap_around`` (Nav2 Kilted+, default false): without it, the node does
+    not go back to the first child after the last one. Nav2's quirk, matched
+    here: a failure of the last child returns FAILURE at once, even when the
+    round started mid-way and the first children were not tried; and after
+    the last child *succeeded*, the next activation returns FAILURE without
+    ticking anything. Either FAILURE starts the rotation over at the first
+    child. With ``wrap_around="true"`` it rotates forever (Nav2's old
+    behaviour). A halt also starts over at the first child.
+    """
+
+    __slots__ = ("_current", "_failed")
+    PORTS = (
+        input_port(
+            "wrap_around",
+            bool,
+            False,
+            "Controls wrap-around behavior. When `false`, the node returns FAILURE instead "
+            "of wrapping to the first child after all children have been attempted. When "
+            "`true`, the node wraps around to the first child and continues the round-robin "
+            "behavior.",
+        ),
+    )
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._current = 0
+        self._failed = 0
+
+    async def execute(self) -> Status:
+        wrap: bool = self.get_input("wrap_around")
+        count = len(self.children)
+        if self._current >= count:  # the last child succeeded without wrap-around
+            await self.on_halt()
+            return FAILURE
+        self._set_status(RUNNING)
+        while self._failed < count:
+            child = self.children[self._current]
+            status = child.tick_sync() if child.is_sync else await child.tick()
+            if status is RUNNING:
+                return RUNNING
+            if status is SUCCESS:
+                self._current += 1
+                if self._current >= count and wrap:
+                    self._current = 0
+                self._failed = 0
+                await self.reset_children()
+                return SUCCESS
+            if status is not FAILURE and status is not SKIPPED:
+                raise self.logic_error(f"child {child.path} returned {status.name}")
+            self._failed += 1
+            self._current += 1
+            if self._current >= count:
+                if not wrap:
+                    break
+                self._current = 0
+        await self.on_halt()
+        return FAILURE
+
+    async def on_halt(self) -> None:
+        self._current = self._failed = 0
+        await self.reset_children()
