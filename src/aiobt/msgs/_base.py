@@ -20,8 +20,8 @@ class Msg(BaseModel):
     )
 
     def to_json(self) -> bytes:
-        """The JSON payload of this message (UTF-8 bytes)."""
-        return self.model_dump_json().encode()
+        """The JSON payload of this message (UTF-8 bytes, as ``model_dump_json``, no str copy)."""
+        return self.__pydantic_serializer__.to_json(self)
 
     @classmethod
     def from_json(cls, payload: bytes | bytearray | str, *, key: str = "") -> Self:

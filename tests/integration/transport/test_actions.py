@@ -6,6 +6,7 @@ import asyncio
 from collections.abc import AsyncIterator
 
 import pytest
+import zenoh
 
 from aiobt.msgs import (
     ComputePathToPose,
@@ -260,3 +261,56 @@ async def test_oversized_goal_is_refused(bus_settings: BusSettings, client_bus: 
         short = await client.send_goal(FollowPath.Goal(path=Path()), server_timeout=5.0)
         await short.result(timeout=5.0)
         assert short.status is GoalState.SUCCEEDED
+
+
+def raw_goal(bus: Bus, server: str, goal_id: str, payload: bytes) -> list[tuple[str, bytes]]:
+    """The goal stream as a plain Zenoh get sees it: (attachment or "ERR", payload) per reply."""
+    replies = bus.session.get(
+        f"{bus.namespace}/action/{server}/goal?id={goal_id}",
+        payload=payload,
+        consolidation=zenoh.ConsolidationMode.NONE,
+        timeout=5.0,
+    )
+    out: list[tuple[str, bytes]] = []
+    for reply in replies:
+        if reply.ok is not None:
+            tag = reply.ok.attachment.to_bytes() if reply.ok.attachment else b""
+            out.append((tag.decode(), reply.ok.payload.to_bytes()))
+        else:
+            assert reply.err is not None
+            out.append(("ERR", reply.err.payload.to_bytes()))
+    return out
+
+
+async def test_goal_stream_on_the_wire(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus)
+    await client_bus.action_client("wait", Wait).wait_for_server(5.0)
+    await asyncio.sleep(0.2)  # let the goal queryable's route settle
+    quick = await asyncio.to_thread(raw_goal, client_bus, "wait", "quick1", b'{"time": 0.0}')
+    assert [tag for tag, _ in quick] == ["result:4"]  # done at once: the result alone
+    assert decode(Wait.Result, quick[0][1]).error_code == 0
+    slow = await asyncio.to_thread(raw_goal, client_bus, "wait", "slow1", b'{"time": 0.06}')
+    tags = [tag for tag, _ in slow]
+    assert tags[0] == "accepted"
+    assert set(tags[1:-1]) == {"feedback"}
+    assert tags[-1] == "result:4"
+
+
+async def test_garbage_goal_gets_an_error_reply_and_the_server_keeps_serving(
+    bus: Bus, client_bus: Bus
+) -> None:
+    serve_wait(bus)
+    client = client_bus.action_client("wait", Wait)
+    await client.wait_for_server(5.0)
+    await asyncio.sleep(0.2)
+    garbage = await asyncio.to_thread(raw_goal, client_bus, "wait", "bad1", b"not json")
+    assert len(garbage) == 1
+    assert garbage[0][0] == "ERR"
+    assert b"bad goal" in garbage[0][1]
+    assert b"field '<payload>'" in garbage[0][1]
+    no_id = await asyncio.to_thread(raw_goal, client_bus, "wait", "", b'{"time": 0.0}')
+    assert no_id[0][0] == "ERR"
+    assert b"goal id" in no_id[0][1]
+    goal = await client.send_goal(Wait.Goal(time=0.0), server_timeout=5.0)
+    await goal.result(timeout=5.0)
+    assert goal.status is GoalState.SUCCEEDED

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from aiobt.msgs import PoseStamped, Twist, Wait
-from aiobt.testing.bus import ServiceProcess, running_router, start_router
+from aiobt.msgs import GoalState, PoseStamped, Twist, Wait
+from aiobt.testing.bus import ServiceProcess, running_router, spawn_service, start_router
 from aiobt.transport import Bus, BusSettings, BusUnavailable, GoalLost, open_bus
 
 pytestmark = pytest.mark.integration
@@ -191,3 +191,40 @@ async def test_sessions_reconnect_after_a_router_restart() -> None:
             assert (await sub.next(timeout=5.0)).linear.x == 2.0
     finally:
         router.cleanup()
+
+
+def child_pids() -> set[int]:
+    """PIDs whose parent is this process (zombies included: an unreaped child counts)."""
+    children = set()
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue  # gone meanwhile
+        if int(stat.rsplit(")", 1)[1].split()[1]) == os.getpid():
+            children.add(int(entry.name))
+    return children
+
+
+def test_router_and_service_processes_leave_nothing_behind() -> None:
+    before = child_pids()
+    with running_router() as (router, endpoint):
+        server = spawn_service(["-m", SERVER, "--connect", endpoint, "--namespace", "leftover"])
+        try:
+            assert server.wait_for_output("ready", 20.0), server.output()
+
+            async def one_goal() -> GoalState:
+                settings = BusSettings(connect=(endpoint,), namespace="leftover")
+                async with open_bus(settings) as bus:
+                    client = bus.action_client("wait", Wait)
+                    goal = await client.send_goal(Wait.Goal(time=0.05), server_timeout=10.0)
+                    await goal.result(timeout=5.0)
+                    return goal.status
+
+            assert asyncio.run(one_goal()) is GoalState.SUCCEEDED
+            assert child_pids() - before == {router.pid, server.pid}
+        finally:
+            server.cleanup()
+    assert child_pids() - before == set()

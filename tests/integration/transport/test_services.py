@@ -6,7 +6,13 @@ import asyncio
 
 import pytest
 
-from aiobt.msgs import ClearCostmapExceptRegion, ClearCostmapResponse, IsPathValid, Path
+from aiobt.msgs import (
+    ClearCostmapExceptRegion,
+    ClearCostmapResponse,
+    IsPathValid,
+    Path,
+    PoseStamped,
+)
 from aiobt.transport import Bus, BusSettings, ServiceError, ServiceUnavailable, open_bus
 
 pytestmark = pytest.mark.integration
@@ -75,3 +81,37 @@ async def test_absent_service_fails_fast(bus: Bus) -> None:
             "nobody_here", IsPathValid.Request(path=Path()), IsPathValid.Response, timeout=0.3
         )
     assert loop.time() - start < 1.0
+
+
+async def test_garbage_and_oversized_requests_get_error_replies(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    small = BusSettings(connect=bus_settings.connect, namespace=bus.namespace, max_payload=300)
+    async with open_bus(small) as server_bus:
+        server_bus.serve(
+            "is_path_valid",
+            IsPathValid.Request,
+            IsPathValid.Response,
+            lambda request: IsPathValid.Response(is_valid=len(request.path.poses) < 5),
+        )
+        await bus.presence(bus.keys.service("is_path_valid")).wait(5.0)
+        await asyncio.sleep(0.2)
+        key = bus.keys.service("is_path_valid")
+
+        def raw_call(payload: bytes) -> list[str]:
+            return [
+                reply.err.payload.to_string() if reply.err else "ok"
+                for reply in bus.session.get(key, payload=payload, timeout=5.0)
+            ]
+
+        [garbage] = await asyncio.to_thread(raw_call, b"{nope")
+        assert garbage.startswith("bad request:")
+        assert "field '<payload>'" in garbage
+        long_path = Path(poses=[PoseStamped.from_xy_yaw(i, 0) for i in range(10)])
+        request = IsPathValid.Request(path=long_path)
+        [oversized] = await asyncio.to_thread(raw_call, request.to_json())
+        assert "exceeds the limit of 300 bytes" in oversized
+        response = await bus.call(
+            "is_path_valid", IsPathValid.Request(path=Path()), IsPathValid.Response, timeout=5.0
+        )
+    assert response.is_valid  # the server kept serving
