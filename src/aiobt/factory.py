@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import enum
 import inspect
 from collections.abc import Callable, Iterable
 from pathlib import Path
@@ -21,6 +22,7 @@ from aiobt.core.node import NodeConfig, NodeKind, TreeContext, TreeNode
 from aiobt.core.ports import PortInfo
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
+from aiobt.script import compile_condition
 from aiobt.xml.builder import ScriptCompiler, TreeBuilder
 from aiobt.xml.document import ParsedDocument, TreeDefinition, parse_file, parse_text
 
@@ -37,7 +39,8 @@ class BehaviorTreeFactory:
         self.manifests: dict[str, NodeManifest] = {}
         self.definitions: dict[str, TreeDefinition] = {}
         self.substitutions = SubstitutionRules()
-        self.script_compiler: ScriptCompiler | None = None
+        self.script_compiler: ScriptCompiler | None = compile_condition
+        self.scripting_enums: dict[str, int] = {}
         self.main_tree_id: str | None = None
         if builtins:
             from aiobt.nodes.registry import register_builtins
@@ -152,6 +155,18 @@ class BehaviorTreeFactory:
             manifest.id, manifest.kind, manifest.ports, builder, manifest.description
         )
 
+    def register_scripting_enum(self, name: str, value: int) -> None:
+        """Make ``name`` usable in scripts as the number ``value`` (BT.CPP's
+        registerScriptingEnum); trees created afterwards see it."""
+        if not name.isidentifier():
+            raise ValueError(f"scripting enum name {name!r} is not an identifier")
+        self.scripting_enums[name] = int(value)
+
+    def register_scripting_enums(self, enum_class: type[enum.Enum]) -> None:
+        """Register every member of an int-valued Enum by its name."""
+        for member in enum_class:
+            self.register_scripting_enum(member.name, int(member.value))
+
     def registered_ids(self) -> list[str]:
         return sorted(self.manifests)
 
@@ -203,6 +218,7 @@ class BehaviorTreeFactory:
         clock: Clock | None,
     ) -> Tree:
         context = TreeContext(clock)
+        context.enums.update(self.scripting_enums)
         bb = blackboard if blackboard is not None else Blackboard.create()
         bb.now = context.clock.now
         builder = TreeBuilder(

@@ -1,14 +1,21 @@
 """Pre- and post-conditions of a node (``_skipIf``, ``_while``, ``_onSuccess``...).
 
-The order and the moments follow BT.CPP 4's ``TreeNode::executeTick``:
-pre-conditions are checked in the order failureIf, successIf, skipIf, while;
-the first three only when the node is IDLE (or was SKIPPED), ``_while`` also
-while it is RUNNING, where a false value halts it and reports SKIPPED. After
-the tick, ``_onSuccess``/``_onFailure`` run on completion and ``_post`` on
-completion too; ``_onHalted`` runs whenever the node is halted.
+The order and the moments follow BT.CPP 4.8's ``TreeNode::executeTick``:
 
-Conditions are compiled callables over the node's blackboard; the script
-language that produces them lives in :mod:`aiobt.scripting`.
+- pre-conditions are checked in the order failureIf, successIf, skipIf,
+  while, and only when the node is IDLE: the first true one of the first
+  three decides the result (FAILURE, SUCCESS, SKIPPED) without ticking the
+  node; a false ``_while`` gives SKIPPED;
+- while the node is RUNNING only ``_while`` is checked: false halts the node
+  (its ``_onHalted`` runs) and reports SKIPPED; a node still SUCCESS or
+  FAILURE (not reset by its parent) checks none;
+- when the result is SUCCESS or FAILURE, whether it came from a pre-condition
+  or from the tick, ``_onSuccess`` or ``_onFailure`` runs, then ``_post``,
+  and only then the node's status changes; SKIPPED leaves the status as it is;
+- ``_onHalted`` runs after every halt of the node.
+
+Conditions are compiled callables over the node's blackboard, produced by the
+factory's ``script_compiler`` (:func:`aiobt.script.compile_condition`).
 """
 
 from __future__ import annotations
@@ -43,8 +50,7 @@ class NodeConditions:
     post: Evaluator | None = None
 
     def _pre(self, node: TreeNode) -> Status | None:
-        status = node.status
-        if status is IDLE or status is SKIPPED:
+        if node.status is IDLE:
             if self.failure_if is not None and bool(self.failure_if(node)):
                 return FAILURE
             if self.success_if is not None and bool(self.success_if(node)):
@@ -56,17 +62,21 @@ class NodeConditions:
         return None
 
     def _post(self, node: TreeNode, status: Status) -> None:
-        if status is SUCCESS and self.on_success is not None:
-            self.on_success(node)
-        elif status is FAILURE and self.on_failure is not None:
-            self.on_failure(node)
-        if status.is_completed and self.post is not None:
+        if status is SUCCESS:
+            if self.on_success is not None:
+                self.on_success(node)
+        elif status is FAILURE:
+            if self.on_failure is not None:
+                self.on_failure(node)
+        else:
+            return
+        if self.post is not None:
             self.post(node)
 
     def _settle(self, node: TreeNode, status: Status) -> Status:
+        self._post(node, status)
         if status is not SKIPPED:
             node._set_status(status)
-        self._post(node, status)
         return status
 
     async def tick(self, node: TreeNode) -> Status:

@@ -6,9 +6,11 @@ from typing import TYPE_CHECKING
 
 from aiobt.core.node import TreeNode
 from aiobt.nodes.actions.always import AlwaysFailure, AlwaysSuccess
+from aiobt.nodes.actions.script import Script
 from aiobt.nodes.actions.set_blackboard import SetBlackboard
 from aiobt.nodes.actions.sleep import Sleep
 from aiobt.nodes.actions.unset_blackboard import UnsetBlackboard
+from aiobt.nodes.actions.was_entry_updated import WasEntryUpdated
 from aiobt.nodes.conditions.error_codes import (
     AreErrorCodesPresent,
     WouldAControllerRecoveryHelp,
@@ -16,6 +18,7 @@ from aiobt.nodes.conditions.error_codes import (
     WouldARouteRecoveryHelp,
     WouldASmootherRecoveryHelp,
 )
+from aiobt.nodes.conditions.script_condition import ScriptCondition
 from aiobt.nodes.conditions.time_expired import PathExpiringTimer, TimeExpired
 from aiobt.nodes.control.fallback import AsyncFallback, Fallback
 from aiobt.nodes.control.if_then_else import IfThenElse
@@ -31,12 +34,16 @@ from aiobt.nodes.control.round_robin import RoundRobin
 from aiobt.nodes.control.sequence import AsyncSequence, Sequence
 from aiobt.nodes.control.sequence_with_memory import SequenceWithMemory
 from aiobt.nodes.control.switch import Switch2, Switch3, Switch4, Switch5, Switch6
+from aiobt.nodes.control.try_catch import TryCatch
 from aiobt.nodes.control.while_do_else import WhileDoElse
 from aiobt.nodes.decorators.delay import Delay
+from aiobt.nodes.decorators.entry_updated import SkipUnlessUpdated, WaitValueUpdate
 from aiobt.nodes.decorators.force import ForceFailure, ForceSuccess
 from aiobt.nodes.decorators.goal_updated_controller import GoalUpdatedController
 from aiobt.nodes.decorators.inverter import Inverter
 from aiobt.nodes.decorators.keep_running_until_failure import KeepRunningUntilFailure
+from aiobt.nodes.decorators.loop import LoopBool, LoopDouble, LoopInt, LoopString
+from aiobt.nodes.decorators.precondition import Precondition
 from aiobt.nodes.decorators.rate_controller import RateController
 from aiobt.nodes.decorators.repeat import Repeat
 from aiobt.nodes.decorators.retry import RetryUntilSuccessful
@@ -59,6 +66,8 @@ BUILTINS: tuple[type[TreeNode], ...] = (
     # leaves
     AlwaysSuccess, AlwaysFailure, SetBlackboard, UnsetBlackboard, Sleep,
     # -- scripting and BT.CPP language nodes (issue 3) --
+    Script, ScriptCondition, Precondition, SkipUnlessUpdated, WaitValueUpdate,
+    WasEntryUpdated, LoopInt, LoopDouble, LoopString, LoopBool, TryCatch,
     # -- Nav2 generic control flow and conditions (issue 3) --
     PipelineSequence, RecoveryNode, RoundRobin, NonblockingSequence, PersistentSequence,
     RateController, SingleTrigger, GoalUpdatedController,

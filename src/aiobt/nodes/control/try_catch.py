@@ -1,0 +1,101 @@
+"""TryCatch: a Sequence of "try" children with a "catch" child for failures."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from aiobt.core.composite import ControlNode
+from aiobt.core.ports import input_port
+from aiobt.core.status import Status
+
+IDLE, RUNNING, SUCCESS, FAILURE, SKIPPED = (
+    Status.IDLE,
+    Status.RUNNING,
+    Status.SUCCESS,
+    Status.FAILURE,
+    Status.SKIPPED,
+)
+
+
+class TryCatch(ControlNode):
+    """``<TryCatch catch_on_halt="false">`` with at least two children.
+
+    - the first N-1 children run as a Sequence (RUNNING, SUCCESS/SKIPPED go on);
+      all SUCCESS: SUCCESS (SKIPPED if all were skipped);
+    - a try child FAILURE: the try children are reset and the last child (the
+      catch) is ticked in the same tick until it finishes; then FAILURE,
+      whatever the catch returned;
+    - halted while in the try block with ``catch_on_halt="true"``: the try
+      children are halted and the catch child ticked once (halted if RUNNING).
+
+    BehaviorTree.CPP added TryCatch after 4.8 (its master branch); aiobt follows
+    that implementation, so there is no BT.CPP 4.8 reference to compare with.
+    """
+
+    __slots__ = ("_current", "_in_catch", "_skipped")
+    MIN_CHILDREN = 2
+    PORTS = (
+        input_port(
+            "catch_on_halt",
+            bool,
+            False,
+            "If true, the catch child is also executed when the TryCatch is halted",
+        ),
+    )
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._current = 0
+        self._skipped = 0
+        self._in_catch = False
+
+    async def _tick(self, index: int) -> Status:
+        child = self.children[index]
+        return child.tick_sync() if child.is_sync else await child.tick()
+
+    async def execute(self) -> Status:
+        if not self._status.is_active:
+            self._skipped = 0
+            self._in_catch = False
+        self._set_status(RUNNING)
+        if self._in_catch:
+            return await self._catch()
+        try_count = len(self.children) - 1
+        while self._current < try_count:
+            status = await self._tick(self._current)
+            if status is RUNNING:
+                return RUNNING
+            if status is FAILURE:
+                await self.reset_children()
+                self._current = 0
+                self._in_catch = True
+                return await self._catch()
+            if status is IDLE:
+                raise self.logic_error(f"child {self.children[self._current].path} returned IDLE")
+            self._current += 1
+            self._skipped += status is SKIPPED
+        all_skipped = self._skipped == try_count
+        await self.reset_children()
+        self._current = self._skipped = 0
+        return SKIPPED if all_skipped else SUCCESS
+
+    async def _catch(self) -> Status:
+        status = await self._tick(len(self.children) - 1)
+        if status is RUNNING:
+            return RUNNING
+        await self.reset_children()
+        self._current = 0
+        self._in_catch = False
+        return FAILURE
+
+    async def on_halt(self) -> None:
+        catch_on_halt = bool(self.get_input("catch_on_halt", False))
+        if catch_on_halt and not self._in_catch and self._status.is_active:
+            for index in range(len(self.children) - 1):
+                await self.halt_child(index)
+            last = len(self.children) - 1
+            if await self._tick(last) is RUNNING:
+                await self.halt_child(last)
+        self._current = self._skipped = 0
+        self._in_catch = False
+        await self.reset_children()

@@ -1,0 +1,55 @@
+"""Precondition: tick the child only if a script condition holds."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from aiobt.core.composite import DecoratorNode
+from aiobt.core.ports import input_port
+from aiobt.core.status import Status
+from aiobt.nodes.actions.script import ScriptCode
+from aiobt.nodes.decorators.status_port import status_from_text
+
+RUNNING = Status.RUNNING
+
+
+class Precondition(DecoratorNode):
+    """``<Precondition if="battery > 20" else="FAILURE">``.
+
+    - the condition is checked only when the child is not already running;
+    - false: return ``else`` (default FAILURE; SUCCESS, SKIPPED, RUNNING
+      allowed) without ticking the child;
+    - true: tick the child and return its status; once the child finishes it
+      is reset and the condition is checked again at the next tick.
+    """
+
+    __slots__ = ("_children_running", "_script")
+    PORTS = (
+        input_port("if", str),
+        input_port("else", Status, Status.FAILURE, "Return status if condition is false"),
+    )
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._script = ScriptCode(self, allow_empty=False, port="if")
+        self._children_running = False
+
+    def _else(self) -> Status:
+        value = self.get_input("else")
+        return value if isinstance(value, Status) else status_from_text(str(value))
+
+    async def execute(self) -> Status:
+        otherwise = self._else()
+        if not self._children_running:
+            self._children_running = bool(self._script.run(as_condition=True))
+            if not self._children_running:
+                return otherwise
+        status = await self.tick_child()
+        if status.is_completed:
+            await self.reset_child()
+            self._children_running = False
+        return status
+
+    async def on_halt(self) -> None:
+        self._children_running = False
+        await self.reset_child()
