@@ -52,13 +52,18 @@ class WakeUp:
         if self._event is None:
             self._event = asyncio.Event()
         waiter = asyncio.ensure_future(self._event.wait())
-        sleeper = asyncio.ensure_future(clock.sleep(period))
+        # the deadline is fixed now: the sleeper task first runs a few loop turns later
+        sleeper = asyncio.ensure_future(_sleep_until(clock, clock.now() + period))
         try:
             await asyncio.wait({waiter, sleeper}, return_when=asyncio.FIRST_COMPLETED)
         finally:
             waiter.cancel()
             sleeper.cancel()
         return self.consume()
+
+
+async def _sleep_until(clock: Clock, deadline: float) -> None:
+    await clock.sleep(deadline - clock.now())
 
 
 @dataclass(frozen=True, slots=True)
