@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import asyncio
 import struct
 import time
 from dataclasses import dataclass
@@ -70,7 +71,7 @@ def uid_map(xml: str) -> dict[int, tuple[str, str]]:
     """uid -> (element tag, name or subtree ID) from a log's XML."""
     root = etree.fromstring(xml.encode())
     return {
-        int(e.get("_uid")): (e.tag, e.get("name") or e.get("ID"))
+        int(str(e.get("_uid"))): (str(e.tag), e.get("name") or e.get("ID") or "")
         for e in root.iter()
         if e.get("_uid") is not None
     }
@@ -114,7 +115,9 @@ async def test_btlog_header_xml_and_records_decode(tmp_path: Path) -> None:
     assert trees == [("Main", ""), ("Sub", "subby")]
     (subtree,) = root.iter("SubTree")
     assert len(subtree) == 0  # its nodes live in their own BehaviorTree element
-    models = {e.get("ID") for e in root.find("TreeNodesModel")}
+    model = root.find("TreeNodesModel")
+    assert model is not None
+    models = {e.get("ID") for e in model}
     assert {"Sequence", "Fallback", "AlwaysSuccess", "AlwaysFailure"} <= models
 
 
@@ -130,7 +133,7 @@ async def test_btlog_matches_behaviortree_cpp_own_file(tmp_path: Path) -> None:
     deadline = time.monotonic() + 5.0
     while _record_count(cpp_path) < expected_records:
         assert time.monotonic() < deadline, "BT.CPP's writer thread did not write its records"
-        time.sleep(0.02)  # its writer thread writes every 10 ms
+        await asyncio.sleep(0.02)  # wall time: its writer thread writes every 10 ms
         cpp_logger.flush()
     del cpp_logger
     tree = BehaviorTreeFactory().create_tree_from_text(DOC, clock=ManualClock())
