@@ -36,6 +36,7 @@ class PortInfo:
     type: Any = None
     default: Any = NO_DEFAULT
     description: str = ""
+    required: bool = False  # an input that must be set in the XML: missing is a load error
 
     @property
     def has_default(self) -> bool:
@@ -51,9 +52,14 @@ class PortInfo:
 
 
 def input_port(
-    name: str, type: Any = None, default: Any = NO_DEFAULT, description: str = ""
+    name: str,
+    type: Any = None,
+    default: Any = NO_DEFAULT,
+    description: str = "",
+    *,
+    required: bool = False,
 ) -> PortInfo:
-    return PortInfo(name, PortDirection.INPUT, type, default, description)
+    return PortInfo(name, PortDirection.INPUT, type, default, description, required)
 
 
 def output_port(
@@ -63,9 +69,14 @@ def output_port(
 
 
 def inout_port(
-    name: str, type: Any = None, default: Any = NO_DEFAULT, description: str = ""
+    name: str,
+    type: Any = None,
+    default: Any = NO_DEFAULT,
+    description: str = "",
+    *,
+    required: bool = False,
 ) -> PortInfo:
-    return PortInfo(name, PortDirection.INOUT, type, default, description)
+    return PortInfo(name, PortDirection.INOUT, type, default, description, required)
 
 
 _POINTER = re.compile(r"^\{\s*([^{}]*?)\s*\}$")

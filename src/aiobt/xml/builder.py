@@ -149,6 +149,7 @@ class TreeBuilder:
             else:
                 raise site.error(_unknown_attribute(key, manifest))
         _bind_defaults(config, manifest, bb, site)
+        _check_required(config, manifest, site)
         try:
             node = manifest.builder(name, config)
         except TreeLoadError:
@@ -238,6 +239,15 @@ def _check_children(manifest: NodeManifest, count: int, site: _Site) -> None:
             expected = f"at least {minimum} child" + ("ren" if minimum != 1 else "")
         kind = manifest.kind if manifest.kind != NodeKind.SUBTREE else "SubTree"
         raise site.error(f"{kind} node [{manifest.id}] must have {expected}, it has {count}")
+
+
+def _check_required(config: NodeConfig, manifest: NodeManifest, site: _Site) -> None:
+    missing = [
+        p.name for p in manifest.ports.values() if p.required and p.name not in config.inputs
+    ]
+    if missing:
+        listed = ", ".join(f"[{name}]" for name in missing)
+        raise site.error(f"[{manifest.id}] is missing its required port {listed}")
 
 
 def _unknown_attribute(key: str, manifest: NodeManifest) -> str:

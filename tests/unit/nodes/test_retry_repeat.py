@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from aiobt.core.errors import NodeError, PortError
+from aiobt.core.errors import TreeLoadError
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.testing.stubs import Stubs, tick_statuses, tree_xml
@@ -66,11 +66,14 @@ async def test_zero_count_finishes_without_ticking_child(
     assert stubs.ticks("A") == 0
 
 
-@pytest.mark.parametrize("decorator", ["RetryUntilSuccessful", "Repeat"])
-async def test_missing_count_is_an_error(bt_factory: BehaviorTreeFactory, decorator: str):
-    tree = _tree(bt_factory, decorator, "")
-    with pytest.raises((NodeError, PortError)):
-        await tree.tick_exactly_once()
+@pytest.mark.parametrize(
+    ("decorator", "port"), [("RetryUntilSuccessful", "num_attempts"), ("Repeat", "num_cycles")]
+)
+def test_missing_count_is_a_load_error(bt_factory: BehaviorTreeFactory, decorator: str, port: str):
+    with pytest.raises(TreeLoadError, match=rf"missing its required port \[{port}\]") as info:
+        _tree(bt_factory, decorator, "")
+    assert info.value.node_path == f"MainTree/{decorator}"
+    assert info.value.line == 1
 
 
 async def test_repeat_yields_between_cycles(bt_factory: BehaviorTreeFactory, stubs: Stubs):

@@ -17,11 +17,14 @@ class SetBlackboard(SyncActionNode):
 
     __slots__ = ()
     PORTS = (
-        input_port("value", None, description="value to be written into the output_key"),
+        input_port(
+            "value", None, description="value to be written into the output_key", required=True
+        ),
         inout_port(
             "output_key",
             str,
             description="name of the blackboard entry where the value should be written",
+            required=True,
         ),
     )
 

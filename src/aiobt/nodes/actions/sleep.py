@@ -12,7 +12,7 @@ class Sleep(AsyncActionNode):
     N <= 0); the tree is woken when the time is up; halting cancels the wait."""
 
     __slots__ = ()
-    PORTS = (input_port("msec", int),)
+    PORTS = (input_port("msec", int, required=True),)
 
     async def run(self) -> Status:
         msec: int = self.get_input("msec")

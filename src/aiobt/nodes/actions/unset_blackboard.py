@@ -11,7 +11,7 @@ class UnsetBlackboard(SyncActionNode):
     """``<UnsetBlackboard key="answer"/>``: remove the entry (SUCCESS even if absent)."""
 
     __slots__ = ()
-    PORTS = (input_port("key", str, description="key of the entry to remove"),)
+    PORTS = (input_port("key", str, description="key of the entry to remove", required=True),)
 
     def on_tick(self) -> Status:
         self.config.blackboard.unset(self.get_input("key"))

@@ -19,7 +19,11 @@ class Delay(DecoratorNode):
     child at once."""
 
     __slots__ = ("_done", "_started", "_timer")
-    PORTS = (input_port("delay_msec", int, description="tick the child after a few milliseconds"),)
+    PORTS = (
+        input_port(
+            "delay_msec", int, description="tick the child after a few milliseconds", required=True
+        ),
+    )
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)

@@ -21,6 +21,7 @@ class Repeat(RetryUntilSuccessful):
             "num_cycles",
             int,
             description="repeat a successful child up to N times; -1 loops forever",
+            required=True,
         ),
     )
     LIMIT_PORT = "num_cycles"

@@ -32,6 +32,7 @@ class RetryUntilSuccessful(DecoratorNode):
             "num_attempts",
             int,
             description="execute again a failing child up to N times; -1 loops forever",
+            required=True,
         ),
     )
     LIMIT_PORT: ClassVar[str] = "num_attempts"
@@ -46,12 +47,21 @@ class RetryUntilSuccessful(DecoratorNode):
         again = self.AGAIN
         finished = SUCCESS if again is FAILURE else FAILURE
         loop = self._count < limit or limit == -1
-        self._set_status(RUNNING)
+        if self._status is not RUNNING:
+            self._set_status(RUNNING)
         child = self.child
         assert child is not None
         while loop:
             previous = child._status
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            # inlined child.tick(): one coroutine frame per async child, none per sync one
+            if child.is_sync:
+                status = child.tick_sync()
+            elif child._conditions is None:
+                status = await child.execute()
+                if status is not SKIPPED and status is not child._status:
+                    child._set_status(status)
+            else:
+                status = await child.tick()
             if status is again:
                 self._count += 1
                 loop = self._count < limit or limit == -1

@@ -24,6 +24,7 @@ class Timeout(DecoratorNode):
             "msec",
             int,
             description="after a certain amount of time, halt() the child if it is still running",
+            required=True,
         ),
     )
 
