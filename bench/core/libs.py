@@ -17,7 +17,7 @@ is reset, no listener is checked.
 
 from __future__ import annotations
 
-from collections.abc import Awaitable, Callable
+from collections.abc import Awaitable, Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass
 from enum import Enum
@@ -119,7 +119,7 @@ def aiobt_tick(spec: Spec, counting: bool = False) -> Callable[[], Awaitable[Sta
 
 
 @contextmanager
-def aiobt_inner_counted():  # type: ignore[no-untyped-def]
+def aiobt_inner_counted() -> Iterator[None]:
     """Count every execute() of aiobt's inner nodes (patched on the classes)."""
     saved = {cls: cls.__dict__["execute"] for cls in AIOBT_INNER}
 
@@ -180,7 +180,7 @@ def _pt_node(spec: Spec, leaves: dict[str, type[py_trees.behaviour.Behaviour]]) 
     raise ValueError(f"no py_trees equivalent for {kind}")
 
 
-class _VisitCounter(py_trees.visitors.VisitorBase):  # type: ignore[misc]
+class _VisitCounter(py_trees.visitors.VisitorBase):
     def __init__(self) -> None:
         super().__init__(full=False)  # run on the ticked nodes only
 

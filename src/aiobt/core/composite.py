@@ -13,6 +13,7 @@ from aiobt.core.status import Status
 
 IDLE = Status.IDLE
 RUNNING = Status.RUNNING
+SKIPPED = Status.SKIPPED
 
 
 async def reset_node(node: TreeNode) -> None:
@@ -22,6 +23,25 @@ async def reset_node(node: TreeNode) -> None:
         await node.halt()
     elif status is not IDLE:
         node._set_status(IDLE)
+
+
+async def reset_all(nodes: list[TreeNode]) -> None:
+    """:func:`reset_node` on each of ``nodes``, in order.
+
+    Hot path (every finished Sequence resets all its children): a finished
+    child is set IDLE in place, without a coroutine per child, and without a
+    call when nobody listens to status changes.
+    """
+    for node in nodes:
+        status = node._status
+        if status is IDLE:
+            continue
+        if status is RUNNING:
+            await node.halt()
+        elif node._ctx.listeners:
+            node._set_status(IDLE)
+        else:
+            node._status = IDLE
 
 
 class ControlNode(TreeNode):
@@ -45,9 +65,7 @@ class ControlNode(TreeNode):
         await reset_node(self.children[index])
 
     async def halt_children_from(self, start: int) -> None:
-        for child in self.children[start:]:
-            if child._status is not IDLE:
-                await reset_node(child)
+        await reset_all(self.children[start:])
 
     async def halt_others(self, keep: int) -> None:
         """Reset every child but ``keep`` (inline: this runs on every reactive tick)."""
@@ -57,13 +75,13 @@ class ControlNode(TreeNode):
                 continue
             if status is RUNNING:
                 await child.halt()
-            else:
+            elif child._ctx.listeners:
                 child._set_status(IDLE)
+            else:
+                child._status = IDLE
 
     async def reset_children(self) -> None:
-        for child in self.children:
-            if child._status is not IDLE:
-                await reset_node(child)
+        await reset_all(self.children)
 
     async def on_halt(self) -> None:
         await self.reset_children()
@@ -97,4 +115,11 @@ class DecoratorNode(TreeNode):
     async def tick_child(self) -> Status:
         child = self.child
         assert child is not None
-        return child.tick_sync() if child.is_sync else await child.tick()
+        if child.is_sync:
+            return child.tick_sync()
+        if child._conditions is None:  # inlined child.tick(): one frame less
+            status = await child.execute()
+            if status is not SKIPPED and status is not child._status:
+                child._set_status(status)
+            return status
+        return await child.tick()

@@ -37,6 +37,13 @@ class SyncLeaf(TreeNode):
     __slots__ = ()
     is_sync: ClassVar[bool] = True
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        # The leaf bases below inline their execute_sync into a fast tick_sync;
+        # a subclass with its own execute_sync gets the generic tick back.
+        if "execute_sync" in cls.__dict__ and "tick_sync" not in cls.__dict__:
+            cls.tick_sync = SyncLeaf.tick_sync  # type: ignore[method-assign]
+
     def tick_sync(self) -> Status:
         conditions = self._conditions
         if conditions is not None:
@@ -70,9 +77,35 @@ class ConditionNode(SyncLeaf):
     def check(self) -> Status | bool:
         raise LogicError(f"{type(self).__name__} does not implement check()")
 
+    def tick_sync(self) -> Status:
+        """``SyncLeaf.tick_sync`` with ``execute_sync`` inlined (the hot path)."""
+        if self._conditions is not None:
+            return self._conditions.tick_sync(self)
+        try:
+            status = self.check()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        if status is not SUCCESS and status is not FAILURE:
+            status = self._result(status)
+            if status is SKIPPED:
+                return status
+        if status is not self._status:
+            if self._ctx.listeners:
+                self._set_status(status)
+            else:
+                self._status = status
+        return status
+
     def execute_sync(self) -> Status:
         try:
-            status = Status.of(self.check())
+            value = self.check()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        return self._result(value)
+
+    def _result(self, value: Status | bool | None) -> Status:
+        try:
+            status = Status.of(value)
         except Exception as exc:
             raise tick_error(self, exc) from exc
         if status is RUNNING:
@@ -88,9 +121,35 @@ class SyncActionNode(SyncLeaf):
     def on_tick(self) -> Status | bool | None:
         raise LogicError(f"{type(self).__name__} does not implement on_tick()")
 
+    def tick_sync(self) -> Status:
+        """``SyncLeaf.tick_sync`` with ``execute_sync`` inlined (the hot path)."""
+        if self._conditions is not None:
+            return self._conditions.tick_sync(self)
+        try:
+            status = self.on_tick()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        if status is not SUCCESS and status is not FAILURE:
+            status = self._result(status)
+            if status is SKIPPED:
+                return status
+        if status is not self._status:
+            if self._ctx.listeners:
+                self._set_status(status)
+            else:
+                self._status = status
+        return status
+
     def execute_sync(self) -> Status:
         try:
-            status = Status.of(self.on_tick())
+            value = self.on_tick()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        return self._result(value)
+
+    def _result(self, value: Status | bool | None) -> Status:
+        try:
+            status = Status.of(value)
         except Exception as exc:
             raise tick_error(self, exc) from exc
         if status is RUNNING:
@@ -115,6 +174,27 @@ class StatefulActionNode(SyncLeaf):
 
     def on_halted(self) -> None:
         return None
+
+    def tick_sync(self) -> Status:
+        """``SyncLeaf.tick_sync`` with ``execute_sync`` inlined (the hot path)."""
+        if self._conditions is not None:
+            return self._conditions.tick_sync(self)
+        previous = self._status
+        if previous is not IDLE and previous is not RUNNING:
+            return previous
+        try:
+            status = self.on_start() if previous is IDLE else self.on_running()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        if status is IDLE:
+            raise NodeError(self.path, LogicError("on_start/on_running must not return IDLE"))
+        if status is previous or status is SKIPPED:
+            return status
+        if self._ctx.listeners:
+            self._set_status(status)
+        else:
+            self._status = status
+        return status
 
     def execute_sync(self) -> Status:
         previous = self._status

@@ -23,6 +23,9 @@ log = logging.getLogger("aiobt.core.tree")
 
 RUNNING = Status.RUNNING
 IDLE = Status.IDLE
+SUCCESS = Status.SUCCESS
+FAILURE = Status.FAILURE
+SKIPPED = Status.SKIPPED
 
 
 class WakeUp:
@@ -139,16 +142,29 @@ class Tree:
     # -- ticking ------------------------------------------------------------------
     async def _tick_root(self) -> Status:
         root = self.root
-        return root.tick_sync() if root.is_sync else await root.tick()
+        if root.is_sync:
+            return root.tick_sync()
+        if root._conditions is None:  # inlined root.tick(): one coroutine frame less
+            status = await root.execute()
+            if status is not SKIPPED and status is not root._status:
+                root._set_status(status)
+            return status
+        return await root.tick()
 
     def _finish(self, status: Status) -> Status:
-        if status.is_completed:
+        if status is SUCCESS or status is FAILURE:
             self.root.reset_status()
         return status
 
     async def tick_exactly_once(self) -> Status:
         """Tick the root once (a wake-up it emits stays pending, as in BT.CPP)."""
-        return self._finish(await self._tick_root())
+        root = self.root
+        if root.is_sync or root._conditions is not None:
+            return self._finish(await self._tick_root())
+        status = await root.execute()  # the hot path of _tick_root, inlined
+        if status is not SKIPPED and status is not root._status:
+            root._set_status(status)
+        return self._finish(status)
 
     async def tick_once(self) -> Status:
         """Tick, then tick again while RUNNING and a wake-up is pending.

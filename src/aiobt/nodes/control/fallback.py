@@ -33,15 +33,31 @@ class Fallback(ControlNode):
         self._skipped = 0
 
     async def execute(self) -> Status:
-        if self._status is IDLE:
-            self._skipped = 0
-        self._set_status(RUNNING)
+        own = self._status
+        if own is not RUNNING:
+            if own is IDLE:
+                self._skipped = 0
+            self._set_status(RUNNING)
         children = self.children
         count = len(children)
-        while self._current < count:
-            child = children[self._current]
-            previous = child._status
-            status = child.tick_sync() if child.is_sync else await child.tick()
+        yields = self.YIELDS
+        current = self._current  # a local copy, written through on every change
+        previous = IDLE
+        while current < count:
+            child = children[current]
+            if yields:
+                previous = child._status
+            # inlined child.tick(): one coroutine frame per async child, none per sync one
+            if child.is_sync:
+                status = child.tick_sync()
+            elif child._conditions is None:
+                status = await child.execute()
+                if status is not SKIPPED and status is not child._status:
+                    child._set_status(status)
+                current = self._current  # as it may be after the await
+            else:
+                status = await child.tick()
+                current = self._current
             if status is RUNNING:
                 return RUNNING
             if status is SUCCESS:
@@ -49,12 +65,14 @@ class Fallback(ControlNode):
                 self._current = 0
                 return SUCCESS
             if status is FAILURE:
-                self._current += 1
-                if self.YIELDS and previous is IDLE and self._current < count:
+                current += 1
+                self._current = current
+                if yields and previous is IDLE and current < count:
                     self.emit_wake_up()
                     return RUNNING
             elif status is SKIPPED:
-                self._current += 1
+                current += 1
+                self._current = current
                 self._skipped += 1
             else:
                 raise self.logic_error(f"child {child.path} returned IDLE")

@@ -19,10 +19,19 @@ class ReactiveFallback(ControlNode):
     __slots__ = ()
 
     async def execute(self) -> Status:
-        self._set_status(RUNNING)
+        if self._status is not RUNNING:
+            self._set_status(RUNNING)
         all_skipped = True
         for index, child in enumerate(self.children):
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            # inlined child.tick(): one coroutine frame per async child, none per sync one
+            if child.is_sync:
+                status = child.tick_sync()
+            elif child._conditions is None:
+                status = await child.execute()
+                if status is not SKIPPED and status is not child._status:
+                    child._set_status(status)
+            else:
+                status = await child.tick()
             if status is RUNNING:
                 await self.halt_others(index)
                 return RUNNING

@@ -6,6 +6,7 @@ from aiobt.core.composite import DecoratorNode
 from aiobt.core.status import Status
 
 RUNNING, SUCCESS, FAILURE, IDLE = Status.RUNNING, Status.SUCCESS, Status.FAILURE, Status.IDLE
+SKIPPED = Status.SKIPPED
 
 
 class Inverter(DecoratorNode):
@@ -14,8 +15,19 @@ class Inverter(DecoratorNode):
     __slots__ = ()
 
     async def execute(self) -> Status:
-        self._set_status(RUNNING)
-        status = await self.tick_child()
+        if self._status is not RUNNING:
+            self._set_status(RUNNING)
+        child = self.child
+        assert child is not None
+        # inlined self.tick_child() and child.tick(): no coroutine frame of their own
+        if child.is_sync:
+            status = child.tick_sync()
+        elif child._conditions is None:
+            status = await child.execute()
+            if status is not SKIPPED and status is not child._status:
+                child._set_status(status)
+        else:
+            status = await child.tick()
         if status is SUCCESS:
             await self.reset_child()
             return FAILURE
