@@ -22,7 +22,8 @@ class Controller(Protocol):
     """Computes one velocity command per control cycle.
 
     ``compute_velocity`` raises :class:`ControllerError` (NO_VALID_CONTROL) when
-    no safe command exists; the caller stops the robot and applies its patience.
+    no safe command exists; the caller stops the robot and applies its patience
+    (``failure_tolerance``: then PATIENCE_EXCEEDED, or at once with 0).
     """
 
     def set_plan(self, path: PlanarPath) -> None: ...

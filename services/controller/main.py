@@ -65,7 +65,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--failure-tolerance",
         type=_non_negative,
         default=0.3,
-        help="stopped, no valid control this long fails the goal, s (default: %(default)s)",
+        help="no valid control: stand still this long, then PATIENCE_EXCEEDED; "
+        "0: NO_VALID_CONTROL at once, s (default: %(default)s)",
     )
     add(
         "--time-allowance",

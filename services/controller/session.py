@@ -218,12 +218,23 @@ class FollowPathSession:
         try:
             cmd = self._controller.compute_velocity(state.pose, state.velocity, ctx)
         except ControllerError as error:
-            if self._failing_since is None:
-                self._failing_since = now
-            waited = now - self._failing_since
-            if waited >= self._config.failure_tolerance:
-                error.message = f"{error.message}; no valid control for {waited:.2f} s"
-                raise
+            self._be_patient(now, error)
             return STOP
         self._failing_since = None
         return cmd
+
+    def _be_patient(self, now: float, error: ControllerError) -> None:
+        """Nav2's ``failure_tolerance``: 0 fails at once with the controller's own error;
+        otherwise the robot stands still and the goal fails PATIENCE_EXCEEDED after it."""
+        tolerance = self._config.failure_tolerance
+        if tolerance <= 0.0:
+            raise error
+        if self._failing_since is None:
+            self._failing_since = now
+        waited = now - self._failing_since
+        if waited >= tolerance:
+            raise ControllerError(
+                FollowPathCode.PATIENCE_EXCEEDED,
+                f"controller patience exceeded: {error.message}; "
+                f"no valid control for {waited:.2f} s (failure_tolerance {tolerance:.2f} s)",
+            )

@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import asyncio
+import itertools
 import math
+import statistics
 
 import pytest
 
 from aiobt.msgs import (
+    ClearCostmapAroundRobot,
+    ClearCostmapExceptRegion,
     ClearCostmapResponse,
     ClearEntireCostmap,
     FollowPath,
@@ -19,6 +23,7 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.transport import Bus, BusSettings
+from aiobt_services.controller.wire import TrackingFeedbackMsg
 
 from .helpers import Spawn, path_through, start, yaw_error
 
@@ -35,6 +40,8 @@ async def test_follows_a_curved_path_to_the_goal(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings, controller_id: str
 ):
     pose = bus.subscribe("pose", PoseStamped)
+    tracking: list[TrackingFeedbackMsg] = []
+    bus.subscribe("tracking_feedback", TrackingFeedbackMsg, tracking.append)
     await start(spawn, bus, bus_settings, "controller")
     path = path_through([(0.0, 0.0), (1.0, 0.0), (1.5, 0.5), (1.5, 1.5)])
     goal = await _follow(bus, path, controller_id=controller_id)
@@ -47,6 +54,16 @@ async def test_follows_a_curved_path_to_the_goal(
     assert yaw_error(final.yaw, math.pi / 2) <= 0.3
     assert feedback_seen
     assert feedback_seen[0].distance_to_goal > 1.5
+    # tracking feedback (IsWithinPathTrackingBounds): one per cycle, stamped on sim time
+    assert len(tracking) > 10
+    assert max(abs(t.cross_track_error) for t in tracking) < 0.3
+    assert tracking[-1].distance_to_goal <= 0.25
+    stamps = [t.header.stamp for t in tracking]
+    assert stamps[-1] - stamps[0] > 1.0
+    # a fixed 20 Hz control rate on sim time (median: a loaded machine may starve a cycle)
+    assert statistics.median(b - a for a, b in itertools.pairwise(stamps)) == pytest.approx(
+        0.05, abs=0.011
+    )
 
 
 async def test_follows_the_office_corridor_between_its_walls(
@@ -69,7 +86,8 @@ async def test_obstacle_ahead_stops_before_contact_with_no_valid_control(
     from aiobt_services.robot.messages import Ack, SpawnObstacle
 
     pose = bus.subscribe("pose", PoseStamped)
-    await start(spawn, bus, bus_settings, "controller")
+    # --failure-tolerance 0 (Nav2's default): the refused command fails the goal at once
+    await start(spawn, bus, bus_settings, "controller", "--failure-tolerance", "0")
     goal = await _follow(bus, path_through([(0.0, 0.0), (2.1, 0.0)]))
     async with asyncio.timeout(20.0):
         async for p in pose:
@@ -179,6 +197,15 @@ async def test_bad_goals_get_nav2_codes_and_clearing_services_answer(
         ClearCostmapResponse,
     )
     assert reply.success
+    await bus.subscribe("pose", PoseStamped).wait_latest(5.0)
+    for kind, words in ((ClearCostmapExceptRegion, "outside"), (ClearCostmapAroundRobot, "inside")):
+        reply = await bus.call(
+            kind.service_name("local_costmap"),
+            kind.Request(reset_distance=2.0),
+            ClearCostmapResponse,
+        )
+        assert reply.success, reply.message
+        assert f"{words} a 2.00 m square" in reply.message
 
 
 def _now(clock) -> float:

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
 from aiobt_services.controller.errors import ControllerError, FollowPathCode
 from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
@@ -131,14 +132,30 @@ def _wall_at(x: float) -> CollisionChecker:
     return CollisionChecker(grid)
 
 
-def test_obstacle_ahead_stops_rpp_before_contact_with_no_valid_control():
+def test_obstacle_ahead_stops_rpp_and_patience_runs_out():
+    # Nav2's controller_server: failure_tolerance > 0 stops the robot, keeps
+    # trying, and ends the goal PATIENCE_EXCEEDED once the tolerance has passed
     run, robot = drive(straight(4.0), collision=_wall_at(2.0))
+    assert run.result is not None
+    assert run.result.error is not None
+    assert run.result.error.code == FollowPathCode.PATIENCE_EXCEEDED
+    assert "detected collision ahead" in run.result.error.message
+    assert "no valid control for 0.3" in run.result.error.message
+    assert 1.0 < robot.pose.x < 2.0
+    stopped = [c for c in run.commands if c == (0.0, 0.0)]
+    assert len(stopped) >= round(0.3 / 0.05)  # stood still for the whole tolerance
+    assert run.commands[-1] == (0.0, 0.0)
+
+
+def test_obstacle_ahead_without_patience_fails_no_valid_control_at_once():
+    config = ControllerConfig(failure_tolerance=0.0)
+    run, robot = drive(straight(4.0), collision=_wall_at(2.0), config=config)
     assert run.result is not None
     assert run.result.error is not None
     assert run.result.error.code == FollowPathCode.NO_VALID_CONTROL
     assert "detected collision ahead" in run.result.error.message
-    assert "no valid control for 0.3" in run.result.error.message
     assert 1.0 < robot.pose.x < 2.0
+    assert run.commands[-2] != (0.0, 0.0)  # the first refused cycle ends the goal
     assert run.commands[-1] == (0.0, 0.0)
 
 
