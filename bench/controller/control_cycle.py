@@ -19,6 +19,8 @@ import math
 import time
 
 import numpy as np
+
+from aiobt.msgs import LaserScan
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
 from aiobt_services.controller.local_costmap import LocalCostmap
@@ -29,8 +31,6 @@ from aiobt_services.controller.session import (
     RobotState,
 )
 from aiobt_services.controller.unicycle import Unicycle
-
-from aiobt.msgs import LaserScan
 
 
 def polyline(points: list[tuple[float, float]], spacing: float = 0.05) -> PlanarPath:

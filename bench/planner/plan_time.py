@@ -17,6 +17,7 @@ import statistics
 import time
 
 import numpy as np
+
 from aiobt_services.costmap import CostGrid, Costmap, GridGeometry
 from aiobt_services.planner.planning import plan
 from aiobt_services.planner.reference import dijkstra, step_weights

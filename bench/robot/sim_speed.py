@@ -21,12 +21,12 @@ from collections.abc import Callable
 
 import numpy as np
 import numpy.typing as npt
+
+from aiobt.msgs import LaserScan, Msg
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.runner import SimRunner
 from aiobt_services.robot.sim import Simulation
 from aiobt_services.robot.worlds import OFFICE
-
-from aiobt.msgs import LaserScan, Msg
 
 
 class JsonSink:

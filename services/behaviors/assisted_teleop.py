@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import STOP, Pose2D, Velocity, integrate_arc
 

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from enum import IntEnum
 
-from aiobt_services.controller.collision import CollisionChecker
-
 from aiobt.msgs import AssistedTeleop as AssistedTeleopAction
 from aiobt.msgs import BackUp, DriveOnHeading, Spin, Wait
+from aiobt_services.controller.collision import CollisionChecker
 
 from .assisted_teleop import AssistedTeleop
 from .base import BehaviorInputError, Outcome, Safety

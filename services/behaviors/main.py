@@ -14,10 +14,9 @@ import logging
 import math
 import signal
 
+from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
 from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
-
-from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 
 from .base import Safety
 from .service import BehaviorOptions, BehaviorService

@@ -15,15 +15,14 @@ from dataclasses import dataclass
 from enum import IntEnum
 from typing import Any, Protocol
 
-from aiobt_services.controller.collision import CollisionChecker
-from aiobt_services.controller.geometry import STOP, Velocity
-from aiobt_services.controller.local_costmap import FrameShift, LocalCostmap, frame_transform
-from aiobt_services.controller.robot_io import RobotTracker, sleep_bounded, twist_of
-
 from aiobt.core.clock import Clock
 from aiobt.msgs import AssistedTeleop as AssistedTeleopAction
 from aiobt.msgs import BackUp, DriveOnHeading, Empty, Msg, Spin, Twist, Wait
 from aiobt.transport import Bus, GoalHandle, Publisher
+from aiobt_services.controller.collision import CollisionChecker
+from aiobt_services.controller.geometry import STOP, Velocity
+from aiobt_services.controller.local_costmap import FrameShift, LocalCostmap, frame_transform
+from aiobt_services.controller.robot_io import RobotTracker, sleep_bounded, twist_of
 
 from . import goals
 from .assisted_teleop import AssistedTeleop

@@ -11,10 +11,10 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from aiobt_services.costmap import InflationParams, ObstacleParams, RollingCostmap, Scan
 from numpy.typing import NDArray
 
 from aiobt.msgs import LaserScan
+from aiobt_services.costmap import InflationParams, ObstacleParams, RollingCostmap, Scan
 
 from .collision import NO_INFORMATION, CostQuery
 from .geometry import FloatArray, Pose2D

@@ -16,9 +16,8 @@ import logging
 import math
 import signal
 
-from aiobt_services.costmap import InflationParams, ObstacleParams
-
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt_services.costmap import InflationParams, ObstacleParams
 
 from .actions import ActionOptions, PlannerActions
 from .coverage import CoverageParams

@@ -11,6 +11,7 @@ import itertools
 import math
 
 import numpy as np
+
 from aiobt_services.costmap import CostGrid
 
 from .traversal import SearchParams, Traversal

@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+
 from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, points_cost
 
 from .planning import Pose2D

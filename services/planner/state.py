@@ -6,6 +6,7 @@ import logging
 import math
 from dataclasses import dataclass, field
 
+from aiobt.msgs import LaserScan, OccupancyGrid, PoseStamped
 from aiobt_services.costmap import (
     CostGrid,
     Costmap,
@@ -14,8 +15,6 @@ from aiobt_services.costmap import (
     ObstacleParams,
     Scan,
 )
-
-from aiobt.msgs import LaserScan, OccupancyGrid, PoseStamped
 
 from .planning import Pose2D
 from .traversal import SearchParams, Traversal

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
+
 from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, GridGeometry
 
 from .errors import PlanningCancelled, PlanningError

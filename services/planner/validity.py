@@ -6,6 +6,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+
 from aiobt_services.costmap import NO_INFORMATION, CostGrid
 
 from .planning import Pose2D

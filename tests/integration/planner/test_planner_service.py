@@ -8,7 +8,6 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 import pytest
-from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
 from aiobt.msgs import (
     ClearCostmapResponse,
@@ -22,6 +21,7 @@ from aiobt.msgs import (
 )
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
+from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]

@@ -8,16 +8,6 @@ import time
 from collections.abc import Callable, Sequence
 
 import pytest
-from aiobt_services.robot.messages import (
-    Ack,
-    BumperEvent,
-    RemoveObstacle,
-    Snapshot,
-    SnapshotRequest,
-    SpawnObstacle,
-    StepReply,
-    StepRequest,
-)
 
 from aiobt.msgs import (
     BatteryState,
@@ -31,6 +21,16 @@ from aiobt.msgs import (
 )
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings, ServiceError
+from aiobt_services.robot.messages import (
+    Ack,
+    BumperEvent,
+    RemoveObstacle,
+    Snapshot,
+    SnapshotRequest,
+    SpawnObstacle,
+    StepReply,
+    StepRequest,
+)
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 

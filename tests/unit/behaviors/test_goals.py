@@ -5,8 +5,6 @@ from __future__ import annotations
 import math
 
 import pytest
-from aiobt_services.behaviors import BehaviorInputError, Outcome, Safety, goals
-from aiobt_services.controller.collision import CollisionChecker, GridCostmap
 
 from aiobt.msgs import (
     AssistedTeleopError,
@@ -20,6 +18,8 @@ from aiobt.msgs import (
     Wait,
     WaitError,
 )
+from aiobt_services.behaviors import BehaviorInputError, Outcome, Safety, goals
+from aiobt_services.controller.collision import CollisionChecker, GridCostmap
 
 CHECKER = CollisionChecker(GridCostmap.empty(2.0, 2.0, 0.05, (-1.0, -1.0)))
 

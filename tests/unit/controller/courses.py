@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import PlanarPath, Pose2D
 from aiobt_services.controller.session import (

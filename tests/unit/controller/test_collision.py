@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from aiobt_services.controller.base import ControlContext
 from aiobt_services.controller.collision import (
     INSCRIBED,

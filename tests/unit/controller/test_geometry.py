@@ -5,11 +5,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
 from aiobt_services.behaviors import Inputs, SpinBehavior
 from aiobt_services.controller.geometry import Pose2D, Velocity, integrate_arc, wrap_angle
 from aiobt_services.controller.unicycle import Unicycle
-from hypothesis import given
-from hypothesis import strategies as st
 
 finite = st.floats(-50.0, 50.0, allow_nan=False)
 speeds = st.floats(-1.0, 1.0, allow_nan=False)

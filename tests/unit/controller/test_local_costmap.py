@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 import pytest
+
+from aiobt.msgs import FollowPath, FollowPathError, LaserScan, Path, PoseStamped
 from aiobt_services.controller.collision import INSCRIBED, LETHAL, NO_INFORMATION, CostQuery
 from aiobt_services.controller.errors import ControllerError, FollowPathCode
 from aiobt_services.controller.geometry import Pose2D
 from aiobt_services.controller.local_costmap import FrameShift, LocalCostmap, frame_transform
 from aiobt_services.controller.service import path_of, request_of, result_of
-
-from aiobt.msgs import FollowPath, FollowPathError, LaserScan, Path, PoseStamped
 
 
 def _scan_with_wall_ahead(distance: float) -> LaserScan:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 import pytest
+
 from aiobt_services.behaviors.main import add_arguments as add_behavior_arguments
 from aiobt_services.controller.main import add_arguments, config_from, costmap_from
 

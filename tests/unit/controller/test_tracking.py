@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from aiobt_services.controller.geometry import Pose2D, wrap_angle
 from aiobt_services.controller.session import ControllerConfig
 

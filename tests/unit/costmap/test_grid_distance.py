@@ -6,9 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from aiobt_services.costmap import GridGeometry, distance_transform
 from hypothesis import given, settings
 from hypothesis import strategies as st
+
+from aiobt_services.costmap import GridGeometry, distance_transform
 
 
 def test_world_cell_round_trip() -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 from aiobt_services.costmap import (
     FREE,
     LETHAL,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+
 from aiobt_services.costmap import LETHAL, CostGrid, Costmap, GridGeometry, InflationParams
 
 

@@ -8,10 +8,6 @@ import time
 
 import numpy as np
 import pytest
-from aiobt_services.costmap import LETHAL, NO_INFORMATION
-from aiobt_services.planner.actions import ActionOptions, PlannerActions
-from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
-from aiobt_services.planner.traversal import SearchParams
 
 from aiobt.msgs import (
     ComputeCoveragePath,
@@ -25,6 +21,10 @@ from aiobt.msgs import (
     PoseStamped,
     SmoothPath,
 )
+from aiobt_services.costmap import LETHAL, NO_INFORMATION
+from aiobt_services.planner.actions import ActionOptions, PlannerActions
+from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
+from aiobt_services.planner.traversal import SearchParams
 
 To = ComputePathToPose.ErrorCode
 Through = ComputePathThroughPoses.ErrorCode

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION, points_cost
 from aiobt_services.planner.coverage import CoverageError, CoverageParams, plan_coverage
 from aiobt_services.planner.planning import path_length

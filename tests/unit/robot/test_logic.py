@@ -6,14 +6,15 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
 from aiobt_services.robot.drive import DriveController, DriveLimits
 from aiobt_services.robot.geometry import Pose2D, merge_boxes, wrap_angle
 from aiobt_services.robot.mapfile import Dock, MapInfo
 from aiobt_services.robot.obstacles import Motion, ObstacleError, ObstacleSpec, validate
 from aiobt_services.robot.sensors import Battery, NoiseConfig, WheelOdometry
-from hypothesis import given, settings
-from hypothesis import strategies as st
-from hypothesis.extra.numpy import arrays
 
 
 @settings(max_examples=60, deadline=None)

@@ -6,9 +6,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from PIL import Image
+
 from aiobt_services.robot.mapfile import MapError, MapInfo, load_map, save_map
 from aiobt_services.robot.worlds import OFFICE, SMALL
-from PIL import Image
 
 
 def write_map(tmp_path: Path, pixels: list[list[int]], **fields: object) -> Path:

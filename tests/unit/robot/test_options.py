@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 
 import pytest
+
 from aiobt_services.robot.options import add_robot_arguments, sim_config
 
 

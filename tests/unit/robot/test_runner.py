@@ -9,6 +9,11 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
+from PIL import Image
+
+from aiobt.core.clock import ManualClock
+from aiobt.msgs import Clock as ClockMsg
+from aiobt.msgs import Empty, LaserScan, Msg, OccupancyGrid, PoseStamped, Twist, Vector3
 from aiobt_services.robot import convert
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.messages import (
@@ -22,11 +27,6 @@ from aiobt_services.robot.runner import Rates, SimRunner
 from aiobt_services.robot.service import RobotService
 from aiobt_services.robot.sim import Simulation
 from aiobt_services.robot.worlds import SMALL
-from PIL import Image
-
-from aiobt.core.clock import ManualClock
-from aiobt.msgs import Clock as ClockMsg
-from aiobt.msgs import Empty, LaserScan, Msg, OccupancyGrid, PoseStamped, Twist, Vector3
 
 
 class Recorder:

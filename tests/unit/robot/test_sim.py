@@ -7,6 +7,8 @@ from collections.abc import Iterator
 
 import numpy as np
 import pytest
+from PIL import Image
+
 from aiobt_services.robot.drive import DriveLimits
 from aiobt_services.robot.geometry import Pose2D
 from aiobt_services.robot.mapfile import load_map
@@ -15,7 +17,6 @@ from aiobt_services.robot.sensors import BatteryConfig, LidarConfig, NoiseConfig
 from aiobt_services.robot.sim import PoseError, SimConfig, Simulation
 from aiobt_services.robot.snapshot import render_png
 from aiobt_services.robot.worlds import SMALL
-from PIL import Image
 
 INNER_EAST_WALL = 2.5 - 0.15
 
