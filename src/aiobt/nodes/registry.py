@@ -18,6 +18,7 @@ from aiobt.nodes.conditions.error_codes import (
     WouldARouteRecoveryHelp,
     WouldASmootherRecoveryHelp,
 )
+from aiobt.nodes.conditions.goal_updated import GlobalUpdatedGoal, GoalUpdated
 from aiobt.nodes.conditions.script_condition import ScriptCondition
 from aiobt.nodes.conditions.time_expired import PathExpiringTimer, TimeExpired
 from aiobt.nodes.control.fallback import AsyncFallback, Fallback
@@ -70,7 +71,7 @@ BUILTINS: tuple[type[TreeNode], ...] = (
     WasEntryUpdated, LoopInt, LoopDouble, LoopString, LoopBool, TryCatch,
     # -- Nav2 generic control flow and conditions (issue 3) --
     PipelineSequence, RecoveryNode, RoundRobin, NonblockingSequence, PersistentSequence,
-    RateController, SingleTrigger, GoalUpdatedController,
+    RateController, SingleTrigger, GoalUpdatedController, GoalUpdated, GlobalUpdatedGoal,
     AreErrorCodesPresent, WouldAControllerRecoveryHelp, WouldAPlannerRecoveryHelp,
     WouldASmootherRecoveryHelp, WouldARouteRecoveryHelp, TimeExpired, PathExpiringTimer,
 )  # fmt: skip

@@ -1,0 +1,76 @@
+"""GoalUpdated and GlobalUpdatedGoal, including Nav2's reactive-parent quirk."""
+
+from __future__ import annotations
+
+from aiobt.core.status import Status
+from aiobt.core.tree import Tree
+from tests.unit.nodes.test_nav2_support import Script, build
+
+S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
+
+# Nav2's shape: re-plan when the goal changes, while following (RUNNING).
+REACTIVE = """
+<ReactiveFallback>
+  <{condition}/>
+  <Leaf name="Follow"/>
+</ReactiveFallback>"""
+
+# the same condition under a plain Sequence, ticked on its own
+ALONE = """
+<Sequence>
+  <Leaf name="Step"/>
+  <{condition}/>
+</Sequence>"""
+
+
+async def _results(tree: Tree, goals: list[str]) -> list[Status]:
+    results = []
+    for goal in goals:
+        tree.root_blackboard.set("goal", goal)
+        results.append(await tree.tick_exactly_once())
+    return results
+
+
+async def test_goal_updated_fires_once_per_change_when_its_parent_keeps_it() -> None:
+    script = Script()
+    # a 2-child IfThenElse leaves a failed condition un-reset (BT.CPP), so its memory survives
+    tree = build(script, '<IfThenElse><GoalUpdated/><Leaf name="Replan"/></IfThenElse>')
+    assert await _results(tree, ["a", "b", "b", "b", "c"]) == [F, S, F, F, S]
+    assert script.ticks("Replan") == 2
+
+
+async def test_goal_updated_under_a_reactive_parent_never_fires() -> None:
+    script = Script()
+    script.set("Follow", "R")
+    tree = build(script, REACTIVE.format(condition="GoalUpdated"))
+    # the goal changes on every tick, yet the reset-every-tick parent hides it (Nav2's quirk)
+    assert await _results(tree, ["a", "b", "c", "d"]) == [R, R, R, R]
+    assert script.ticks("Follow") == 4
+    assert script.halts("Follow") == 0
+
+
+async def test_global_updated_goal_fires_under_a_reactive_parent() -> None:
+    script = Script()
+    script.set("Follow", "R")
+    tree = build(script, REACTIVE.format(condition="GlobalUpdatedGoal"))
+    assert await _results(tree, ["a", "a", "b", "b"]) == [R, R, S, R]
+    # the goal change made the fallback succeed, which halted the running follower
+    assert script.halts("Follow") == 1
+
+
+async def test_goal_updated_compares_goal_and_goals_from_ports() -> None:
+    script = Script()
+    tree = build(
+        script,
+        '<IfThenElse><GoalUpdated goal="{target}" goals="{targets}"/>'
+        '<Leaf name="Replan"/></IfThenElse>',
+    )
+    bb = tree.root_blackboard
+    bb.set("target", "a")
+    bb.set("targets", "x;y")
+    bb.set("goal", "ignored: the ports are set")
+    assert await tree.tick_exactly_once() is F  # first tick: remembers
+    bb.set("goal", "changed, but not what the ports read")
+    assert await tree.tick_exactly_once() is F
+    bb.set("targets", "x;z")
+    assert await tree.tick_exactly_once() is S
