@@ -47,7 +47,7 @@ class GoalUpdated(ConditionNode):
     def _changed(self) -> bool:
         goal = self.get_input_or_blackboard("goal", None)
         goals = self.get_input_or_blackboard("goals", None)
-        changed = goal != self._goal or goals != self._goals
+        changed = bool(goal != self._goal or goals != self._goals)
         self._goal, self._goals = goal, goals
         return changed
 
