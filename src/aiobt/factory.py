@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import difflib
 import enum
 import inspect
 from collections.abc import Callable, Iterable
@@ -259,7 +260,16 @@ class BehaviorTreeFactory:
                 f"no main_tree_to_execute and not exactly one BehaviorTree (found: {found})",
                 file=where,
             )
-        return self._build_tree(main, {**self.definitions, **own}, blackboard, clock)
+        definitions = {**self.definitions, **own}
+        if main not in definitions:
+            known = sorted(definitions)
+            raise TreeLoadError(
+                f'main_tree_to_execute="{main}" names no BehaviorTree'
+                f"{_did_you_mean(main, known)}; known: {', '.join(known) or 'none'}",
+                file=document.file,
+                line=document.line,
+            )
+        return self._build_tree(main, definitions, blackboard, clock)
 
     # -- Groot2 -----------------------------------------------------------------------
     def tree_nodes_model_xml(self, *, include_builtins: bool = False) -> str:
@@ -301,3 +311,8 @@ def _own_definitions(document: ParsedDocument) -> dict[str, TreeDefinition]:
             )
         own[definition.tree_id] = definition
     return own
+
+
+def _did_you_mean(word: str, known: list[str]) -> str:
+    close = difflib.get_close_matches(word, known, n=1, cutoff=0.6)
+    return f" (did you mean [{close[0]}]?)" if close else ""

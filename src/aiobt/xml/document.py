@@ -52,6 +52,8 @@ class ParsedDocument:
     trees: list[TreeDefinition] = field(default_factory=list)
     main_tree_to_execute: str | None = None
     models: list[Element] = field(default_factory=list)
+    file: str | None = None
+    line: int | None = None  # of <root>, where main_tree_to_execute is written
 
 
 _PARSER = etree.XMLParser(remove_comments=True, remove_pis=True, resolve_entities=False)
@@ -70,7 +72,9 @@ def parse_text(
             f"the top element must be <root>, not <{root.tag}>", file=file, line=line_of(root)
         )
     version = _format_version(root, file)
-    document = ParsedDocument(main_tree_to_execute=root.get("main_tree_to_execute"))
+    document = ParsedDocument(
+        main_tree_to_execute=root.get("main_tree_to_execute"), file=file, line=line_of(root)
+    )
     for element in root:
         if not isinstance(element.tag, str):
             continue
