@@ -10,14 +10,22 @@ import numpy as np
 import pytest
 
 from aiobt.msgs import (
+    ClearCostmapAroundPose,
+    ClearCostmapAroundRobot,
+    ClearCostmapExceptRegion,
     ClearCostmapResponse,
     ClearEntireCostmap,
+    ComputeCoveragePath,
+    ComputePathThroughPoses,
     ComputePathToPose,
+    Goals,
     GoalState,
     IsPathValid,
     OccupancyGrid,
     Path,
+    Point,
     PoseStamped,
+    SmoothPath,
 )
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
@@ -150,7 +158,50 @@ async def test_error_codes_and_cancel_over_the_wire(
     slow = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(19.0, 19.0), planner_id="ThetaStar")
     handle = await client.send_goal(slow, server_timeout=5.0)
     await asyncio.sleep(0.1)
+    # the other servers answer while the long search runs in its worker thread
+    through = await through_poses(bus, [(5.0, 15.0), (5.0, 10.0)])
+    assert through.error_code == 0, through.error_msg
+    assert not handle.done
     await handle.cancel(timeout=2.0)
     assert handle.status is GoalState.CANCELED
     assert (await plan(bus, 9.0, 9.0)).error_code == 0  # the server is still healthy
     assert math.isfinite(result.planning_time)
+    await smooth_coverage_and_clearing(bus, result.path)
+
+
+async def through_poses(
+    bus: Bus, points: list[tuple[float, float]]
+) -> ComputePathThroughPoses.Result:
+    client = bus.action_client("compute_path_through_poses", ComputePathThroughPoses)
+    goals = Goals(goals=[PoseStamped.from_xy_yaw(x, y) for x, y in points])
+    handle = await client.send_goal(ComputePathThroughPoses.Goal(goals=goals), server_timeout=5.0)
+    result = await handle.result(timeout=5.0)
+    if result.error_code == 0:
+        xy = result.path.xy_array()
+        for x, y in points:  # every via point is on the path
+            assert np.hypot(xy[:, 0] - x, xy[:, 1] - y).min() < 1e-6
+    return result
+
+
+async def smooth_coverage_and_clearing(bus: Bus, path: Path) -> None:
+    """SmoothPath, ComputeCoveragePath and the other clearing services answer over the wire."""
+    smoother = bus.action_client("smooth_path", SmoothPath)
+    smoothed = await (
+        await smoother.send_goal(SmoothPath.Goal(path=path), server_timeout=5.0)
+    ).result(timeout=5.0)
+    assert smoothed.error_code == 0, smoothed.error_msg
+    assert len(smoothed.path.poses) == len(path.poses)
+    coverage = bus.action_client("compute_coverage_path", ComputeCoveragePath)
+    field = [[Point(x=x, y=y) for x, y in [(1.0, 11.0), (8.0, 11.0), (8.0, 15.0), (1.0, 15.0)]]]
+    covered = await (
+        await coverage.send_goal(ComputeCoveragePath.Goal(polygons=field), server_timeout=5.0)
+    ).result(timeout=5.0)
+    assert covered.error_code == 0, covered.error_msg
+    assert len(covered.coverage_path.poses) == 2 * 6  # 6 swaths, 0.5 m apart, 0.5 m headland
+    region = ClearCostmapExceptRegion.Request(reset_distance=2.0)
+    for kind in (ClearCostmapExceptRegion, ClearCostmapAroundRobot):
+        reply = await bus.call(kind.service_name("global_costmap"), region, ClearCostmapResponse)
+        assert reply.success, reply.message
+    around = ClearCostmapAroundPose.Request(pose=PoseStamped.from_xy_yaw(5.0, 5.0))
+    name = ClearCostmapAroundPose.service_name("global_costmap")
+    assert (await bus.call(name, around, ClearCostmapResponse)).success
