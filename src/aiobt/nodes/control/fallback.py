@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-from aiobt.core.composite import ControlNode
+from aiobt.core.composite import ControlNode, reset_finished
 from aiobt.core.status import Status
 
 IDLE, RUNNING, SUCCESS, FAILURE, SKIPPED = (
@@ -61,7 +61,8 @@ class Fallback(ControlNode):
             if status is RUNNING:
                 return RUNNING
             if status is SUCCESS:
-                await self.reset_children()
+                if not reset_finished(children):
+                    await self.reset_children()
                 self._current = 0
                 return SUCCESS
             if status is FAILURE:
@@ -77,7 +78,8 @@ class Fallback(ControlNode):
             else:
                 raise self.logic_error(f"child {child.path} returned IDLE")
         all_skipped = self._skipped == count
-        await self.reset_children()
+        if not reset_finished(children):
+            await self.reset_children()
         self._current = self._skipped = 0
         return SKIPPED if all_skipped else FAILURE
 

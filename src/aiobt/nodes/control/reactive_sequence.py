@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from aiobt.core.composite import ControlNode, reset_node
+from aiobt.core.composite import ControlNode, reset_finished, reset_node
 from aiobt.core.status import Status
 
 RUNNING, SUCCESS, FAILURE, SKIPPED = Status.RUNNING, Status.SUCCESS, Status.FAILURE, Status.SKIPPED
@@ -23,7 +23,8 @@ class ReactiveSequence(ControlNode):
         if self._status is not RUNNING:
             self._set_status(RUNNING)
         all_skipped = True
-        for index, child in enumerate(self.children):
+        children = self.children
+        for index, child in enumerate(children):
             # inlined child.tick(): one coroutine frame per async child, none per sync one
             if child.is_sync:
                 status = child.tick_sync()
@@ -34,10 +35,12 @@ class ReactiveSequence(ControlNode):
             else:
                 status = await child.tick()
             if status is RUNNING:
-                await self.halt_others(index)
+                if not reset_finished(children, index):
+                    await self.halt_others(index)
                 return RUNNING
             if status is FAILURE:
-                await self.reset_children()
+                if not reset_finished(children):
+                    await self.reset_children()
                 return FAILURE
             if status is SKIPPED:
                 await reset_node(child)
@@ -45,5 +48,6 @@ class ReactiveSequence(ControlNode):
                 all_skipped = False
             else:
                 raise self.logic_error(f"child {child.path} returned IDLE")
-        await self.reset_children()
+        if not reset_finished(children):
+            await self.reset_children()
         return SKIPPED if all_skipped else SUCCESS

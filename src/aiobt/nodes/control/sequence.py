@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-from aiobt.core.composite import ControlNode
+from aiobt.core.composite import ControlNode, reset_finished
 from aiobt.core.status import Status
 
 IDLE, RUNNING, SUCCESS, FAILURE, SKIPPED = (
@@ -68,7 +68,8 @@ class Sequence(ControlNode):
             if status is RUNNING:
                 return RUNNING
             if status is FAILURE:
-                await self.reset_children()
+                if not reset_finished(children):
+                    await self.reset_children()
                 self._current = 0
                 return FAILURE
             if status is SKIPPED:
@@ -78,7 +79,8 @@ class Sequence(ControlNode):
             else:
                 raise self.logic_error(f"child {child.path} returned IDLE")
         all_skipped = self._skipped == count
-        await self.reset_children()
+        if not reset_finished(children):
+            await self.reset_children()
         self._current = self._skipped = 0
         return SKIPPED if all_skipped else SUCCESS
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from aiobt.core.composite import DecoratorNode
+from aiobt.core.composite import DecoratorNode, reset_if_finished
 from aiobt.core.status import Status
 
 RUNNING, SUCCESS, FAILURE, IDLE = Status.RUNNING, Status.SUCCESS, Status.FAILURE, Status.IDLE
@@ -29,10 +29,12 @@ class Inverter(DecoratorNode):
         else:
             status = await child.tick()
         if status is SUCCESS:
-            await self.reset_child()
+            if not reset_if_finished(child):
+                await self.reset_child()
             return FAILURE
         if status is FAILURE:
-            await self.reset_child()
+            if not reset_if_finished(child):
+                await self.reset_child()
             return SUCCESS
         if status is IDLE:
             raise self.logic_error("child returned IDLE")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-from aiobt.core.composite import DecoratorNode
+from aiobt.core.composite import DecoratorNode, reset_if_finished
 from aiobt.core.ports import input_port
 from aiobt.core.status import Status
 
@@ -71,7 +71,8 @@ class RetryUntilSuccessful(DecoratorNode):
                     return RUNNING
             elif status is finished:
                 self._count = 0
-                await self.reset_child()
+                if not reset_if_finished(child):
+                    await self.reset_child()
                 return finished
             elif status is RUNNING:
                 return RUNNING
