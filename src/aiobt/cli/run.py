@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import importlib
 import logging
 import sys
@@ -26,7 +27,9 @@ from aiobt.core.manifest import TestNodeConfig
 from aiobt.core.node import TreeNode
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
+from aiobt.display import render
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.loggers import BtlogLogger, JsonlLogger, SqliteLogger, TreeStatistics
 from aiobt.nodes.subtree import SubTreeNode
 
 log = logging.getLogger("aiobt.cli.run")
@@ -71,6 +74,12 @@ def add_tree_arguments(parser: argparse.ArgumentParser) -> None:
         "--trace", choices=("all", "leaves", "none"), default="leaves",
         help="which status changes to print (default: leaves)",
     )  # fmt: skip
+    parser.add_argument("--btlog", metavar="FILE", help="write a Groot2-replayable .btlog")
+    parser.add_argument("--jsonl", metavar="FILE", help="write every transition as JSON Lines")
+    parser.add_argument("--sqlite", metavar="FILE", help="write BT.CPP's SQLite log (.db3)")
+    parser.add_argument(
+        "--stats", action="store_true", help="print the tree with per-node tick counts at the end"
+    )
 
 
 @dataclass(slots=True)
@@ -177,15 +186,33 @@ async def run_tree(tree: Tree, args: argparse.Namespace, out: TextIO) -> RunRepo
     if args.trace != "none":
         tree.add_status_listener(transition_printer(tree, args.trace, out))
     start = tree.clock.now()
-    try:
-        if args.max_time is None:
-            status = await tree.tick_while_running(args.period)
-        else:
-            status = await _bounded(tree, args.period, args.max_time)
-    finally:
-        if tree.status is Status.RUNNING:
-            await tree.halt_tree("aiobt run stopped")
+    with contextlib.ExitStack() as loggers:
+        stats = _attach_loggers(tree, args, loggers)
+        try:
+            if args.max_time is None:
+                status = await tree.tick_while_running(args.period)
+            else:
+                status = await _bounded(tree, args.period, args.max_time)
+        finally:
+            if tree.status is Status.RUNNING:
+                await tree.halt_tree("aiobt run stopped")
+        if stats is not None:
+            out.write(render(tree, stats=stats) + "\n")
     return RunReport(status, tree.clock.now() - start, transitions)
+
+
+def _attach_loggers(
+    tree: Tree, args: argparse.Namespace, stack: contextlib.ExitStack
+) -> TreeStatistics | None:
+    if getattr(args, "btlog", None):
+        stack.enter_context(BtlogLogger(tree, args.btlog))
+    if getattr(args, "jsonl", None):
+        stack.enter_context(JsonlLogger(tree, args.jsonl))
+    if getattr(args, "sqlite", None):
+        stack.enter_context(SqliteLogger(tree, args.sqlite))
+    if getattr(args, "stats", False):
+        return stack.enter_context(TreeStatistics(tree))
+    return None
 
 
 async def _bounded(tree: Tree, period: float, max_time: float) -> Status:

@@ -109,3 +109,28 @@ def test_nodes_model_of_a_plugin_is_xml_with_its_ports(capsys: pytest.CaptureFix
     assert "<TreeNodesModel>" in out
     assert '<Action ID="MoveTo"' in out
     assert 'name="goal"' in out
+
+
+def test_run_writes_the_requested_logs(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+    import sqlite3
+
+    tree = tmp_path / "t.xml"
+    tree.write_text(
+        '<root BTCPP_format="4"><BehaviorTree ID="T">'
+        '<Sequence><AlwaysSuccess/><Sleep msec="200"/></Sequence></BehaviorTree></root>'
+    )
+    logs = [tmp_path / "t.btlog", tmp_path / "t.jsonl", tmp_path / "t.db3"]
+    args = ["run", str(tree), "--speed", "50", "--btlog", str(logs[0]), "--jsonl", str(logs[1])]
+    assert main([*args, "--sqlite", str(logs[2]), "--stats"]) == 0
+    assert logs[0].read_bytes().startswith(b"BTCPP4-FileLogger2")
+    rows = [json.loads(line) for line in logs[1].read_text().splitlines()]
+    assert [(r["path"], r["to"]) for r in rows if r["path"].endswith("Sleep")] == [
+        ("T/Sequence/Sleep", "RUNNING"),
+        ("T/Sequence/Sleep", "SUCCESS"),
+        ("T/Sequence/Sleep", "IDLE"),
+    ]
+    with sqlite3.connect(logs[2]) as db:
+        assert db.execute("SELECT COUNT(*) FROM Transitions").fetchone()[0] == len(rows)
+    out = capsys.readouterr().out
+    assert "Sleep" in out  # the --stats rendering of the tree
