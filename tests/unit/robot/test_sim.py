@@ -199,3 +199,25 @@ def test_fast_base_with_long_steps_does_not_tunnel_through_walls() -> None:
     with Simulation(load_map(SMALL), SimConfig(dt=0.05, limits=limits)) as fast:
         drive(fast, 10.0, 0.0, 2.0)
         assert fast.true_pose.x < INNER_EAST_WALL
+
+
+def test_slip_makes_the_body_lag_the_wheel_odometry() -> None:
+    with Simulation(load_map(SMALL), SimConfig(noise=NoiseConfig(slip=0.2))) as slippy:
+        drive(slippy, 0.5, 0.0, 2.0)
+        drive(slippy, 0.0, 0.0, 1.0)
+        wheels, body = slippy.odometry.pose.x, slippy.true_pose.x
+    assert wheels == pytest.approx(1.0, abs=0.03)
+    assert body == pytest.approx(0.8 * wheels, abs=0.02)
+
+
+def test_bumping_an_obstacle_names_it_and_move_outside_is_refused(sim: Simulation) -> None:
+    sim.spawn(ObstacleSpec("crate", "box", Pose2D(1.0, 0.0), size_x=0.4, size_y=0.8))
+    events = drive(sim, 0.5, 0.0, 4.0)
+    pressed = [e for e in events if e.pressed]  # type: ignore[attr-defined]
+    assert [e.other for e in pressed] == ["crate"]  # type: ignore[attr-defined]
+    assert sim.true_pose.x == pytest.approx(0.8 - sim.config.robot.radius, abs=0.03)
+    with pytest.raises(ObstacleError, match="outside the world"):
+        sim.move("crate", Pose2D(2.6, 0.0))
+    with pytest.raises(ObstacleError, match="overlap the robot"):
+        sim.move("crate", Pose2D(sim.true_pose.x + 0.1, 0.0))
+    assert sim.obstacle_pose("crate") == Pose2D(1.0, 0.0)  # a refused move changes nothing
