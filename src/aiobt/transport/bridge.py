@@ -1,7 +1,8 @@
 """Zenoh callbacks (on Zenoh threads) into the asyncio loop, and payload checks.
 
-Callbacks are registered with ``indirect=False`` (no extra Python thread) and do
-only ``loop.call_soon_threadsafe``: nothing blocks a Zenoh thread.
+Callbacks are registered with ``indirect=False`` (no extra Python thread) and only
+queue work for the loop (at most one ``call_soon_threadsafe`` per burst): nothing
+blocks a Zenoh thread.
 """
 
 from __future__ import annotations

@@ -8,6 +8,9 @@ each tagged by its attachment:
 - ``feedback`` (payload: the Feedback model), any number;
 - ``result:{GoalState}`` (payload: the Result model), last; then the stream ends.
 
+A goal done within execute's first step gets its result as the only reply: a
+result or feedback before ``accepted`` implies the acceptance.
+
 An error reply means the goal payload was refused (it names the field). A
 stream that ends without a result means the server went away. Status,
 feedback and result are also published on ``status/{id}``, ``feedback/{id}``
