@@ -7,9 +7,11 @@ Precedence, lowest first (as BT.CPP's lexy grammar):
    expression, ``y`` a logical one);
 3. ``&&`` and ``||``, one level, left to right;
 4. comparisons ``== != < > <= >=``, chainable: ``1 < x < 5``;
-5. one operator family per operand of a comparison (mixing families needs
-   parentheses, as in BT.CPP): arithmetic ``+ -`` over ``* /`` over unary
-   ``-``; bitwise ``| ^`` over ``&`` over unary ``~ !``; or string ``..``.
+5. operands: arithmetic ``+ -`` over ``* /`` over unary ``-``; bitwise
+   ``| ^`` over ``&`` over unary ``~ !``; string ``..``. One expression uses
+   one of these three families, across its comparisons, ``&&``/``||`` and the
+   ``else`` part of a ternary; parentheses (and the middle of a ternary) start
+   a new expression. ``1 + 1 == 2 & 2`` is an error, as in BT.CPP.
 
 BT.CPP 4.8 groups ``+ -`` and ``* /`` from the right: ``5 - 2 + 1`` is
 ``5 - (2 + 1)`` = 2 there; this parser does the same, so scripts give the same
@@ -138,13 +140,9 @@ class _Parser:
             operands.append(self.group())
         return Compare(tuple(ops), tuple(operands), column)
 
-    # -- one operand of a comparison: a single operator family ------------------
+    # -- operands of comparisons: one operator family per expression -----------
     def group(self) -> Expr:
-        saved, self.family = self.family, None
-        try:
-            return self.binary(0)
-        finally:
-            self.family = saved
+        return self.binary(0)
 
     def use_family(self, token: Token) -> None:
         family = FAMILY[token.text]

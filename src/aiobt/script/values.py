@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -52,10 +53,24 @@ def text_to_number(text: str, enums: Mapping[str, int]) -> float:
         return 0.0
     if text in enums:
         return float(enums[text])
-    try:
-        return float(text)
-    except ValueError:
-        raise ScriptError(f"cannot convert the string {text!r} to a number") from None
+    return c_strtod(text)
+
+
+_STRTOD = re.compile(
+    r"\s*([+-]?)(?:0[xX]([0-9a-fA-F]+)|((?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|inf(?:inity)?|nan))",
+    re.IGNORECASE,
+)
+
+
+def c_strtod(text: str) -> float:
+    """The number at the start of ``text``, as C's ``strtod`` (BT.CPP's string to
+    double): leading spaces skipped, ``0x`` hex, trailing characters ignored."""
+    match = _STRTOD.match(text)
+    if match is None:
+        raise ScriptError(f"cannot convert the string {text!r} to a number")
+    sign, hex_digits, decimal = match.groups()
+    value = float(int(hex_digits, 16)) if hex_digits else float(decimal)
+    return -value if sign == "-" else value
 
 
 def truth(value: Any) -> bool:
@@ -72,11 +87,9 @@ def truth(value: Any) -> bool:
 
 
 def ternary_truth(value: Any) -> bool:
-    """The condition of ``c ? x : y``: a non-empty string, or a non-zero number."""
+    """The condition of ``c ? x : y``: a non-zero number, or a string read as one."""
     if isinstance(value, str):
-        if value:
-            return True
-        raise ScriptError("an empty string cannot be used as the condition of '?'")
+        return c_strtod(value) != 0.0  # BT.CPP reads a string condition as a number
     if is_number(value):
         return float(value) != 0.0
     raise ScriptError(f"a {describe(value)} cannot be used as the condition of '?'")

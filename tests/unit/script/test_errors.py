@@ -41,6 +41,10 @@ from aiobt.script import ScriptError, ScriptSyntaxError, compile_script, run_scr
         ("a := 1 ? 2", 11, "expected ':'"),
         ("1 := 2", 3, "left side of [:=] must be a blackboard key"),
         ("(a) + 1 = 2", 9, "left side of [=]"),
+        # one operator family per expression, across comparisons and logic
+        ("a := 1 + 1 == 2 & 2", 17, "[&] (bitwise) cannot be mixed"),
+        ("a := 1 + 1 && 1 & 1", 17, "cannot be mixed"),
+        ("a := 1 & 1 ? 2 : 3 + 3", 20, "cannot be mixed"),
     ],
 )
 def test_syntax_errors_name_the_column(source: str, column: int, fragment: str) -> None:
@@ -81,7 +85,8 @@ def run(source: str, **entries: object) -> object:
         ("x := -'x'", {}, ("[-] cannot be applied", "std::string")),
         ("x := !'x'", {}, ("[!] cannot be applied",)),
         ("x := 'a' < 1", {}, ("string 'a' to a number",)),
-        ("x := '' ? 1 : 2", {}, ("empty string",)),
+        ("x := '' ? 1 : 2", {}, ("string '' to a number",)),
+        ("x := 'yes' ? 1 : 2", {}, ("string 'yes' to a number",)),
         ("x := l == 1", {"l": [1]}, ("cannot compare", "list")),
     ],
 )

@@ -100,6 +100,10 @@ def same(got: Any, expected: Any) -> bool:
         ("'abc' == 'abc'", 1.0),
         ("'true' == 1", 1.0),
         ("'2.5' > 2", 1.0),
+        ("' 5' == 5", 1.0),  # strings read as numbers the way C's strtod does
+        ("'0x10' == 16", 1.0),
+        ("'5x' == 5", 1.0),
+        ("'1e2' == 100", 1.0),
         # string concatenation
         ("'x' .. 'y'", "xy"),
         ("'x' .. 3", "x3"),
@@ -110,10 +114,13 @@ def same(got: Any, expected: Any) -> bool:
         # ternary
         ("1 ? 'y' : 'n'", "y"),
         ("0 ? 'y' : 'n'", "n"),
-        ("'text' ? 1 : 2", 1),
+        ("'2' ? 1 : 2", 1),  # a string condition is read as a number, as BT.CPP
+        ("'0' ? 1 : 2", 2),
         ("2 ? 1 : 2", 1),
         ("1 == 1 ? 'y' : 'n'", "y"),
         ("1 ? 2 : 3 + 4", 2),
+        ("1 & 1 ? 2 + 2 : 3", 4.0),  # the middle of a ternary is a new expression
+        ("1 + 1 == (2 & 2)", 1.0),
         ("0 ? 2 : (1 ? 3 : 4)", 3),
     ],
 )
