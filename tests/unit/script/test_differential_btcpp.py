@@ -136,7 +136,7 @@ def operand(rng: random.Random, depth: int) -> str:
 
 
 def group(rng: random.Random, depth: int) -> str:
-    ops = rng.choice(FAMILIES)
+    ops: tuple[str, ...] = rng.choice(FAMILIES)
     if rng.random() < 0.1:  # sometimes mix families on purpose: a load error in both
         ops = ops + rng.choice(FAMILIES)
     parts = [operand(rng, depth)]
