@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-import fnmatch
+import functools
+import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -59,6 +60,14 @@ class TestNodeConfig:
 Substitution = str | TestNodeConfig
 
 
+@functools.lru_cache(maxsize=256)
+def _wildcard(pattern: str) -> re.Pattern[str]:
+    """BT.CPP's wildcards: ``*`` any text, ``?`` one character; everything else,
+    brackets included (``Sequence[main]`` in node paths), is literal."""
+    parts = (".*" if c == "*" else "." if c == "?" else re.escape(c) for c in pattern)
+    return re.compile("".join(parts), re.DOTALL)
+
+
 @dataclass(slots=True)
 class SubstitutionRules:
     """Wildcard patterns over node paths, names or IDs, mapped to replacements."""
@@ -70,7 +79,8 @@ class SubstitutionRules:
 
     def match(self, path: str, name: str, node_id: str) -> Substitution | None:
         for pattern, replacement in self.rules:
-            if any(fnmatch.fnmatchcase(text, pattern) for text in (path, name, node_id)):
+            regex = _wildcard(pattern)
+            if any(regex.fullmatch(text) for text in (path, name, node_id)):
                 return replacement
         return None
 
