@@ -98,4 +98,4 @@ def test_wildcards_are_star_and_question_mark_only(bt_factory: BehaviorTreeFacto
 
 
 def test_test_node_config_is_not_collected():
-    assert TestNodeConfig.__test__ is False  # type: ignore[attr-defined]
+    assert TestNodeConfig.__test__ is False
