@@ -3,8 +3,12 @@
 Rows run along the field's longest boundary edge, ``row_spacing`` apart,
 starting half a spacing inside the headland. Each row is cut by the field
 (outer boundary minus cut-outs, even-odd rule) and shortened by the headland
-width at both ends; swaths alternate direction and are joined by straight
-turn legs into one drivable path.
+width at both ends. Row pieces are grouped into boustrophedon cells (a cut-out
+splits a row: a new cell starts), each cell is covered back and forth with
+straight turns, and cells follow one another nearest-first, joined by a corner
+along an already covered row, so the route does not cross a cut-out. Limit:
+when no single covered row links two cells (e.g. the arms of a U), the link
+is a straight leg that may leave the field.
 """
 
 from __future__ import annotations
@@ -84,19 +88,17 @@ def plan_coverage(
     local = [ring @ to_local for ring in rings]
     low, high = local[0][:, 1].min(), local[0][:, 1].max()
     first = low + params.headland_width + params.row_spacing / 2
-    swaths: list[tuple[Point2D, Point2D]] = []
-    for k, y in enumerate(
-        np.arange(first, high - params.headland_width + 1e-9, params.row_spacing)
-    ):
+    rows: list[tuple[float, list[tuple[float, float]]]] = []
+    for y in np.arange(first, high - params.headland_width + 1e-9, params.row_spacing):
         xs = _crossings(local, float(y))
         pieces = [
             (x0 + params.headland_width, x1 - params.headland_width)
             for x0, x1 in zip(xs[::2], xs[1::2], strict=False)
             if x1 - x0 > 2 * params.headland_width + 1e-9
         ]
-        if k % 2:
-            pieces = [(x1, x0) for x0, x1 in reversed(pieces)]
-        swaths.extend(((x0, float(y)), (x1, float(y))) for x0, x1 in pieces)
+        if pieces:
+            rows.append((float(y), pieces))
+    swaths, route = _ordered_swaths(_cells(rows))
     if not swaths:
         raise CoverageError("INVALID_REQUEST", "the field is too small for one swath")
     back = to_local.T
@@ -104,7 +106,81 @@ def plan_coverage(
         (tuple((np.array(a) @ back).tolist()), tuple((np.array(b) @ back).tolist()))
         for a, b in swaths
     ]
-    return Coverage(world, _dense([p for swath in world for p in swath], params.spacing))
+    path = [tuple((np.array(p) @ back).tolist()) for p in route]
+    return Coverage(world, _dense(path, params.spacing))
+
+
+Row = tuple[float, float, float]  # y, x from, x to (row-local coordinates)
+
+
+def _cells(rows: list[tuple[float, list[tuple[float, float]]]]) -> list[list[Row]]:
+    """Boustrophedon cells: runs of row pieces that overlap one-to-one row after row.
+
+    Where a cut-out splits a row (or pieces merge again) a new cell starts, so
+    a cell's rows can be joined by short turns that never cross a cut-out.
+    """
+    done: list[list[Row]] = []
+    current: list[list[Row]] = []
+    for y, pieces in rows:
+        continued: list[list[Row]] = []
+        for x0, x1 in pieces:
+            touching = [c for c in current if c[-1][1] < x1 and x0 < c[-1][2]]
+            cell: list[Row] = []
+            if len(touching) == 1:
+                prev = touching[0][-1]
+                if sum(prev[1] < b and a < prev[2] for a, b in pieces) == 1:
+                    cell = touching[0]
+            cell.append((y, x0, x1))
+            continued.append(cell)
+        done.extend(c for c in current if all(c is not n for n in continued))
+        current = continued
+    return done + current
+
+
+def _ordered_swaths(
+    cells: list[list[Row]],
+) -> tuple[list[tuple[Point2D, Point2D]], list[Point2D]]:
+    """Cell after cell (nearest entry corner next), each covered back and forth.
+
+    Returns the swaths and the route through them: between cells the route
+    turns a corner along a covered row (see :func:`_transfer`), not across a cut-out.
+    """
+    swaths: list[tuple[Point2D, Point2D]] = []
+    route: list[Point2D] = []
+    spans: dict[float, list[tuple[float, float]]] = {}
+    for y, x0, x1 in (row for cell in cells for row in cell):
+        spans.setdefault(y, []).append((x0, x1))
+    left = list(cells)
+    while left:
+        options = [(c, up, east) for c in left for up in (True, False) for east in (True, False)]
+        here = route[-1] if route else None
+        cell, up, east = options[0] if here is None else min(
+            options, key=lambda o: math.dist(here, _entry(*o))
+        )  # fmt: skip
+        left = [c for c in left if c is not cell]
+        if here is not None:
+            route.extend(_transfer(here, _entry(cell, up, east), spans))
+        for k, (y, x0, x1) in enumerate(cell if up else reversed(cell)):
+            forward = east == (k % 2 == 0)
+            swaths.append(((x0, y), (x1, y)) if forward else ((x1, y), (x0, y)))
+            route.extend(swaths[-1])
+    return swaths, route
+
+
+def _transfer(
+    here: Point2D, there: Point2D, spans: dict[float, list[tuple[float, float]]]
+) -> list[Point2D]:
+    """A corner between cells: along ``here``'s or ``there``'s row where one piece spans it."""
+    low, high = sorted((here[0], there[0]))
+    for y in (here[1], there[1]):
+        if any(x0 - 1e-9 <= low and high <= x1 + 1e-9 for x0, x1 in spans.get(y, [])):
+            return [(there[0], y) if y == here[1] else (here[0], y)]
+    return []
+
+
+def _entry(cell: list[Row], up: bool, east: bool) -> Point2D:
+    y, x0, x1 = cell[0] if up else cell[-1]
+    return (x0 if east else x1, y)
 
 
 def _dense(points: list[Point2D], spacing: float) -> list[tuple[float, float, float]]:

@@ -99,6 +99,14 @@ def test_coverage_of_a_rotated_field_with_a_hole() -> None:
         assert inside(field, *mid)
         assert not inside(hole, *mid)
         assert math.atan2(b[1] - a[1], b[0] - a[0]) % math.pi == pytest.approx(0.5)
+    # drivable: the route between swaths (and cells) never crosses the cut-out
+    # (a row may run along the cut-out's edge: only its inside, 1 cm in, counts)
+    core = [(x * c - y * s, x * s + y * c) for x, y in [(3.01, 1.01), (4.99, 1.01), (4.99, 2.99),
+                                                        (3.01, 2.99)]]  # fmt: skip
+    assert all(inside(field, x, y) and not inside(core, x, y) for x, y, _ in coverage.path)
+    steps = np.hypot(*np.diff(np.array([p[:2] for p in coverage.path]), axis=0).T)
+    assert steps.max() <= 0.25 + 1e-9
+    assert len(coverage.swaths) >= 11  # 7 rows, 4 or 5 of them split by the hole
 
 
 @pytest.mark.parametrize(
