@@ -44,6 +44,10 @@ class EntryUpdatedDecorator(DecoratorNode):
                 return self.IF_NOT_UPDATED
         status = await self.tick_child()
         self._running = status is RUNNING
+        if status.is_completed:
+            # BT.CPP's DecoratorNode::executeTick: own status first, then the child reset
+            self._set_status(status)
+            await self.reset_child()
         return status
 
     async def on_halt(self) -> None:
