@@ -73,7 +73,18 @@ def _binary(op: str, left: Compiled, right: Compiled) -> Compiled:
     return lambda bb, enums: apply(left(bb, enums), right(bb, enums))
 
 
+_FAST_COMPARE: dict[str, Callable[[float, float], bool]] = {
+    "<": float.__lt__,
+    ">": float.__gt__,
+    "<=": float.__le__,
+    ">=": float.__ge__,
+}
+_PLAIN_NUMBERS = (int, float)
+
+
 def _compare(ops: tuple[str, ...], operands: tuple[Compiled, ...]) -> Compiled:
+    if len(ops) == 1:
+        return _compare_pair(ops[0], operands[0], operands[1])
     first, rest = operands[0], tuple(zip(ops, operands[1:], strict=True))
     compare = operators.compare
 
@@ -87,6 +98,20 @@ def _compare(ops: tuple[str, ...], operands: tuple[Compiled, ...]) -> Compiled:
         return 1.0
 
     return chain
+
+
+def _compare_pair(op: str, left_fn: Compiled, right_fn: Compiled) -> Compiled:
+    """The common one-operator comparison, with a fast path for plain numbers."""
+    compare = operators.compare
+    fast = _FAST_COMPARE.get(op)
+
+    def pair(bb: Blackboard, enums: Enums) -> float:
+        left, right = left_fn(bb, enums), right_fn(bb, enums)
+        if fast is not None and type(left) in _PLAIN_NUMBERS and type(right) in _PLAIN_NUMBERS:
+            return 1.0 if fast(float(left), float(right)) else 0.0
+        return 1.0 if compare(op, left, right, enums) else 0.0
+
+    return pair
 
 
 def _ternary(condition: Compiled, then: Compiled, otherwise: Compiled) -> Compiled:
