@@ -112,6 +112,8 @@ class TreeBuilder:
             raise site.error(f"unknown node ID [{node_id}]{_suggest(node_id, self.known_ids())}")
         children = [c for c in element if isinstance(c.tag, str)]
         _check_children(manifest, len(children), site)
+        if manifest.id == "ReactiveSequence":
+            _check_reactive_children(children, site)
         node = self._instantiate(manifest, element, bb, name, path, uid, site)
         for child_element in children:
             child = self._build(child_element, definition, bb, path, stack)
@@ -248,6 +250,13 @@ def _check_required(config: NodeConfig, manifest: NodeManifest, site: _Site) -> 
     if missing:
         listed = ", ".join(f"[{name}]" for name in missing)
         raise site.error(f"[{manifest.id}] is missing its required port {listed}")
+
+
+def _check_reactive_children(children: list[Element], site: _Site) -> None:
+    """BT.CPP's load check: two AsyncSequence children of one ReactiveSequence would race."""
+    ids = [c.get("ID") if c.tag in EXPLICIT_TAGS else c.tag for c in children]
+    if ids.count("AsyncSequence") > 1:
+        raise site.error("a ReactiveSequence cannot have more than one async child (AsyncSequence)")
 
 
 def _unknown_attribute(key: str, manifest: NodeManifest) -> str:

@@ -129,6 +129,16 @@ CASES = [
         "Main/Inner",
     ),
     (
+        "reactive_two_async",
+        _doc('<BehaviorTree ID="Main">', "  <ReactiveSequence>",
+             "    <AsyncSequence><AlwaysSuccess/></AsyncSequence>",
+             '    <Control ID="AsyncSequence"><AlwaysSuccess/></Control>',
+             "  </ReactiveSequence>", "</BehaviorTree>"),
+        ["ReactiveSequence cannot have more than one async child"],
+        3,
+        "Main/ReactiveSequence",
+    ),
+    (
         "unexpected_top_element",
         _doc("<Behaviourtree/>"),
         ["unexpected <Behaviourtree> under <root>"],

@@ -196,3 +196,14 @@ def test_comments_and_names_do_not_matter(bt_factory: BehaviorTreeFactory):
         "MainTree/Sequence[main seq]",
         "MainTree/Sequence[main seq]/AlwaysSuccess[ok]",
     ]
+
+
+def test_reactive_sequence_with_one_async_sequence_loads(bt_factory: BehaviorTreeFactory):
+    tree = bt_factory.create_tree_from_text(
+        tree_xml(
+            "<ReactiveSequence><AsyncSequence><AlwaysSuccess/></AsyncSequence>"
+            "<Sequence><AsyncSequence><AlwaysSuccess/></AsyncSequence></Sequence>"
+            "<AsyncFallback><AlwaysSuccess/></AsyncFallback></ReactiveSequence>"
+        )
+    )
+    assert type(tree.root).__name__ == "ReactiveSequence"
