@@ -71,3 +71,25 @@ async def test_while_turning_false_halts_the_running_leaf() -> None:
     )
     assert [step.result for step in steps] == ["RUNNING", "RUNNING", "SUCCESS"]
     assert steps[2].calls == ["tick:Inc", "halted:Long"]
+
+
+async def test_subtrees_root_keys_and_remapping_conform() -> None:
+    xml = (
+        '<root BTCPP_format="4" main_tree_to_execute="M">'
+        '<BehaviorTree ID="M"><Sequence>'
+        '<Script code="n := 0; @total := 0"/>'
+        '<SubTree ID="Sub" count="{n}" _skipIf="n &gt; 2" _onSuccess="n += 1"/>'
+        '<SubTree ID="Auto" _autoremap="true" _while="n &lt; 2"/>'
+        '<ScriptCondition code="@total == 1 &amp;&amp; n == 1"/>'
+        "</Sequence></BehaviorTree>"
+        '<BehaviorTree ID="Sub"><Sequence>'
+        '<ScriptedAction name="Inner" _onSuccess="@total += 1"/>'
+        '<Script code="local := count"/>'
+        "</Sequence></BehaviorTree>"
+        '<BehaviorTree ID="Auto"><ScriptedStateful name="Deep" _onHalted="n := 9"/>'
+        "</BehaviorTree></root>"
+    )
+    steps = await assert_conforms(
+        Scenario(xml, {"Inner": ("S",), "Deep": ("S",)}, ("exactly", "exactly", "halt"))
+    )
+    assert [step.result for step in steps] == ["SUCCESS", "SUCCESS", "halted"]
