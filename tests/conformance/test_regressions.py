@@ -29,3 +29,14 @@ async def test_tick_once_honours_a_wake_up_left_by_tick_exactly_once() -> None:
     steps = await assert_conforms(scenario)
     assert results(steps) == ["RUNNING", "FAILURE"]
     assert steps[1].calls == ["start:s", "running:s", "tick:c"]
+
+
+async def test_set_blackboard_copying_a_missing_entry_fails() -> None:
+    # BT.CPP returns FAILURE; aiobt used to raise a LogicError.
+    xml = tree(
+        '<Sequence name="seq"><SetBlackboard name="copy" output_key="var" value="{other}"/>'
+        '<ScriptedAction name="a"/></Sequence>'
+    )
+    steps = await assert_conforms(Scenario(xml, {"a": ("S",)}, ("exactly",)))
+    assert results(steps) == ["FAILURE"]
+    assert steps[0].transitions[:2] == ["seq:IDLE>RUNNING", "copy:IDLE>FAILURE"]
