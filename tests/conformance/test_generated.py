@@ -33,7 +33,7 @@ async def test_random_tree_matches_btcpp(seed: int) -> None:
 def test_generator_covers_every_node_and_operation() -> None:
     tags: Counter[str] = Counter()
     ops: Counter[str] = Counter()
-    for seed in range(FIRST_SEED, FIRST_SEED + TREES):
+    for seed in range(500):  # the default run, whatever the environment asks
         scenario = generate(seed)
         tags.update(e.tag for e in etree.fromstring(scenario.xml.encode()).iter())
         ops.update(scenario.ops)
@@ -41,7 +41,7 @@ def test_generator_covers_every_node_and_operation() -> None:
     expected |= {"Switch2", "Switch3", "Switch4", "ScriptedStateful", "ScriptedAction"}
     expected |= {"ScriptedCondition", "AlwaysSuccess", "AlwaysFailure", "SetBlackboard"}
     assert expected <= set(tags), expected - set(tags)
-    assert min(ops[op] for op in ("exactly", "once", "halt")) >= TREES // 10
+    assert min(ops[op] for op in ("exactly", "once", "halt")) >= 50
 
 
 class _BrokenInverter(Inverter):
