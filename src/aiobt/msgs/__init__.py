@@ -4,7 +4,7 @@ Decode untrusted payloads with :func:`decode` (or ``Model.from_json``): it raise
 :class:`MessageError`, whose ``field`` names the first bad field.
 """
 
-from aiobt.msgs._base import MessageError, Msg, decode, validate
+from aiobt.msgs._base import MessageError, Msg, decode, decoder, validate
 from aiobt.msgs.action import ActionDef, ActionResult, Empty, GoalState, GoalStatus
 from aiobt.msgs.actions import (
     AssistedTeleop,
@@ -133,6 +133,7 @@ __all__ = [
     "Wait",
     "WaitError",
     "decode",
+    "decoder",
     "goals_from_string",
     "goals_to_string",
     "normalize_angle",

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Any, Self, TypeVar
+from collections.abc import Callable
+from typing import Any, Self, TypeVar, cast
 
 from pydantic import BaseModel, ConfigDict, ValidationError
 
@@ -62,6 +63,20 @@ def decode(model: type[M], payload: bytes | bytearray | str, *, key: str = "") -
         return model.model_validate_json(payload)
     except ValidationError as exc:
         raise MessageError.from_validation(model, exc, key) from None
+
+
+def decoder(model: type[M], *, key: str = "") -> Callable[[bytes], M]:
+    """:func:`decode` bound to one model and key, for per-message paths (subscriptions):
+    the pydantic validator is looked up once, not on every message."""
+    validate_json = model.__pydantic_validator__.validate_json
+
+    def decode_one(payload: bytes) -> M:
+        try:
+            return cast(M, validate_json(payload))
+        except ValidationError as exc:
+            raise MessageError.from_validation(model, exc, key) from None
+
+    return decode_one
 
 
 def validate(model: type[M], data: Any, *, key: str = "") -> M:

@@ -11,11 +11,12 @@ from typing import Generic, Self, TypeVar
 import zenoh
 import zenoh.ext
 
-from aiobt.msgs import MessageError, Msg, decode
+from aiobt.msgs import MessageError, Msg, decoder
 from aiobt.transport import _z
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 
 M = TypeVar("M", bound=Msg)
+_PUT = zenoh.SampleKind.PUT
 log = logging.getLogger("aiobt.transport.topics")
 
 
@@ -104,6 +105,7 @@ class Subscription(Generic[M]):
         self.dropped_invalid = 0
         self._bridge = bridge
         self._callback = callback
+        self._decode = decoder(model, key=key)
         # a bounded deque (oldest dropped) and the waiting readers' futures: leaner than
         # an asyncio.Queue on this per-message path
         self._queue: deque[M] = deque(maxlen=queue_size if queue_size > 0 else None)
@@ -114,14 +116,19 @@ class Subscription(Generic[M]):
         self._undeclare: Callable[[], None] = lambda: None
 
     def on_sample(self, sample: zenoh.Sample) -> None:
-        """Zenoh thread: decode here (off the loop), hand the model to the loop."""
-        if sample.kind != zenoh.SampleKind.PUT:
+        """Zenoh thread: decode here (off the loop), hand the model to the loop.
+
+        Kept lean: it runs for every message, usually with cold caches."""
+        if sample.kind != _PUT:
             return
         payload = sample.payload.to_bytes()
+        if len(payload) > self._bridge.max_payload:
+            too_large = PayloadTooLarge(self.key, len(payload), self._bridge.max_payload)
+            self._bridge.call(self._reject, too_large)
+            return
         try:
-            self._bridge.check_size(self.key, payload)
-            message = decode(self.model, payload, key=self.key)  # the key has no wildcards
-        except (MessageError, PayloadTooLarge) as exc:
+            message = self._decode(payload)  # errors name the key (it has no wildcards)
+        except MessageError as exc:
             self._bridge.call(self._reject, exc)
             return
         self._bridge.call(self._deliver, message)
