@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import os
 import statistics
 import time
 from collections.abc import Awaitable, Callable
@@ -97,18 +98,36 @@ def make_probes(bus: Bus) -> dict[str, Probe]:
     }
 
 
-async def measure(probes: dict[str, Probe], n: int, rounds: int = 10) -> dict[str, list[float]]:
-    samples: dict[str, list[float]] = {name: [] for name in probes}
+def cpu_seconds(pid: int) -> float:
+    """User + system CPU time of process ``pid`` (all its threads), from /proc."""
+    with open(f"/proc/{pid}/stat") as stat:
+        fields = stat.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+class Measured:
+    """Round-trip times per probe, and the CPU each side spent on them."""
+
+    def __init__(self, names: list[str]) -> None:
+        self.samples: dict[str, list[float]] = {name: [] for name in names}
+        self.cpu: dict[str, list[float]] = {name: [0.0, 0.0] for name in names}  # near, far
+
+
+async def measure(probes: dict[str, Probe], n: int, far_pid: int, rounds: int = 10) -> Measured:
+    out = Measured(list(probes))
     for probe in probes.values():  # warm-up
         for _ in range(50):
             await probe()
     for _ in range(rounds):
         for name, probe in probes.items():
+            near0, far0 = cpu_seconds(os.getpid()), cpu_seconds(far_pid)
             for _ in range(n // rounds):
                 start = time.perf_counter()
                 await probe()
-                samples[name].append(time.perf_counter() - start)
-    return samples
+                out.samples[name].append(time.perf_counter() - start)
+            out.cpu[name][0] += cpu_seconds(os.getpid()) - near0
+            out.cpu[name][1] += cpu_seconds(far_pid) - far0
+    return out
 
 
 def blocking_raw_get(session: zenoh.Session, n: int) -> list[float]:
@@ -121,11 +140,13 @@ def blocking_raw_get(session: zenoh.Session, n: int) -> list[float]:
     return out
 
 
-def report(samples: dict[str, list[float]], blocking: list[float]) -> str:
+def report(measured: Measured, blocking: list[float]) -> str:
+    samples = measured.samples
     med = {name: statistics.median(values) for name, values in samples.items()}
     lines = [
-        "| what | median µs | p90 µs | ratio vs raw (far side in Zenoh thread / in asyncio) |",
-        "|---|---|---|---|",
+        "| what | median µs | p90 µs | ratio vs raw (far side in Zenoh thread / in asyncio) "
+        "| CPU µs per round trip: this process / far process |",
+        "|---|---|---|---|---|",
     ]
     baselines = {
         "aiobt action goal->result": (
@@ -139,10 +160,14 @@ def report(samples: dict[str, list[float]], blocking: list[float]) -> str:
         p90 = statistics.quantiles(values, n=10)[-1]
         bases = baselines.get(name, ())
         ratio = " / ".join(f"{med[name] / med[b]:.2f}x" for b in bases) or "baseline"
-        lines.append(f"| {name} | {med[name] * 1e6:.0f} | {p90 * 1e6:.0f} | {ratio} |")
+        near, far = (seconds / len(values) * 1e6 for seconds in measured.cpu[name])
+        lines.append(
+            f"| {name} | {med[name] * 1e6:.0f} | {p90 * 1e6:.0f} | {ratio} "
+            f"| {near:.0f} / {far:.0f} |"
+        )
     lines.append(
         f"| raw get/reply (blocking, thread) | {statistics.median(blocking) * 1e6:.0f} | "
-        f"{statistics.quantiles(blocking, n=10)[-1] * 1e6:.0f} | reference |"
+        f"{statistics.quantiles(blocking, n=10)[-1] * 1e6:.0f} | reference | |"
     )
     return "\n".join(lines)
 
@@ -157,9 +182,9 @@ async def run(n: int, endpoint: str) -> str:
             await asyncio.sleep(0.5)
             probes = make_probes(bus)
             await asyncio.sleep(0.5)
-            samples = await measure(probes, n)
+            measured = await measure(probes, n, peer.pid)
             blocking = await asyncio.to_thread(blocking_raw_get, bus.session, n)
-            return report(samples, blocking)
+            return report(measured, blocking)
     finally:
         peer.cleanup()
 

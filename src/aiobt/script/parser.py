@@ -40,11 +40,36 @@ LEVELS: tuple[dict[str, bool], ...] = (
     {"*": True, "/": True, "&": False},
 )
 PREFIX = frozenset({"-", "~", "!"})
+MAX_NESTING = 64
+
+
+MAX_DEPTH = 200
 
 
 def parse(script: str) -> list[Expr]:
     """The statements of ``script`` (separated by ``;``)."""
-    return _Parser(script).statements()
+    try:
+        statements = _Parser(script).statements()
+        deepest = max(_depth(expr) for expr in statements)
+    except RecursionError:
+        deepest = MAX_DEPTH + 1
+    if deepest > MAX_DEPTH:
+        raise ScriptSyntaxError(f"script too deeply nested (over {MAX_DEPTH} levels)", script, 1)
+    return statements
+
+
+def _depth(expr: Expr) -> int:
+    if isinstance(expr, Unary):
+        return 1 + _depth(expr.operand)
+    if isinstance(expr, Binary):
+        return 1 + max(_depth(expr.left), _depth(expr.right))
+    if isinstance(expr, Compare):
+        return 1 + max(_depth(e) for e in expr.operands)
+    if isinstance(expr, Ternary):
+        return 1 + max(_depth(e) for e in (expr.condition, expr.then, expr.otherwise))
+    if isinstance(expr, Assign):
+        return 1 + _depth(expr.value)
+    return 1
 
 
 class _Parser:
@@ -53,6 +78,7 @@ class _Parser:
         self.tokens = tokenize(script)
         self.pos = 0
         self.family: str | None = None
+        self.depth = 0
 
     # -- helpers ----------------------------------------------------------------
     @property
@@ -89,11 +115,15 @@ class _Parser:
         return result
 
     def expression(self) -> Expr:
+        if self.depth >= MAX_NESTING:
+            raise self.error(f"expression nested more than {MAX_NESTING} levels deep")
         saved, self.family = self.family, None
+        self.depth += 1
         try:
             return self.assignment()
         finally:
             self.family = saved
+            self.depth -= 1
 
     def assignment(self) -> Expr:
         left = self.ternary()
@@ -169,11 +199,15 @@ class _Parser:
         return left
 
     def unary(self) -> Expr:
-        if self.at_op(PREFIX):
+        ops = []
+        while self.at_op(PREFIX):
             op = self.take()
             self.use_family(op)
-            return Unary(op.text, self.unary(), op.column)
-        return self.atom()
+            ops.append(op)
+        expr = self.atom()
+        for op in reversed(ops):
+            expr = Unary(op.text, expr, op.column)
+        return expr
 
     def atom(self) -> Expr:
         token = self.token

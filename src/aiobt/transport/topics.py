@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import logging
+from collections import deque
 from collections.abc import Callable
 from typing import Generic, Self, TypeVar
 
@@ -81,13 +81,6 @@ def declare_latched_publisher(
     return Publisher(zpub, key, model, bridge)
 
 
-class _Closed:
-    pass
-
-
-_CLOSED = _Closed()
-
-
 class Subscription(Generic[M]):
     """Messages of ``model`` on ``key``: an async iterator, ``latest``, or a callback.
 
@@ -111,7 +104,11 @@ class Subscription(Generic[M]):
         self.dropped_invalid = 0
         self._bridge = bridge
         self._callback = callback
-        self._queue: asyncio.Queue[M | _Closed] = asyncio.Queue(maxsize=queue_size)
+        # a bounded deque (oldest dropped) and the waiting readers' futures: leaner than
+        # an asyncio.Queue on this per-message path
+        self._queue: deque[M] = deque(maxlen=queue_size if queue_size > 0 else None)
+        self._waiters: list[asyncio.Future[None]] = []
+        self._closed = False
         self._reported: set[str] = set()
         self._first = asyncio.Event()
         self._undeclare: Callable[[], None] = lambda: None
@@ -148,22 +145,35 @@ class Subscription(Generic[M]):
             except Exception:
                 log.exception("%s: subscriber callback failed", self.key)
             return
-        if self._queue.full():
-            self._queue.get_nowait()  # keep the newest
-        self._queue.put_nowait(message)
+        if self._closed:
+            return
+        self._queue.append(message)  # full: the oldest is dropped
+        self._wake()
+
+    def _wake(self) -> None:
+        for waiter in self._waiters:
+            if not waiter.done():
+                waiter.set_result(None)
 
     def __aiter__(self) -> Self:
         return self
 
     async def __anext__(self) -> M:
-        item = await self._queue.get()
-        if isinstance(item, _Closed):
-            self._queue.put_nowait(item)
-            raise StopAsyncIteration
-        return item
+        while not self._queue:
+            if self._closed:
+                raise StopAsyncIteration
+            waiter: asyncio.Future[None] = asyncio.get_running_loop().create_future()
+            self._waiters.append(waiter)
+            try:
+                await waiter
+            finally:
+                self._waiters.remove(waiter)
+        return self._queue.popleft()
 
     async def next(self, timeout: float | None = None) -> M:  # noqa: ASYNC109
         """The next message; ``TimeoutError`` after ``timeout`` seconds."""
+        if self._queue or timeout is None:
+            return await self.__anext__()
         async with asyncio.timeout(timeout):
             return await self.__anext__()
 
@@ -180,10 +190,8 @@ class Subscription(Generic[M]):
     def close(self) -> None:
         self._undeclare()
         self._undeclare = lambda: None
-        with contextlib.suppress(asyncio.QueueFull):
-            if self._queue.full():
-                self._queue.get_nowait()
-            self._queue.put_nowait(_CLOSED)
+        self._closed = True
+        self._wake()
 
 
 def declare_subscription(

@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
+
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.script import ScriptError, ScriptSyntaxError, compile_script, run_script
@@ -115,3 +119,35 @@ def test_entry_without_value_is_reported() -> None:
         run_script("x := pending + 1", bb)
     with pytest.raises(ScriptError, match=r"\[pending\] has no value for \[\+=\]"):
         run_script("pending += 1", bb)
+
+
+SCRIPT_CHARS = "ab@_019x.:=+-*/&|^~!<>?()'\" ;e"
+
+
+@settings(max_examples=400, deadline=None)
+@given(st.text(alphabet=SCRIPT_CHARS, max_size=24))
+def test_any_text_compiles_or_fails_with_a_script_error(source: str) -> None:
+    """No input crashes the parser or the evaluator with anything but a ScriptError."""
+    column = None
+    try:
+        script = compile_script(source)
+    except ScriptSyntaxError as exc:
+        column = exc.column
+    if column is not None:
+        assert 1 <= column <= len(source) + 1
+        return
+    bb = Blackboard.create()
+    bb.set("a", 1)
+    bb.set("b", "text")
+    with contextlib.suppress(ScriptError):
+        script(bb)
+
+
+def test_deep_nesting_is_a_syntax_error_not_a_crash() -> None:
+    assert compile_script("(" * 60 + "1" + ")" * 60)(Blackboard.create()) == 1
+    with pytest.raises(ScriptSyntaxError, match="nested more than 64"):
+        compile_script("(" * 500 + "1" + ")" * 500)
+    assert compile_script("-" * 100 + "1")(Blackboard.create()) == 1.0
+    for source in ("-" * 3000 + "1", " - ".join(["1"] * 3000), " .. ".join(["'a'"] * 3000)):
+        with pytest.raises(ScriptSyntaxError, match="too deeply nested"):
+            compile_script(source)

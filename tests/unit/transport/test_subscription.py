@@ -109,3 +109,44 @@ async def test_a_failing_callback_is_logged_and_later_messages_still_arrive(
         await asyncio.sleep(0)
     assert got == [0.5]
     assert any("subscriber callback failed" in r.getMessage() for r in caplog.records)
+
+
+def xs(*values: float) -> list[bytes]:
+    return [PoseStamped.from_xy_yaw(x, 0.0).to_json() for x in values]
+
+
+async def test_a_full_queue_keeps_the_newest_messages() -> None:
+    bridge = LoopBridge(asyncio.get_running_loop(), 10_000)
+    sub = Subscription(KEY, PoseStamped, bridge, callback=None, queue_size=3)
+    feed(sub, *xs(1, 2, 3, 4, 5))
+    await asyncio.sleep(0)
+    assert [(await sub.next(timeout=1.0)).x for _ in range(3)] == [3.0, 4.0, 5.0]
+    with pytest.raises(TimeoutError):
+        await sub.next(timeout=0.05)
+
+
+async def test_close_ends_iteration_after_the_queued_messages() -> None:
+    sub = subscription()
+    feed(sub, *xs(1, 2))
+    await asyncio.sleep(0)
+
+    async def read_all() -> list[float]:
+        return [message.x async for message in sub]
+
+    reader = asyncio.create_task(read_all())
+    await asyncio.sleep(0.01)
+    assert not reader.done()  # both read, now waiting for more
+    sub.close()
+    feed(sub, *xs(3))  # after the close: not queued
+    assert await asyncio.wait_for(reader, 1.0) == [1.0, 2.0]
+    with pytest.raises(StopAsyncIteration):
+        await sub.next(timeout=1.0)
+
+
+async def test_concurrent_readers_each_get_a_message() -> None:
+    sub = subscription()
+    readers = [asyncio.create_task(sub.next(timeout=1.0)) for _ in range(2)]
+    await asyncio.sleep(0.01)
+    feed(sub, *xs(1, 2))
+    got = sorted(message.x for message in await asyncio.gather(*readers))
+    assert got == [1.0, 2.0]

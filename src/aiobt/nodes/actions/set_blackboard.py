@@ -11,8 +11,8 @@ class SetBlackboard(SyncActionNode):
     """``<SetBlackboard value="42" output_key="answer"/>``.
 
     ``output_key`` names the entry to write; ``value`` is a literal, or a
-    ``{key}`` whose entry is copied (FAILURE if that entry has no value). A
-    typed destination converts the text, as a typed port would.
+    ``{key}`` whose entry is copied (FAILURE if that entry is missing or has
+    no value). A typed destination converts the text, as a typed port would.
     """
 
     __slots__ = ()
@@ -37,12 +37,8 @@ class SetBlackboard(SyncActionNode):
         source = binding.key if binding.key is not None else blackboard_key(binding.text, "value")
         if source is not None:
             entry = bb.entry(source)
-            if entry is None:
-                raise self.logic_error(
-                    f"port [value] refers to blackboard key [{source}], which does not exist"
-                )
-            if not entry.has_value:
-                return Status.FAILURE
+            if entry is None or not entry.has_value:
+                return Status.FAILURE  # BT.CPP: a missing source entry fails too
             if bb.entry(key) is None and entry.type is not None:
                 bb.create_entry(key, entry.type)
             bb.set(key, entry.value)

@@ -108,7 +108,7 @@ class ActionClient(Generic[G, R, F]):
     ) -> ClientGoal[G, R, F]:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + server_timeout
-        while await self._presence.wait(deadline - loop.time()):
+        while self._presence.present or await self._presence.wait(deadline - loop.time()):
             handle = ClientGoal(self, goal_id, goal)
             self._goals[goal_id] = handle
             stream = _Stream(self, handle)

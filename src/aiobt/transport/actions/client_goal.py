@@ -37,8 +37,14 @@ class ClientGoal(Generic[G, R, F]):
         loop = asyncio.get_running_loop()
         self._accepted: asyncio.Future[bool | None] = loop.create_future()
         self._result: asyncio.Future[R] = loop.create_future()
-        self._feedback: asyncio.Queue[F] = asyncio.Queue(maxsize=100)
+        self._feedback_queue: asyncio.Queue[F] | None = None  # made at the first feedback
         self._waiters: list[asyncio.Future[None]] = []  # woken directly: no extra loop pass
+
+    @property
+    def _feedback(self) -> asyncio.Queue[F]:
+        if self._feedback_queue is None:
+            self._feedback_queue = asyncio.Queue(maxsize=100)
+        return self._feedback_queue
 
     @property
     def done(self) -> bool:

@@ -113,7 +113,13 @@ class GoalHandle(Generic[G, R, F]):
         self.goal = goal
         self.record = record
         self._publish = publish
-        self._new_goals: asyncio.Queue[G] = asyncio.Queue()
+        self._queue: asyncio.Queue[G] | None = None  # made when first needed (replace only)
+
+    @property
+    def _new_goals(self) -> asyncio.Queue[G]:
+        if self._queue is None:
+            self._queue = asyncio.Queue()
+        return self._queue
 
     def publish_feedback(self, feedback: F) -> None:
         self._publish(self.goal_id, feedback)
@@ -121,7 +127,7 @@ class GoalHandle(Generic[G, R, F]):
     def take_new_goal(self) -> G | None:
         """The newest goal that took this execution over since the last call, if any."""
         newest: G | None = None
-        while not self._new_goals.empty():
+        while self._queue is not None and not self._queue.empty():
             newest = self._new_goals.get_nowait()
         return newest
 
