@@ -216,7 +216,8 @@ class TreeNode:
         The default drives an ``async def execute()`` to completion; it must
         not wait on anything (a tick never waits: use an AsyncActionNode).
         """
-        return drive(self, self.execute(), "execute()")
+        status: Status = drive(self, self.execute(), "execute()")
+        return status
 
     async def execute(self) -> Status:
         raise LogicError(f"{type(self).__name__} implements neither execute_sync() nor execute()")

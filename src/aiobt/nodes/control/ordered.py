@@ -31,9 +31,9 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
         if self._status is not RUNNING:
             if self._status is IDLE and self._skipped:
                 self._skipped = 0
-            if quiet:
-                self._status = RUNNING
-            else:
+            # RUNNING is only observable through listeners until the walk
+            # returns; when nobody listens it is written on the paths that keep it
+            if not quiet:
                 self._set_status(RUNNING)
         children = self.children
         start = current = self._current
@@ -44,11 +44,13 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
                 current += 1
                 if yields and previous is IDLE and current < len(children):
                     self._current = current
+                    self._status = RUNNING
                     self.emit_wake_up()
                     return RUNNING
             elif status is RUNNING:
                 if current != start:
                     self._current = current
+                self._status = RUNNING
                 return RUNNING
             elif status is stop:
                 if start:
@@ -58,6 +60,7 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
                 current += 1
                 self._skipped += 1
             else:
+                self._status = RUNNING
                 raise self.logic_error(f"child {child.path} returned IDLE")
         else:
             if start:
@@ -68,14 +71,22 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
                     status = SKIPPED
                 self._skipped = 0
         # no child is RUNNING here: the walk only passes finished or skipped children
-        _reset(children, quiet)
+        if quiet:
+            for child in children:
+                child._status = IDLE
+        else:
+            for child in children:
+                child._set_status(IDLE)
         if status is SKIPPED:
+            self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
             return status
         if write:
             if quiet:
                 self._status = status
             else:
                 self._set_status(status)
+        elif quiet:
+            self._status = RUNNING  # the caller (pre/post conditions) writes the result
         return status
 
     return walk
@@ -102,8 +113,10 @@ class OrderedComposite(ControlNode):
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        cls.tick_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, True)  # type: ignore[method-assign]
-        cls.execute_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, False)  # type: ignore[method-assign]
+        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
+            cls.tick_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, True)  # type: ignore[method-assign]
+        if "execute_sync" not in cls.__dict__:
+            cls.execute_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, False)  # type: ignore[method-assign]
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -173,8 +186,10 @@ class ReactiveComposite(ControlNode):
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        cls.tick_sync = _reactive_walk(cls.NEXT, cls.STOP, True)  # type: ignore[method-assign]
-        cls.execute_sync = _reactive_walk(cls.NEXT, cls.STOP, False)  # type: ignore[method-assign]
+        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
+            cls.tick_sync = _reactive_walk(cls.NEXT, cls.STOP, True)  # type: ignore[method-assign]
+        if "execute_sync" not in cls.__dict__:
+            cls.execute_sync = _reactive_walk(cls.NEXT, cls.STOP, False)  # type: ignore[method-assign]
 
 
 def _reset_running(children: list[TreeNode]) -> None:

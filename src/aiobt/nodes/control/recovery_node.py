@@ -54,9 +54,7 @@ class RecoveryNode(ControlNode):
                 return RUNNING
             if status is not SUCCESS and status is not FAILURE and status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned {status.name}")
-            outcome = (
-                self._first(status, limit) if self._current == 0 else self._second(status)
-            )
+            outcome = self._first(status, limit) if self._current == 0 else self._second(status)
             if outcome is not None:
                 return outcome
         self.on_halt_sync()

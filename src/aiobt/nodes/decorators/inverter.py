@@ -15,17 +15,21 @@ class Inverter(DecoratorNode):
     __slots__ = ()
 
     def execute_sync(self) -> Status:
+        quiet = not self._ctx.listeners
         if self._status is not RUNNING:
-            self._set_status(RUNNING)
+            if quiet:
+                self._status = RUNNING
+            else:
+                self._set_status(RUNNING)
         child = self.child
         assert child is not None
         status = child.tick_sync()
-        if status is SUCCESS:
-            reset_node(child)
-            return FAILURE
-        if status is FAILURE:
-            reset_node(child)
-            return SUCCESS
+        if status is SUCCESS or status is FAILURE:
+            if quiet:  # a finished child: reset in place
+                child._status = IDLE
+            else:
+                reset_node(child)
+            return FAILURE if status is SUCCESS else SUCCESS
         if status is IDLE:
             raise self.logic_error("child returned IDLE")
         return status

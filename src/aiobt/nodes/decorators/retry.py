@@ -48,7 +48,10 @@ class RetryUntilSuccessful(DecoratorNode):
         finished = SUCCESS if again is FAILURE else FAILURE
         loop = self._count < limit or limit == -1
         if self._status is not RUNNING:
-            self._set_status(RUNNING)
+            if self._ctx.listeners:
+                self._set_status(RUNNING)
+            else:
+                self._status = RUNNING
         child = self.child
         assert child is not None
         while loop:
