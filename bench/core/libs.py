@@ -120,23 +120,26 @@ def aiobt_tick(spec: Spec, counting: bool = False) -> Callable[[], Awaitable[Sta
 
 @contextmanager
 def aiobt_inner_counted() -> Iterator[None]:
-    """Count every execute() of aiobt's inner nodes (patched on the classes)."""
-    saved = {cls: cls.__dict__["execute"] for cls in AIOBT_INNER}
+    """Count every tick of aiobt's inner nodes (tick_sync patched on the classes)."""
+    saved = {cls: cls.__dict__.get("tick_sync") for cls in AIOBT_INNER}
 
     def wrap(execute: Any) -> Any:
-        async def counted(self: TreeNode) -> Status:
+        def counted(self: TreeNode) -> Status:
             COUNTER.nodes += 1
-            return await execute(self)  # type: ignore[no-any-return]
+            return execute(self)  # type: ignore[no-any-return]
 
         return counted
 
     try:
-        for cls, execute in saved.items():
-            cls.execute = wrap(execute)  # type: ignore[method-assign]
+        for cls in saved:
+            cls.tick_sync = wrap(cls.tick_sync)  # type: ignore[method-assign]
         yield
     finally:
-        for cls, execute in saved.items():
-            cls.execute = execute  # type: ignore[method-assign]
+        for cls, tick in saved.items():
+            if tick is None:
+                del cls.tick_sync
+            else:
+                cls.tick_sync = tick  # type: ignore[method-assign]
 
 
 # -- py_trees -------------------------------------------------------------------------

@@ -27,6 +27,7 @@ from aiobt import (
     SyncActionNode,
 )
 from aiobt.core.conditions import NodeConditions
+from aiobt.core.errors import TreeLoadError
 from aiobt.core.node import TreeNode
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
@@ -147,9 +148,12 @@ async def run_one(seed: int) -> list[Any]:
     factory = BehaviorTreeFactory()
     for cls in (GCond, GSync, GStateful, GAsync):
         factory.register_node_type(cls)
-    tree = factory.create_tree_from_text(
-        f'<root BTCPP_format="4"><BehaviorTree ID="M">{xml}</BehaviorTree></root>'
-    )
+    try:
+        tree = factory.create_tree_from_text(
+            f'<root BTCPP_format="4"><BehaviorTree ID="M">{xml}</BehaviorTree></root>'
+        )
+    except TreeLoadError as exc:  # shapes BT.CPP refuses too
+        return [f"load error: {exc}"]
     if seed % 2:
         attach_conditions(tree, rng)
     tree.add_status_listener(lambda t, n, p, s: LOG.append(f"{n.name}:{p.name}>{s.name}"))

@@ -49,8 +49,8 @@ class _BrokenInverter(Inverter):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
-        status = await super().execute()
+    def execute_sync(self) -> Status:
+        status = super().execute_sync()
         return Status.SUCCESS if status is Status.FAILURE else status
 
 

@@ -24,6 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from aiobt.core.errors import NodeError
 from aiobt.core.status import Status
 
 if TYPE_CHECKING:
@@ -79,23 +80,20 @@ class NodeConditions:
             node._set_status(status)
         return status
 
-    async def tick(self, node: TreeNode) -> Status:
-        pre = self._pre(node)
-        if self._while_stops(node, pre):
-            await node.halt()
-            pre = SKIPPED
-        if pre is not None:
-            return self._settle(node, pre)
-        return self._settle(node, await node.execute())
-
     def tick_sync(self, node: TreeNode) -> Status:
         pre = self._pre(node)
         if self._while_stops(node, pre):
-            node.halt_sync()  # type: ignore[attr-defined]
+            node.halt_sync()
             pre = SKIPPED
         if pre is not None:
             return self._settle(node, pre)
-        return self._settle(node, node.execute_sync())  # type: ignore[attr-defined]
+        try:
+            status = node.execute_sync()
+        except NodeError:
+            raise
+        except Exception as exc:
+            raise NodeError(node.path, exc) from exc
+        return self._settle(node, status)
 
     def _while_stops(self, node: TreeNode, pre: Status | None) -> bool:
         """True when ``_while`` turned false while the node was RUNNING."""

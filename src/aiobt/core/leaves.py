@@ -13,10 +13,9 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import sys
-from collections.abc import Coroutine
 from typing import Any, ClassVar
 
+from aiobt.core import eager
 from aiobt.core.errors import LogicError, NodeError
 from aiobt.core.node import NodeKind, TreeNode, tick_error
 from aiobt.core.status import Status
@@ -28,7 +27,6 @@ FAILURE = Status.FAILURE
 SKIPPED = Status.SKIPPED
 
 log = logging.getLogger("aiobt.core.leaves")
-_EAGER_TASKS = sys.version_info >= (3, 12)
 
 
 class SyncLeaf(TreeNode):
@@ -63,9 +61,6 @@ class SyncLeaf(TreeNode):
         self._set_status(IDLE)
         if self._conditions is not None:
             self._conditions.on_halted(self)
-
-    async def halt(self) -> None:
-        self.halt_sync()
 
 
 class ConditionNode(SyncLeaf):
@@ -217,61 +212,58 @@ class StatefulActionNode(SyncLeaf):
         super().halt_sync()
 
 
-class AsyncActionNode(TreeNode):
+class AsyncActionNode(SyncLeaf):
     """A leaf written as one coroutine: ``async def run(self) -> Status | bool | None``.
 
-    - first tick from IDLE: ``run()`` starts as a task; if it finishes without
-      waiting, its result is returned in the same tick;
-    - while the task is pending: RUNNING; when it finishes the tree is woken;
-    - halt: the task is cancelled and awaited for at most the tree's
-      ``halt_timeout`` (cleanup in ``finally``);
+    - first tick from IDLE: ``run()`` starts as a task whose first step runs
+      within the tick; if it finishes without waiting, its result is returned
+      in that same tick (as BT.CPP's ``on_start`` would);
+    - while the task is pending: RUNNING, with no new task; when it finishes
+      the tree is woken at once;
+    - halt: the task is cancelled (CancelledError at its current await) and
+      the tree awaits its cleanup (``finally``) after the tick, for at most the
+      tree's ``halt_timeout``;
     - an exception in ``run()`` surfaces as :class:`NodeError` with the path.
     """
 
-    __slots__ = ("_task",)
+    __slots__ = ("_step",)
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._task: asyncio.Task[Any] | None = None
+        self._step: eager.Step | None = None
 
     async def run(self) -> Status | bool | None:
         raise LogicError(f"{type(self).__name__} does not implement run()")
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         previous = self._status
         if previous is not IDLE and previous is not RUNNING:
             return previous
-        task = self._task
-        if task is None:
-            task = await self._start(self.run())
-        if not task.done():
+        step = self._step
+        if step is None:
+            step = eager.start(self.run(), name=self.path)
+            if not step.done:
+                self._step = step
+                assert step.task is not None
+                step.task.add_done_callback(self._on_task_done)
+                return RUNNING
+        elif not step.done:
             return RUNNING
-        self._task = None
-        return self._outcome(task)
-
-    async def _start(self, coro: Coroutine[Any, Any, Any]) -> asyncio.Task[Any]:
-        loop = asyncio.get_running_loop()
-        if _EAGER_TASKS:
-            task: asyncio.Task[Any] = asyncio.Task(coro, loop=loop, eager_start=True)  # type: ignore[call-arg]
-        else:
-            task = loop.create_task(coro)
-            await asyncio.sleep(0)  # let the task take its first step, as eager_start would
-        self._task = task
-        task.add_done_callback(self._on_task_done)
-        return task
+        self._step = None
+        return self._outcome(step)
 
     def _on_task_done(self, task: asyncio.Task[Any]) -> None:
-        if self._task is task:
+        step = self._step
+        if step is not None and step.task is task:
             self._ctx.wake_up()
 
-    def _outcome(self, task: asyncio.Task[Any]) -> Status:
-        if task.cancelled():
+    def _outcome(self, step: eager.Step) -> Status:
+        if step.cancelled:
             return FAILURE
-        exc = task.exception()
-        if exc is not None:
-            raise tick_error(self, exc) from exc
+        if step.error is not None:
+            raise tick_error(self, step.error) from step.error
         try:
-            status = Status.of(task.result())
+            status = Status.of(step.value)
         except TypeError as type_exc:
             raise tick_error(self, type_exc) from type_exc
         if status is IDLE or status is RUNNING:
@@ -280,18 +272,10 @@ class AsyncActionNode(TreeNode):
             )
         return status
 
-    async def on_halt(self) -> None:
-        task, self._task = self._task, None
-        if task is None or task.done():
-            return
-        task.cancel()
-        done, _ = await asyncio.wait({task}, timeout=self._ctx.halt_timeout)
-        if not done:
-            log.warning(
-                "%s: run() did not finish its cleanup within %.1f s of halt",
-                self.path,
-                self._ctx.halt_timeout,
-            )
-            return
-        if not task.cancelled() and task.exception() is not None:
-            log.warning("%s: run() raised while halting: %r", self.path, task.exception())
+    def halt_sync(self) -> None:
+        step, self._step = self._step, None
+        if step is not None and not step.done:
+            step.cancel()
+            assert step.task is not None
+            self._ctx.cleanups[step.task] = self.path
+        super().halt_sync()

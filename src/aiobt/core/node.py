@@ -1,21 +1,24 @@
 """The node base: status bookkeeping, ports, tick and halt.
 
-The framework owns :meth:`TreeNode.tick` and :meth:`TreeNode.halt`; node
-authors implement :meth:`TreeNode.execute` (control nodes, decorators) or the
-hooks of a leaf base in :mod:`aiobt.core.leaves`.
+Ticks and halts are synchronous, as in BehaviorTree.CPP: a parent ticks a
+child with a plain call, ``status = child.tick_sync()``, and a whole tree tick
+is a chain of calls with no coroutine per node. Work that waits lives in the
+tasks of async leaves (:class:`aiobt.core.leaves.AsyncActionNode`), which the
+tree starts, polls and cancels; the :class:`~aiobt.core.tree.Tree` awaits
+their cleanup after the tick that halted them.
 
-Hot path: a parent ticks a child with::
-
-    status = child.tick_sync() if child.is_sync else await child.tick()
-
-so synchronous leaves (conditions, sync actions, stateful actions) cost a
-plain call instead of a coroutine. Status changes notify the tree's listeners
-only when the status really changes.
+Node authors implement ``execute_sync()`` (control nodes, decorators) or the
+hooks of a leaf base in :mod:`aiobt.core.leaves`. An ``async def execute()``
+still works for nodes written that way, as long as it does not wait on
+anything: it is driven to completion within the tick. Status changes notify
+the tree's listeners only when the status really changes.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import asyncio
+import logging
+from collections.abc import Callable, Coroutine
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
@@ -32,6 +35,8 @@ IDLE = Status.IDLE
 RUNNING = Status.RUNNING
 SKIPPED = Status.SKIPPED
 
+log = logging.getLogger("aiobt.core.node")
+
 StatusListener = Callable[[float, "TreeNode", Status, Status], None]
 
 
@@ -46,9 +51,10 @@ class NodeKind:
 
 
 class TreeContext:
-    """What every node of one tree shares: clock, wake-up, listeners."""
+    """What every node of one tree shares: clock, wake-up, listeners, and the
+    cleanups of halted async leaves, which the tree awaits after a tick."""
 
-    __slots__ = ("clock", "enums", "halt_timeout", "listeners", "wake_up")
+    __slots__ = ("cleanups", "clock", "enums", "halt_timeout", "listeners", "wake_up")
 
     def __init__(self, clock: Clock | None = None, halt_timeout: float = 2.0) -> None:
         self.clock: Clock = clock if clock is not None else SystemClock()
@@ -56,6 +62,23 @@ class TreeContext:
         self.wake_up: Callable[[], None] = _no_wake_up
         self.enums: dict[str, int] = {}
         self.halt_timeout = halt_timeout
+        self.cleanups: dict[asyncio.Task[Any], str] = {}
+
+    async def settle(self) -> None:
+        """Wait for the cleanups of halted async leaves, each bounded by ``halt_timeout``."""
+        if not self.cleanups:
+            return
+        pending, self.cleanups = self.cleanups, {}
+        done, late = await asyncio.wait(set(pending), timeout=self.halt_timeout)
+        for task in late:
+            log.warning(
+                "%s: run() did not finish its cleanup within %.1f s of halt",
+                pending[task],
+                self.halt_timeout,
+            )
+        for task in done:
+            if not task.cancelled() and task.exception() is not None:
+                log.warning("%s: run() raised while halting: %r", pending[task], task.exception())
 
 
 def _no_wake_up() -> None:
@@ -95,13 +118,13 @@ class PortSource(Protocol):
 
 
 class TreeNode:
-    """Base of every node. Subclasses implement ``async def execute()``."""
+    """Base of every node. Subclasses implement ``execute_sync()``."""
 
     __slots__ = ("_conditions", "_ctx", "_status", "config", "name")
 
     KIND: ClassVar[str] = NodeKind.ACTION
     PORTS: ClassVar[tuple[PortInfo, ...]] = ()
-    is_sync: ClassVar[bool] = False
+    is_sync: ClassVar[bool] = True  # every node ticks synchronously (kept for older code)
 
     def __init__(self, name: str, config: NodeConfig | None = None) -> None:
         self.name = name
@@ -165,33 +188,44 @@ class TreeNode:
         self._conditions = conditions
 
     # -- tick and halt ------------------------------------------------------------
-    async def tick(self) -> Status:
-        """Tick once: pre-conditions, :meth:`execute`, status, post-conditions."""
+    def tick_sync(self) -> Status:
+        """Tick once: pre-conditions, :meth:`execute_sync`, status, post-conditions."""
         conditions = self._conditions
         if conditions is not None:
-            return await conditions.tick(self)
+            return conditions.tick_sync(self)
         try:
-            status = await self.execute()
+            status = self.execute_sync()
         except NodeError:
             raise
         except Exception as exc:  # a node's own error, named by its path
             raise NodeError(self.path, exc) from exc
-        if status is not SKIPPED:
-            self._set_status(status)
+        if status is not SKIPPED and status is not self._status:
+            if self._ctx.listeners:
+                self._set_status(status)
+            else:
+                self._status = status
         return status
 
-    def tick_sync(self) -> Status:
-        """The synchronous tick of nodes whose ``is_sync`` is true."""
-        raise LogicError(f"{self.path}: {type(self).__name__} has no synchronous tick")
+    async def tick(self) -> Status:
+        """:meth:`tick_sync`, awaitable (for code written against the async API)."""
+        return self.tick_sync()
+
+    def execute_sync(self) -> Status:
+        """The node's own logic; returns its new status.
+
+        The default drives an ``async def execute()`` to completion; it must
+        not wait on anything (a tick never waits: use an AsyncActionNode).
+        """
+        status: Status = drive(self, self.execute(), "execute()")
+        return status
 
     async def execute(self) -> Status:
-        """The node's own logic; returns its new status."""
-        raise LogicError(f"{type(self).__name__} does not implement execute()")
+        raise LogicError(f"{type(self).__name__} implements neither execute_sync() nor execute()")
 
-    async def halt(self) -> None:
+    def halt_sync(self) -> None:
         """Stop the node and reset it to IDLE (BT.CPP's haltNode)."""
         try:
-            await self.on_halt()
+            self.on_halt_sync()
         except NodeError:
             raise
         except Exception as exc:
@@ -200,9 +234,18 @@ class TreeNode:
         if self._conditions is not None:
             self._conditions.on_halted(self)
 
+    def on_halt_sync(self) -> None:
+        """Node-specific halt work; the default drives an ``async def on_halt()``."""
+        if type(self).on_halt is not TreeNode.on_halt:
+            drive(self, self.on_halt(), "on_halt()")
+
     async def on_halt(self) -> None:
-        """Node-specific halt work; the default has none."""
         return
+
+    async def halt(self) -> None:
+        """:meth:`halt_sync`, then wait for the cleanup of the async leaves it halted."""
+        self.halt_sync()
+        await self._ctx.settle()
 
     # -- ports ------------------------------------------------------------------------
     def get_input(self, name: str, default: Any = NO_DEFAULT) -> Any:
@@ -269,3 +312,19 @@ def tick_error(node: TreeNode, exc: BaseException) -> NodeError:
     if isinstance(exc, NodeError):
         return exc
     return NodeError(node.path, exc)
+
+
+def drive(node: TreeNode, coro: Coroutine[Any, Any, Any], what: str) -> Any:
+    """Run a coroutine that must not wait to its end, within the caller."""
+    try:
+        waited_on = coro.send(None)
+    except StopIteration as stop:
+        return stop.value
+    coro.close()
+    raise NodeError(
+        node.path,
+        LogicError(
+            f"{type(node).__name__}.{what} waited on {waited_on!r}: a tick or a halt never "
+            "waits; put the waiting in an AsyncActionNode's run()"
+        ),
+    )

@@ -141,15 +141,10 @@ class Tree:
 
     # -- ticking ------------------------------------------------------------------
     async def _tick_root(self) -> Status:
-        root = self.root
-        if root.is_sync:
-            return root.tick_sync()
-        if root._conditions is None:  # inlined root.tick(): one coroutine frame less
-            status = await root.execute()
-            if status is not SKIPPED and status is not root._status:
-                root._set_status(status)
-            return status
-        return await root.tick()
+        status = self.root.tick_sync()
+        if self.context.cleanups:  # async leaves halted during the tick
+            await self.context.settle()
+        return status
 
     def _finish(self, status: Status) -> Status:
         if status is SUCCESS or status is FAILURE:
@@ -158,13 +153,7 @@ class Tree:
 
     async def tick_exactly_once(self) -> Status:
         """Tick the root once (a wake-up it emits stays pending, as in BT.CPP)."""
-        root = self.root
-        if root.is_sync or root._conditions is not None:
-            return self._finish(await self._tick_root())
-        status = await root.execute()  # the hot path of _tick_root, inlined
-        if status is not SKIPPED and status is not root._status:
-            root._set_status(status)
-        return self._finish(status)
+        return self._finish(await self._tick_root())
 
     async def tick_once(self) -> Status:
         """Tick, then tick again while RUNNING and a wake-up is pending.
@@ -209,7 +198,8 @@ class Tree:
     async def halt_tree(self, reason: str = "") -> None:
         """Halt the root, then every node (BT.CPP's haltTree)."""
         self._record("halted", reason)
-        await self.root.halt()
+        self.root.halt_sync()
         for node in list(self.nodes()):
-            await node.halt()
+            node.halt_sync()
         self.root.reset_status()
+        await self.context.settle()

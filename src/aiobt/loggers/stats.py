@@ -75,15 +75,7 @@ def _counted(cls: type[TreeNode]) -> type[TreeNode]:
     found = _COUNTED.get(cls)
     if found is not None:
         return found
-    original_tick = cls.tick
     original_tick_sync = cls.tick_sync
-
-    async def tick(self: TreeNode) -> Status:
-        status = await original_tick(self)
-        stats = _ACTIVE.get(id(self))
-        if stats is not None:
-            stats.count(status)
-        return status
 
     def tick_sync(self: TreeNode) -> Status:
         status = original_tick_sync(self)
@@ -92,9 +84,8 @@ def _counted(cls: type[TreeNode]) -> type[TreeNode]:
             stats.count(status)
         return status
 
-    namespace: dict[str, Any] = {"__slots__": (), "__module__": cls.__module__, "tick": tick}
-    if cls.is_sync:
-        namespace["tick_sync"] = tick_sync
+    namespace: dict[str, Any] = {"__slots__": (), "__module__": cls.__module__}
+    namespace["tick_sync"] = tick_sync
     counted = type(cls.__name__, (cls,), namespace)
     _COUNTED[cls] = counted
     _COUNTED[counted] = counted

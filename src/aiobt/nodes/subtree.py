@@ -30,12 +30,12 @@ class SubTreeNode(DecoratorNode):
         self.tree_id = tree_id
         self.subtree_blackboard = subtree_blackboard
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if self._status is Status.IDLE:
             self._set_status(RUNNING)
         child = self.child
         assert child is not None
-        status = child.tick_sync() if child.is_sync else await child.tick()
+        status = child.tick_sync()
         if status.is_completed:
-            await self.reset_child()
+            self.reset_child()
         return status

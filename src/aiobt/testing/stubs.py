@@ -198,9 +198,9 @@ class StubAsyncAction(AsyncActionNode):
         input_port("result", str, "SUCCESS", "the status to finish with"),
     )
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         self.STUBS.record(self.name).ticks += 1
-        return await super().execute()
+        return super().execute_sync()
 
     async def run(self) -> Status:
         stubs = self.STUBS

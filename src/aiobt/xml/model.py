@@ -75,7 +75,7 @@ class UnimplementedNode(TreeNode):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         raise _unimplemented(self)
 
 
@@ -84,7 +84,7 @@ class UnimplementedControl(ControlNode):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         raise _unimplemented(self)
 
 
@@ -93,7 +93,7 @@ class UnimplementedDecorator(DecoratorNode):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         raise _unimplemented(self)
 
 

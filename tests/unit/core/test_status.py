@@ -50,8 +50,8 @@ async def test_reset_node_halts_only_running(bt_factory: BehaviorTreeFactory, st
     assert await tree.tick_exactly_once() is Status.RUNNING
     a, b = tree.find("A"), tree.find("B")
     assert (a.status, b.status) == (Status.RUNNING, Status.SUCCESS)
-    await reset_node(b)
-    await reset_node(a)
+    reset_node(b)
+    reset_node(a)
     assert (a.status, b.status) == (Status.IDLE, Status.IDLE)
     assert stubs.halts("A") == 1
     assert stubs.halts("B") == 0

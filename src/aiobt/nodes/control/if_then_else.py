@@ -27,14 +27,14 @@ class IfThenElse(ControlNode):
         super().__init__(*args, **kwargs)
         self._branch = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         children = self.children
         if len(children) not in (2, 3):
             raise self.logic_error(f"IfThenElse must have 2 or 3 children, it has {len(children)}")
         self._set_status(RUNNING)
         if self._branch == 0:
             condition = children[0]
-            status = condition.tick_sync() if condition.is_sync else await condition.tick()
+            status = condition.tick_sync()
             if status is RUNNING:
                 return RUNNING
             if status is SUCCESS:
@@ -46,13 +46,13 @@ class IfThenElse(ControlNode):
             else:
                 raise self.logic_error(f"condition {condition.path} returned {status.name}")
         branch = children[self._branch]
-        status = branch.tick_sync() if branch.is_sync else await branch.tick()
+        status = branch.tick_sync()
         if status is RUNNING:
             return RUNNING
-        await self.reset_children()
+        self.reset_children()
         self._branch = 0
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._branch = 0
-        await self.reset_children()
+        self.reset_children()

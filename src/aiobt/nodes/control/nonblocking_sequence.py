@@ -27,18 +27,18 @@ class NonblockingSequence(ControlNode):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         all_done = True
         for child in self.children:
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is FAILURE:
-                await self.reset_children()
+                self.reset_children()
                 return FAILURE
             if status is RUNNING:
                 all_done = False
             elif status is not SUCCESS and status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned {status.name}")
         if all_done:
-            await self.reset_children()
+            self.reset_children()
             return SUCCESS
         return RUNNING

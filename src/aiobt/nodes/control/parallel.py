@@ -52,7 +52,7 @@ class Parallel(ControlNode):
         self._completed.clear()
         self._successes = self._failures = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         success_count: int = self.get_input("success_count")
         failure_count: int = self.get_input("failure_count")
         count = len(self.children)
@@ -69,7 +69,7 @@ class Parallel(ControlNode):
         completed = self._completed
         for index, child in enumerate(self.children):
             if index not in completed:
-                status = child.tick_sync() if child.is_sync else await child.tick()
+                status = child.tick_sync()
                 if status is SUCCESS:
                     completed.add(index)
                     self._successes += 1
@@ -83,16 +83,16 @@ class Parallel(ControlNode):
             if self._successes >= required_success or (
                 success_count < 0 and self._successes + skipped >= required_success
             ):
-                return await self._finish(SUCCESS)
+                return self._finish(SUCCESS)
             if count - self._failures < required_success or self._failures == required_failure:
-                return await self._finish(FAILURE)
+                return self._finish(FAILURE)
         return SKIPPED if skipped == count else RUNNING
 
-    async def _finish(self, status: Status) -> Status:
+    def _finish(self, status: Status) -> Status:
         self._clear()
-        await self.reset_children()
+        self.reset_children()
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._clear()
-        await self.reset_children()
+        self.reset_children()

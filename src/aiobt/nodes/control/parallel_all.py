@@ -43,7 +43,7 @@ class ParallelAll(ControlNode):
         self._completed: set[int] = set()
         self._failures = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         count = len(self.children)
         max_failures = threshold(self.get_input("max_failures"), count)
         if count < max_failures:
@@ -54,7 +54,7 @@ class ParallelAll(ControlNode):
         for index, child in enumerate(self.children):
             if index in completed:
                 continue
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is SUCCESS:
                 completed.add(index)
             elif status is FAILURE:
@@ -68,13 +68,13 @@ class ParallelAll(ControlNode):
             return SKIPPED
         if skipped + len(completed) < count:
             return RUNNING
-        await self.reset_children()
+        self.reset_children()
         failed = self._failures >= max_failures
         completed.clear()
         self._failures = 0
         return FAILURE if failed else SUCCESS
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._completed.clear()
         self._failures = 0
-        await self.reset_children()
+        self.reset_children()

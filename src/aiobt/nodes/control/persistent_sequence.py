@@ -42,24 +42,24 @@ class PersistentSequence(ControlNode):
                 'current_child_idx="{child_idx}"'
             )
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         index = self._index()
         self._set_status(RUNNING)
         count = len(self.children)
         while index < count:
             child = self.children[index]
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is RUNNING:
                 return RUNNING
             if status is FAILURE:
-                await self.reset_children()
+                self.reset_children()
                 self.set_output("current_child_idx", 0)
                 return FAILURE
             if status is not SUCCESS and status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned {status.name}")
             index += 1
             self.set_output("current_child_idx", index)
-        await self.reset_children()
+        self.reset_children()
         self.set_output("current_child_idx", 0)
         return SUCCESS
 

@@ -36,11 +36,11 @@ class PipelineSequence(ControlNode):
         super().__init__(*args, **kwargs)
         self._furthest = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         for index, child in enumerate(self.children):
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is FAILURE:
-                await self.on_halt()
+                self.on_halt_sync()
                 return FAILURE
             if status is RUNNING:
                 if index >= self._furthest:
@@ -48,9 +48,9 @@ class PipelineSequence(ControlNode):
                     return RUNNING
             elif status is not SUCCESS and status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned {status.name}")
-        await self.on_halt()
+        self.on_halt_sync()
         return SUCCESS
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._furthest = 0
-        await self.reset_children()
+        self.reset_children()

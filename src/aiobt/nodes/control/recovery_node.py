@@ -42,47 +42,45 @@ class RecoveryNode(ControlNode):
         self._current = 0
         self._retries = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         limit: int = self.get_input("number_of_retries")
         if len(self.children) != 2:
             raise self.logic_error("RecoveryNode must have exactly 2 children")
         self._set_status(RUNNING)
         while self._retries <= limit:
             child = self.children[self._current]
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is RUNNING:
                 return RUNNING
             if status is not SUCCESS and status is not FAILURE and status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned {status.name}")
-            outcome = await (
-                self._first(status, limit) if self._current == 0 else self._second(status)
-            )
+            outcome = self._first(status, limit) if self._current == 0 else self._second(status)
             if outcome is not None:
                 return outcome
-        await self.on_halt()
+        self.on_halt_sync()
         return FAILURE
 
-    async def _first(self, status: Status, limit: int) -> Status | None:
+    def _first(self, status: Status, limit: int) -> Status | None:
         if status is FAILURE and self._retries < limit:
-            await self.halt_child(0)
+            self.halt_child(0)
             self._current = 1
             return None
-        await self.on_halt()
+        self.on_halt_sync()
         return status
 
-    async def _second(self, status: Status) -> Status | None:
+    def _second(self, status: Status) -> Status | None:
         if status is SUCCESS:
-            await self.halt_child(1)
+            self.halt_child(1)
             self._retries += 1
             self._current = 0
             return None
         if status is SKIPPED:
             self._current = 0
-            await self.halt_child(1)
+            self.halt_child(1)
             return FAILURE
-        await self.on_halt()
+        self.on_halt_sync()
         return FAILURE
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._current = self._retries = 0
-        await self.reset_children()
+        self.reset_children()

@@ -53,16 +53,16 @@ class RoundRobin(ControlNode):
         self._current = 0
         self._failed = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         wrap: bool = self.get_input("wrap_around")
         count = len(self.children)
         if self._current >= count:  # the last child succeeded without wrap-around
-            await self.on_halt()
+            self.on_halt_sync()
             return FAILURE
         self._set_status(RUNNING)
         while self._failed < count:
             child = self.children[self._current]
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is RUNNING:
                 return RUNNING
             if status is SUCCESS:
@@ -70,7 +70,7 @@ class RoundRobin(ControlNode):
                 if self._current >= count and wrap:
                     self._current = 0
                 self._failed = 0
-                await self.reset_children()
+                self.reset_children()
                 return SUCCESS
             if status is not FAILURE and status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned {status.name}")
@@ -80,9 +80,9 @@ class RoundRobin(ControlNode):
                 if not wrap:
                     break
                 self._current = 0
-        await self.on_halt()
+        self.on_halt_sync()
         return FAILURE
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._current = self._failed = 0
-        await self.reset_children()
+        self.reset_children()

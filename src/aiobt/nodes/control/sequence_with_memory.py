@@ -33,7 +33,7 @@ class SequenceWithMemory(ControlNode):
         self._current = 0
         self._skipped = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if self._status is IDLE:
             self._skipped = 0
         self._set_status(RUNNING)
@@ -42,11 +42,11 @@ class SequenceWithMemory(ControlNode):
         while self._current < count:
             child = children[self._current]
             previous = child._status
-            status = child.tick_sync() if child.is_sync else await child.tick()
+            status = child.tick_sync()
             if status is RUNNING:
                 return RUNNING
             if status is FAILURE:
-                await self.halt_children_from(self._current)
+                self.halt_children_from(self._current)
                 return FAILURE
             if status is SUCCESS:
                 self._current += 1
@@ -59,6 +59,6 @@ class SequenceWithMemory(ControlNode):
             else:
                 raise self.logic_error(f"child {child.path} returned IDLE")
         all_skipped = self._skipped == count
-        await self.reset_children()
+        self.reset_children()
         self._current = self._skipped = 0
         return SKIPPED if all_skipped else SUCCESS

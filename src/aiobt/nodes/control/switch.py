@@ -79,7 +79,7 @@ class Switch(ControlNode):
                 return index
         return self.CASES
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if len(self.children) != self.CASES + 1:
             raise self.logic_error(
                 f"Switch{self.CASES} must have {self.CASES + 1} children "
@@ -87,21 +87,21 @@ class Switch(ControlNode):
             )
         match = self._match()
         if self._running not in (-1, match):
-            await self.halt_child(self._running)
+            self.halt_child(self._running)
         child = self.children[match]
-        status = child.tick_sync() if child.is_sync else await child.tick()
+        status = child.tick_sync()
         if status is SKIPPED:
             self._running = -1
         elif status is RUNNING:
             self._running = match
         else:
-            await self.reset_children()
+            self.reset_children()
             self._running = -1
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._running = -1
-        await self.reset_children()
+        self.reset_children()
 
 
 def _switch(cases: int) -> type[Switch]:

@@ -49,53 +49,53 @@ class TryCatch(ControlNode):
         self._skipped = 0
         self._in_catch = False
 
-    async def _tick(self, index: int) -> Status:
+    def _tick(self, index: int) -> Status:
         child = self.children[index]
-        return child.tick_sync() if child.is_sync else await child.tick()
+        return child.tick_sync()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if not self._status.is_active:
             self._skipped = 0
             self._in_catch = False
         self._set_status(RUNNING)
         if self._in_catch:
-            return await self._catch()
+            return self._catch()
         try_count = len(self.children) - 1
         while self._current < try_count:
-            status = await self._tick(self._current)
+            status = self._tick(self._current)
             if status is RUNNING:
                 return RUNNING
             if status is FAILURE:
-                await self.reset_children()
+                self.reset_children()
                 self._current = 0
                 self._in_catch = True
-                return await self._catch()
+                return self._catch()
             if status is IDLE:
                 raise self.logic_error(f"child {self.children[self._current].path} returned IDLE")
             self._current += 1
             self._skipped += status is SKIPPED
         all_skipped = self._skipped == try_count
-        await self.reset_children()
+        self.reset_children()
         self._current = self._skipped = 0
         return SKIPPED if all_skipped else SUCCESS
 
-    async def _catch(self) -> Status:
-        status = await self._tick(len(self.children) - 1)
+    def _catch(self) -> Status:
+        status = self._tick(len(self.children) - 1)
         if status is RUNNING:
             return RUNNING
-        await self.reset_children()
+        self.reset_children()
         self._current = 0
         self._in_catch = False
         return FAILURE
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         catch_on_halt = bool(self.get_input("catch_on_halt", False))
         if catch_on_halt and not self._in_catch and self._status.is_active:
             for index in range(len(self.children) - 1):
-                await self.halt_child(index)
+                self.halt_child(index)
             last = len(self.children) - 1
-            if await self._tick(last) is RUNNING:
-                await self.halt_child(last)
+            if self._tick(last) is RUNNING:
+                self.halt_child(last)
         self._current = self._skipped = 0
         self._in_catch = False
-        await self.reset_children()
+        self.reset_children()

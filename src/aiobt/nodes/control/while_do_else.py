@@ -20,29 +20,29 @@ class WhileDoElse(ControlNode):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         children = self.children
         count = len(children)
         if count not in (2, 3):
             raise self.logic_error(f"WhileDoElse must have 2 or 3 children, it has {count}")
         self._set_status(RUNNING)
         condition = children[0]
-        status = condition.tick_sync() if condition.is_sync else await condition.tick()
+        status = condition.tick_sync()
         if status is RUNNING:
             return RUNNING
         if status is SUCCESS:
             if count == 3:
-                await self.halt_child(2)
+                self.halt_child(2)
             branch = children[1]
-            status = branch.tick_sync() if branch.is_sync else await branch.tick()
+            status = branch.tick_sync()
         elif status is FAILURE:
             if count == 3:
-                await self.halt_child(1)
+                self.halt_child(1)
                 branch = children[2]
-                status = branch.tick_sync() if branch.is_sync else await branch.tick()
+                status = branch.tick_sync()
         else:
             raise self.logic_error(f"condition {condition.path} returned {status.name}")
         if status is RUNNING:
             return RUNNING
-        await self.reset_children()
+        self.reset_children()
         return status

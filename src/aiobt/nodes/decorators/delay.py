@@ -37,7 +37,7 @@ class Delay(DecoratorNode):
         self._done = True
         self.emit_wake_up()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         msec: int = self.get_input("delay_msec")
         if not self._started:
             self._started = True
@@ -47,16 +47,16 @@ class Delay(DecoratorNode):
                 self._timer = asyncio.ensure_future(self._wait(self.clock.now() + msec / 1000.0))
         if not self._done:
             return RUNNING
-        status = await self.tick_child()
+        status = self.tick_child()
         if status.is_completed:
             self._started = self._done = False
             self._timer = None
-            await self.reset_child()
+            self.reset_child()
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._started = self._done = False
         timer, self._timer = self._timer, None
         if timer is not None:
             timer.cancel()
-        await self.reset_child()
+        self.reset_child()

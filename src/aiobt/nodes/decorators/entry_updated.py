@@ -34,7 +34,7 @@ class EntryUpdatedDecorator(DecoratorNode):
         self._sequence_id = 0
         self._running = False
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if not self._running:
             entry = self.config.blackboard.entry(self._key)
             if entry is None:
@@ -42,17 +42,17 @@ class EntryUpdatedDecorator(DecoratorNode):
             previous, self._sequence_id = self._sequence_id, entry.sequence_id
             if previous == entry.sequence_id:
                 return self.IF_NOT_UPDATED
-        status = await self.tick_child()
+        status = self.tick_child()
         self._running = status is RUNNING
         if status.is_completed:
             # BT.CPP's DecoratorNode::executeTick: own status first, then the child reset
             self._set_status(status)
-            await self.reset_child()
+            self.reset_child()
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._running = False
-        await self.reset_child()
+        self.reset_child()
 
 
 class SkipUnlessUpdated(EntryUpdatedDecorator):

@@ -16,11 +16,11 @@ class ForceSuccess(DecoratorNode):
     __slots__ = ()
     RESULT: ClassVar[Status] = SUCCESS
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         self._set_status(RUNNING)
-        status = await self.tick_child()
+        status = self.tick_child()
         if status.is_completed:
-            await self.reset_child()
+            self.reset_child()
             return self.RESULT
         return status
 

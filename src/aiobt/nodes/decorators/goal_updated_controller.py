@@ -55,7 +55,7 @@ class GoalUpdatedController(DecoratorNode):
         self._goals: Any = _NOTHING
         self._updated = False
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         goal = self.get_input_or_blackboard("goal", _NOTHING)
         goals = self.get_input_or_blackboard("goals", _NOTHING)
         if self._status is IDLE:
@@ -70,7 +70,7 @@ class GoalUpdatedController(DecoratorNode):
         if not (self._updated or child._status is RUNNING):
             return RUNNING
         self._updated = False
-        status = child.tick_sync() if child.is_sync else await child.tick()
+        status = child.tick_sync()
         if status.is_completed:
-            await self.reset_child()
+            self.reset_child()
         return status

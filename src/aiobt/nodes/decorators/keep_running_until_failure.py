@@ -15,13 +15,13 @@ class KeepRunningUntilFailure(DecoratorNode):
 
     __slots__ = ()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         self._set_status(RUNNING)
-        status = await self.tick_child()
+        status = self.tick_child()
         if status is SUCCESS:
-            await self.reset_child()
+            self.reset_child()
             return RUNNING
         if status is FAILURE:
-            await self.reset_child()
+            self.reset_child()
             return FAILURE
         return RUNNING

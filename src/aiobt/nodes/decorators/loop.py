@@ -82,7 +82,7 @@ class LoopNode(DecoratorNode):
         value = self.get_input("if_empty")
         return value if isinstance(value, Status) else status_from_text(str(value))
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if self._status is IDLE:
             self._child_running = False
             self._queue = deque(self._static) if self._static is not None else None
@@ -93,15 +93,15 @@ class LoopNode(DecoratorNode):
             self.set_output("value", self._queue.popleft())
             if self._status is IDLE:
                 self._set_status(RUNNING)
-        status = await self.tick_child()
+        status = self.tick_child()
         self._child_running = status is RUNNING
         if status.is_completed:
-            await self.reset_child()
+            self.reset_child()
         return FAILURE if status is FAILURE else RUNNING
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._child_running = False
-        await self.reset_child()
+        self.reset_child()
 
 
 class LoopInt(LoopNode):

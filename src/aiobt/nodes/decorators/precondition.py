@@ -38,18 +38,18 @@ class Precondition(DecoratorNode):
         value = self.get_input("else")
         return value if isinstance(value, Status) else status_from_text(str(value))
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         otherwise = self._else()
         if not self._children_running:
             self._children_running = bool(self._script.run(as_condition=True))
             if not self._children_running:
                 return otherwise
-        status = await self.tick_child()
+        status = self.tick_child()
         if status.is_completed:
-            await self.reset_child()
+            self.reset_child()
             self._children_running = False
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._children_running = False
-        await self.reset_child()
+        self.reset_child()

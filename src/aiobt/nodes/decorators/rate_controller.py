@@ -34,7 +34,7 @@ class RateController(DecoratorNode):
         self._period = 0.1
         self._first = False
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if self._status is IDLE:
             hz: float = self.get_input("hz")
             if not hz > 0.0:
@@ -49,9 +49,9 @@ class RateController(DecoratorNode):
         if not (self._first or due or child._status is RUNNING):
             return RUNNING
         self._first = False
-        status = child.tick_sync() if child.is_sync else await child.tick()
+        status = child.tick_sync()
         if status is SUCCESS:
             self._start = self.clock.now()
         if status.is_completed:
-            await self.reset_child()
+            self.reset_child()
         return status

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
-from aiobt.core.composite import DecoratorNode, reset_if_finished
+from aiobt.core.composite import DecoratorNode, reset_node
 from aiobt.core.ports import input_port
 from aiobt.core.status import Status
 
@@ -42,48 +42,42 @@ class RetryUntilSuccessful(DecoratorNode):
         super().__init__(*args, **kwargs)
         self._count = 0
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         limit: int = self.get_input(self.LIMIT_PORT)
         again = self.AGAIN
         finished = SUCCESS if again is FAILURE else FAILURE
         loop = self._count < limit or limit == -1
         if self._status is not RUNNING:
-            self._set_status(RUNNING)
+            if self._ctx.listeners:
+                self._set_status(RUNNING)
+            else:
+                self._status = RUNNING
         child = self.child
         assert child is not None
         while loop:
             previous = child._status
-            # inlined child.tick(): one coroutine frame per async child, none per sync one
-            if child.is_sync:
-                status = child.tick_sync()
-            elif child._conditions is None:
-                status = await child.execute()
-                if status is not SKIPPED and status is not child._status:
-                    child._set_status(status)
-            else:
-                status = await child.tick()
+            status = child.tick_sync()
             if status is again:
                 self._count += 1
                 loop = self._count < limit or limit == -1
-                await self.reset_child()
+                self.reset_child()
                 if previous is IDLE and loop:
                     self.emit_wake_up()
                     return RUNNING
             elif status is finished:
                 self._count = 0
-                if not reset_if_finished(child):
-                    await self.reset_child()
+                reset_node(child)
                 return finished
             elif status is RUNNING:
                 return RUNNING
             elif status is SKIPPED:
-                await self.reset_child()
+                self.reset_child()
                 return SKIPPED
             else:
                 raise self.logic_error("child returned IDLE")
         self._count = 0
         return again
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._count = 0
-        await self.reset_child()
+        self.reset_child()

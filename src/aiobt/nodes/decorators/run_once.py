@@ -31,13 +31,13 @@ class RunOnce(DecoratorNode):
         super().__init__(*args, **kwargs)
         self._result: Status | None = None
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         skip = self.get_input("then_skip", True)
         if self._result is not None:
             return SKIPPED if skip else self._result
         self._set_status(RUNNING)
-        status = await self.tick_child()
+        status = self.tick_child()
         if status.is_completed:
             self._result = status
-            await self.reset_child()
+            self.reset_child()
         return status

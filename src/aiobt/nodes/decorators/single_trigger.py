@@ -27,14 +27,14 @@ class SingleTrigger(DecoratorNode):
         super().__init__(*args, **kwargs)
         self._armed = True
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         if self._status is IDLE:
             self._armed = True
         self._set_status(RUNNING)
         if not self._armed:
             return FAILURE
-        status = await self.tick_child()
+        status = self.tick_child()
         if status.is_completed:
             self._armed = False
-            await self.reset_child()
+            self.reset_child()
         return status

@@ -47,7 +47,7 @@ class Timeout(DecoratorNode):
         if timer is not None:
             timer.cancel()
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         msec: int = self.get_input("msec")
         if not self._started:
             self._started = True
@@ -58,16 +58,16 @@ class Timeout(DecoratorNode):
         if self._expired:
             self._started = self._expired = False
             self._timer = None
-            await self.reset_child()
+            self.reset_child()
             return FAILURE
-        status = await self.tick_child()
+        status = self.tick_child()
         if status.is_completed:
             self._started = False
             self._stop_timer()
-            await self.reset_child()
+            self.reset_child()
         return status
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         self._started = self._expired = False
         self._stop_timer()
-        await self.reset_child()
+        self.reset_child()

@@ -1,0 +1,212 @@
+"""The two shapes behind Sequence/Fallback and their reactive variants.
+
+A Sequence is a Fallback with SUCCESS and FAILURE swapped: children are
+ticked in order while they return the status that lets the walk go on
+(``NEXT``); the other one (``STOP``) ends it. One implementation serves both.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+from aiobt.core.composite import ControlNode, reset_all
+from aiobt.core.node import TreeNode
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
+
+
+def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> Any:
+    """The tick of an ordered composite, specialised per (NEXT, STOP, YIELDS).
+
+    With ``write`` it is the whole ``tick_sync`` (conditions check and final
+    status write included); without, the ``execute_sync`` that pre/post
+    conditions wrap. The constants are closure cells: the hot path of every
+    tree reads no class attribute, and statuses are written in place when
+    nobody listens.
+    """
+
+    def walk(self: OrderedComposite) -> Status:
+        if write and self._conditions is not None:
+            return self._conditions.tick_sync(self)
+        quiet = not self._ctx.listeners
+        if self._status is not RUNNING:
+            if self._status is IDLE and self._skipped:
+                self._skipped = 0
+            # RUNNING is only observable through listeners until the walk
+            # returns; when nobody listens it is written on the paths that keep it
+            if not quiet:
+                self._set_status(RUNNING)
+        children = self.children
+        start = current = self._current
+        for child in children[start:] if start else children:
+            previous = child._status if yields else IDLE
+            status = child.tick_sync()
+            if status is proceed:
+                current += 1
+                if yields and previous is IDLE and current < len(children):
+                    self._current = current
+                    self._status = RUNNING
+                    self.emit_wake_up()
+                    return RUNNING
+            elif status is RUNNING:
+                if current != start:
+                    self._current = current
+                self._status = RUNNING
+                return RUNNING
+            elif status is stop:
+                if start:
+                    self._current = 0
+                break
+            elif status is SKIPPED:
+                current += 1
+                self._skipped += 1
+            else:
+                self._status = RUNNING
+                raise self.logic_error(f"child {child.path} returned IDLE")
+        else:
+            if start:
+                self._current = 0
+            status = proceed
+            if self._skipped:
+                if self._skipped == len(children):
+                    status = SKIPPED
+                self._skipped = 0
+        # no child is RUNNING here: the walk only passes finished or skipped children
+        if quiet:
+            for child in children:
+                child._status = IDLE
+        else:
+            for child in children:
+                child._set_status(IDLE)
+        if status is SKIPPED:
+            self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
+            return status
+        if write:
+            if quiet:
+                self._status = status
+            else:
+                self._set_status(status)
+        elif quiet:
+            self._status = RUNNING  # the caller (pre/post conditions) writes the result
+        return status
+
+    return walk
+
+
+class OrderedComposite(ControlNode):
+    """Tick children in order, resuming at the RUNNING one (memory of the index).
+
+    - a child RUNNING: RUNNING, and the same child is ticked next time;
+    - a child ``STOP``: reset all children, start over next time, ``STOP``;
+    - every child ``NEXT`` (or SKIPPED): reset, ``NEXT`` (SKIPPED if all were
+      skipped);
+    - ``YIELDS``: after a child that started from IDLE returns ``NEXT``,
+      return RUNNING and ask for a wake-up (the Async variants).
+
+    Subclasses set ``NEXT``, ``STOP`` and ``YIELDS``; the tick is built for
+    them when the class is created.
+    """
+
+    __slots__ = ("_current", "_skipped")
+    NEXT: ClassVar[Status] = SUCCESS
+    STOP: ClassVar[Status] = FAILURE
+    YIELDS: ClassVar[bool] = False
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
+            cls.tick_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, True)  # type: ignore[method-assign]
+        if "execute_sync" not in cls.__dict__:
+            cls.execute_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, False)  # type: ignore[method-assign]
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._current = 0
+        self._skipped = 0
+
+    def on_halt_sync(self) -> None:
+        self._current = self._skipped = 0
+        reset_all(self.children)
+
+
+def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
+    """The tick of a reactive composite, specialised like :func:`_ordered_walk`."""
+
+    def walk(self: ReactiveComposite) -> Status:
+        if write and self._conditions is not None:
+            return self._conditions.tick_sync(self)
+        quiet = not self._ctx.listeners
+        if self._status is not RUNNING:
+            if quiet:
+                self._status = RUNNING
+            else:
+                self._set_status(RUNNING)
+        all_skipped = True
+        children = self.children
+        for index, child in enumerate(children):
+            status = child.tick_sync()
+            if status is proceed:
+                all_skipped = False
+            elif status is RUNNING:
+                # the children before it just finished; a later one may still run
+                _reset(children[:index], quiet)
+                _reset_running(children[index + 1 :])
+                return RUNNING
+            elif status is stop:
+                _reset_running(children)
+                break
+            elif status is not SKIPPED:
+                raise self.logic_error(f"child {child.path} returned IDLE")
+        else:
+            _reset(children, quiet)
+            if all_skipped:
+                return SKIPPED
+            status = proceed
+        if write:
+            if quiet:
+                self._status = status
+            else:
+                self._set_status(status)
+        return status
+
+    return walk
+
+
+class ReactiveComposite(ControlNode):
+    """Tick every child from the first on every tick (no memory of the index).
+
+    - a child RUNNING: every other child is reset (a RUNNING one halted),
+      RUNNING; so the children before a running one are re-checked each tick;
+    - a child ``STOP``: reset all, ``STOP``;
+    - all ``NEXT`` (or SKIPPED): reset all, ``NEXT`` (SKIPPED if all skipped).
+    """
+
+    __slots__ = ()
+    NEXT: ClassVar[Status] = SUCCESS
+    STOP: ClassVar[Status] = FAILURE
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
+            cls.tick_sync = _reactive_walk(cls.NEXT, cls.STOP, True)  # type: ignore[method-assign]
+        if "execute_sync" not in cls.__dict__:
+            cls.execute_sync = _reactive_walk(cls.NEXT, cls.STOP, False)  # type: ignore[method-assign]
+
+
+def _reset_running(children: list[TreeNode]) -> None:
+    """Halt the RUNNING ones among ``children``, set the finished ones IDLE."""
+    for child in children:
+        status = child._status
+        if status is RUNNING:
+            child.halt_sync()
+        elif status is not IDLE:
+            child._set_status(IDLE)
+
+
+def _reset(children: list[TreeNode], quiet: bool) -> None:
+    """Set finished ``children`` IDLE (none of them may be RUNNING)."""
+    if quiet:
+        for child in children:
+            child._status = IDLE
+    else:
+        for child in children:
+            child._set_status(IDLE)
