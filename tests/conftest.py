@@ -1,7 +1,6 @@
-"""Shared pytest configuration: aiobt's test plugin (manual_clock, stubs, bt_factory).
+"""Shared pytest configuration.
 
-The plugin should also be published as a ``pytest11`` entry point
-(``aiobt = "aiobt.testing.plugin"``) once pyproject.toml lists it.
+aiobt's test plugin (fixtures ``manual_clock``, ``stubs``, ``bt_factory``) is
+loaded through its ``pytest11`` entry point (``aiobt.testing.plugin``), the
+same way it reaches users' test suites.
 """
-
-pytest_plugins = ["aiobt.testing.plugin"]
