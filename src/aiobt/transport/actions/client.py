@@ -9,7 +9,7 @@ from typing import Generic, TypeVar
 
 import zenoh
 
-from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
+from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode, decoder
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.actions.client_goal import ClientGoal, settle
@@ -67,6 +67,8 @@ class ActionClient(Generic[G, R, F]):
         self.result_model = action.result_type()
         self.feedback_model = action.feedback_type()
         self._goal_model = action.goal_type()
+        self.decode_result = decoder(self.result_model, key=keys.base)
+        self.decode_feedback = decoder(self.feedback_model, key=keys.base)
         self._session = session
         self._bridge = bridge
         self._presence = presence

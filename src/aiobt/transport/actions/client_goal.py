@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import zenoh
 
-from aiobt.msgs import ActionResult, GoalState, MessageError, Msg, decode
+from aiobt.msgs import ActionResult, GoalState, MessageError, Msg
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.services import ServiceError
 
@@ -128,7 +128,7 @@ class ClientGoal(Generic[G, R, F]):
 
     def _on_feedback(self, payload: bytes) -> None:
         try:
-            feedback = decode(self._client.feedback_model, payload, key=self._client.keys.base)
+            feedback = self._client.decode_feedback(payload)
         except MessageError as exc:
             log.warning("dropped bad feedback: %s", exc)
             return
@@ -142,7 +142,7 @@ class ClientGoal(Generic[G, R, F]):
 
     def _on_result(self, state: GoalState, payload: bytes) -> None:
         try:
-            result = decode(self._client.result_model, payload, key=self._client.keys.base)
+            result = self._client.decode_result(payload)
         except MessageError as exc:
             self.lost(f"malformed result: {exc}")
             return

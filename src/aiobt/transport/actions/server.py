@@ -15,7 +15,16 @@ from typing import Any, Generic, TypeVar
 
 import zenoh
 
-from aiobt.msgs import ActionDef, ActionResult, GoalState, GoalStatus, MessageError, Msg, decode
+from aiobt.msgs import (
+    ActionDef,
+    ActionResult,
+    GoalState,
+    GoalStatus,
+    MessageError,
+    Msg,
+    decode,
+    decoder,
+)
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.actions.goals import GoalHandle, GoalRecord, RecentIds, ResultStore
@@ -68,6 +77,7 @@ class ActionServer(Generic[G, R, F]):
         self.action = action
         self.preemption = preemption
         self._goal_model = action.goal_type()
+        self._decode_goal_payload = decoder(self._goal_model, key=keys.goal)
         self._result_model = action.result_type()
         self._execute = execute
         self._accept = accept
@@ -189,7 +199,7 @@ class ActionServer(Generic[G, R, F]):
             raise ValueError(f"goal id {goal_id!r} must be 1-64 of [A-Za-z0-9_.-]")
         payload = query_payload(query)
         self._bridge.check_size(self.keys.goal, payload)
-        return decode(self._goal_model, payload, key=self.keys.goal)
+        return self._decode_goal_payload(payload)
 
     def _preempted(self, by: str) -> R:
         return self._result_model(error_msg=f"preempted by goal {by}")
