@@ -28,6 +28,7 @@ from aiobt.core.ports import inout_port, input_port, output_port
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.script import ScriptError, compile_script
 
 __all__ = [
     "AsyncActionNode",
@@ -43,6 +44,7 @@ __all__ = [
     "NodeError",
     "PortError",
     "ScaledClock",
+    "ScriptError",
     "StatefulActionNode",
     "Status",
     "SyncActionNode",
@@ -51,6 +53,7 @@ __all__ = [
     "Tree",
     "TreeLoadError",
     "TreeNode",
+    "compile_script",
     "inout_port",
     "input_port",
     "output_port",
