@@ -89,7 +89,48 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
             self._status = RUNNING  # the caller (pre/post conditions) writes the result
         return status
 
-    return walk
+    if yields or not write:
+        return walk
+
+    def fast(self: OrderedComposite) -> Status:
+        # The common case, kept as short as it can be: a walk from the first
+        # child (not resuming one that was RUNNING) with nobody listening to
+        # status changes and no pre/post conditions. Everything else, and the
+        # RUNNING status that only listeners could see mid-walk, goes through
+        # ``walk``.
+        if self._current or self._conditions is not None or self._ctx.listeners:
+            return walk(self)
+        children = self.children
+        index = skipped = 0
+        for child in children:
+            status = child.tick_sync()
+            if status is proceed:
+                index += 1
+            elif status is RUNNING:
+                self._current = index
+                if skipped:
+                    self._skipped = skipped
+                self._status = RUNNING
+                return RUNNING
+            elif status is stop:
+                break
+            elif status is SKIPPED:
+                index += 1
+                skipped += 1
+            else:
+                self._status = RUNNING
+                raise self.logic_error(f"child {child.path} returned IDLE")
+        else:
+            status = SKIPPED if skipped and skipped == len(children) else proceed
+        for child in children:  # none RUNNING: each was passed finished or skipped
+            child._status = IDLE
+        if status is SKIPPED:
+            self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
+        else:
+            self._status = status
+        return status
+
+    return fast
 
 
 class OrderedComposite(ControlNode):
@@ -168,7 +209,42 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
                 self._set_status(status)
         return status
 
-    return walk
+    if not write:
+        return walk
+
+    def fast(self: ReactiveComposite) -> Status:
+        # nobody listening and no pre/post conditions: statuses written in
+        # place, RUNNING only where it stays (see _ordered_walk's fast path)
+        if self._conditions is not None or self._ctx.listeners:
+            return walk(self)
+        children = self.children
+        all_skipped = True
+        for index, child in enumerate(children):
+            status = child.tick_sync()
+            if status is proceed:
+                all_skipped = False
+            elif status is RUNNING:
+                for done in children[:index]:  # finished or skipped this tick
+                    done._status = IDLE
+                _reset_running(children[index + 1 :])
+                self._status = RUNNING
+                return RUNNING
+            elif status is stop:
+                _reset_running(children)
+                self._status = status
+                return status
+            elif status is not SKIPPED:
+                self._status = RUNNING
+                raise self.logic_error(f"child {child.path} returned IDLE")
+        for child in children:
+            child._status = IDLE
+        if all_skipped:
+            self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
+            return SKIPPED
+        self._status = proceed
+        return proceed
+
+    return fast
 
 
 class ReactiveComposite(ControlNode):
