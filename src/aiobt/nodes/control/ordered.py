@@ -70,13 +70,7 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
                 if self._skipped == len(children):
                     status = SKIPPED
                 self._skipped = 0
-        # no child is RUNNING here: the walk only passes finished or skipped children
-        if quiet:
-            for child in children:
-                child._status = IDLE
-        else:
-            for child in children:
-                child._set_status(IDLE)
+        _reset(children, quiet)
         if status is SKIPPED:
             self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
             return status
@@ -122,8 +116,11 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
                 raise self.logic_error(f"child {child.path} returned IDLE")
         else:
             status = SKIPPED if skipped and skipped == len(children) else proceed
-        for child in children:  # none RUNNING: each was passed finished or skipped
-            child._status = IDLE
+        for child in children:
+            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
+                child.halt_sync()
+            else:
+                child._status = IDLE
         if status is SKIPPED:
             self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
         else:
@@ -224,8 +221,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
             if status is proceed:
                 all_skipped = False
             elif status is RUNNING:
-                for done in children[:index]:  # finished or skipped this tick
-                    done._status = IDLE
+                _reset(children[:index], True)
                 _reset_running(children[index + 1 :])
                 self._status = RUNNING
                 return RUNNING
@@ -236,8 +232,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
             elif status is not SKIPPED:
                 self._status = RUNNING
                 raise self.logic_error(f"child {child.path} returned IDLE")
-        for child in children:
-            child._status = IDLE
+        _reset(children, True)
         if all_skipped:
             self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
             return SKIPPED
@@ -279,10 +274,16 @@ def _reset_running(children: list[TreeNode]) -> None:
 
 
 def _reset(children: list[TreeNode], quiet: bool) -> None:
-    """Set finished ``children`` IDLE (none of them may be RUNNING)."""
-    if quiet:
-        for child in children:
+    """Reset ``children`` that were just ticked: IDLE, in place when nobody listens.
+
+    A child is RUNNING here only if it was skipped after setting itself
+    RUNNING (a control node keeps that status, as in BT.CPP): it is halted.
+    """
+    for child in children:
+        status = child._status
+        if status is RUNNING:
+            child.halt_sync()
+        elif quiet:
             child._status = IDLE
-    else:
-        for child in children:
+        elif status is not IDLE:
             child._set_status(IDLE)
