@@ -196,8 +196,14 @@ def aiobt_factory(driver: Driver) -> BehaviorTreeFactory:
 FactoryHook = Callable[[BehaviorTreeFactory], None]
 
 
-async def run_aiobt(scenario: Scenario, hook: FactoryHook | None = None) -> list[Step]:
-    """aiobt's steps; ``hook`` may change the factory (the harness's own tests)."""
+async def run_aiobt(
+    scenario: Scenario, hook: FactoryHook | None = None, *, listen: bool = True
+) -> list[Step]:
+    """aiobt's steps; ``hook`` may change the factory (the harness's own tests).
+
+    ``listen=False`` attaches no status listener, so the tree runs its quiet
+    fast paths; the steps then carry no transitions.
+    """
     driver = Driver(scenario.scripts)
     factory = aiobt_factory(driver)
     if hook is not None:
@@ -207,11 +213,12 @@ async def run_aiobt(scenario: Scenario, hook: FactoryHook | None = None) -> list
     except Exception as exc:
         return [Step("load", "error", driver.take_calls(), error=str(exc))]
     transitions: list[str] = []
-    tree.add_status_listener(
-        lambda _stamp, node, previous, status: transitions.append(
-            f"{node.name}:{previous.name}>{status.name}"
+    if listen:
+        tree.add_status_listener(
+            lambda _stamp, node, previous, status: transitions.append(
+                f"{node.name}:{previous.name}>{status.name}"
+            )
         )
-    )
     steps = []
     for op in scenario.ops:
         step = Step(op, "")
@@ -253,16 +260,19 @@ def first_difference(reference: list[Step], candidate: list[Step]) -> str | None
 
 
 async def compare(
-    scenario: Scenario, hook: FactoryHook | None = None
+    scenario: Scenario, hook: FactoryHook | None = None, *, listen: bool = True
 ) -> tuple[list[Step], list[Step], str | None]:
     reference = run_btcpp(scenario)
-    candidate = await run_aiobt(scenario, hook)
+    candidate = await run_aiobt(scenario, hook, listen=listen)
+    if not listen:  # compare results and leaf calls only
+        for step in reference:
+            step.transitions = []
     return reference, candidate, first_difference(reference, candidate)
 
 
-async def assert_conforms(scenario: Scenario) -> list[Step]:
+async def assert_conforms(scenario: Scenario, *, listen: bool = True) -> list[Step]:
     """Run both; fail with the scenario and the first difference. Returns BT.CPP's steps."""
-    reference, _, difference = await compare(scenario)
+    reference, _, difference = await compare(scenario, listen=listen)
     if difference is not None:
         raise AssertionError(f"{difference}\n--- scenario ---\n{scenario.describe()}")
     return reference

@@ -30,6 +30,12 @@ async def test_random_tree_matches_btcpp(seed: int) -> None:
     await assert_conforms(generate(seed))
 
 
+@pytest.mark.parametrize("seed", range(FIRST_SEED, FIRST_SEED + TREES))
+async def test_random_tree_matches_btcpp_with_nobody_listening(seed: int) -> None:
+    # no status listener: the quiet fast paths run, results and leaf calls must agree
+    await assert_conforms(generate(seed), listen=False)
+
+
 def test_generator_covers_every_node_and_operation() -> None:
     tags: Counter[str] = Counter()
     ops: Counter[str] = Counter()
