@@ -9,10 +9,7 @@ from __future__ import annotations
 from typing import Any
 
 from aiobt.core.node import NodeKind, TreeNode
-from aiobt.core.status import Status
-
-IDLE = Status.IDLE
-RUNNING = Status.RUNNING
+from aiobt.core.status import IDLE, RUNNING, Status
 
 
 def reset_node(node: TreeNode) -> None:

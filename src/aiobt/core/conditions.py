@@ -25,18 +25,12 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from aiobt.core.errors import NodeError
-from aiobt.core.status import Status
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 if TYPE_CHECKING:
     from aiobt.core.node import TreeNode
 
 Evaluator = Callable[["TreeNode"], Any]
-
-IDLE = Status.IDLE
-RUNNING = Status.RUNNING
-SKIPPED = Status.SKIPPED
-SUCCESS = Status.SUCCESS
-FAILURE = Status.FAILURE
 
 
 @dataclass(slots=True)

@@ -18,13 +18,7 @@ from typing import Any, ClassVar
 from aiobt.core import eager
 from aiobt.core.errors import LogicError, NodeError
 from aiobt.core.node import NodeKind, TreeNode, tick_error
-from aiobt.core.status import Status
-
-IDLE = Status.IDLE
-RUNNING = Status.RUNNING
-SUCCESS = Status.SUCCESS
-FAILURE = Status.FAILURE
-SKIPPED = Status.SKIPPED
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 log = logging.getLogger("aiobt.core.leaves")
 

@@ -26,14 +26,11 @@ from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.core.errors import LogicError, NodeError, PortError
 from aiobt.core.ports import NO_DEFAULT, PortInfo
-from aiobt.core.status import Status
+from aiobt.core.status import IDLE, SKIPPED, Status
 
 if TYPE_CHECKING:
     from aiobt.core.conditions import NodeConditions
 
-IDLE = Status.IDLE
-RUNNING = Status.RUNNING
-SKIPPED = Status.SKIPPED
 
 log = logging.getLogger("aiobt.core.node")
 

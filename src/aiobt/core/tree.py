@@ -17,15 +17,9 @@ from dataclasses import dataclass
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock
 from aiobt.core.node import StatusListener, TreeContext, TreeNode
-from aiobt.core.status import Status
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 
 log = logging.getLogger("aiobt.core.tree")
-
-RUNNING = Status.RUNNING
-IDLE = Status.IDLE
-SUCCESS = Status.SUCCESS
-FAILURE = Status.FAILURE
-SKIPPED = Status.SKIPPED
 
 
 class WakeUp:

@@ -14,17 +14,9 @@ from dataclasses import dataclass
 from typing import Any
 
 from aiobt.core.node import TreeNode
-from aiobt.core.status import Status
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 from aiobt.core.tree import Tree
 from aiobt.loggers.observer import StatusObserver
-
-IDLE, RUNNING, SUCCESS, FAILURE, SKIPPED = (
-    Status.IDLE,
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-)
 
 
 @dataclass(slots=True)

@@ -7,9 +7,7 @@ from typing import Any
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.node import NodeKind
-from aiobt.core.status import Status
-
-RUNNING = Status.RUNNING
+from aiobt.core.status import RUNNING, Status
 
 
 class SubTreeNode(DecoratorNode):

@@ -8,7 +8,8 @@ from aiobt.core.leaves import ConditionNode
 from aiobt.core.ports import input_port
 from aiobt.core.status import IDLE
 
-_GOAL_PORTS = (
+# goal/goals from the ports, else the blackboard entries of the same names (Nav2)
+GOAL_PORTS = (
     input_port(
         "goal",
         "geometry_msgs::msg::PoseStamped",
@@ -37,7 +38,7 @@ class GoalUpdated(ConditionNode):
     """
 
     __slots__ = ("_goal", "_goals")
-    PORTS = _GOAL_PORTS
+    PORTS = GOAL_PORTS
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)

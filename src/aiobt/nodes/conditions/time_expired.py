@@ -6,9 +6,7 @@ from typing import Any
 
 from aiobt.core.leaves import ConditionNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-IDLE = Status.IDLE
+from aiobt.core.status import IDLE
 
 
 def _period(node: ConditionNode) -> float:

@@ -5,9 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from aiobt.core.composite import ControlNode
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
+from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
 
 
 class IfThenElse(ControlNode):

@@ -3,14 +3,7 @@
 from __future__ import annotations
 
 from aiobt.core.composite import ControlNode
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE, SKIPPED = (
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-)
+from aiobt.core.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 class NonblockingSequence(ControlNode):

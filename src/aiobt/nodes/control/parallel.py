@@ -6,15 +6,7 @@ from typing import Any
 
 from aiobt.core.composite import ControlNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE, SKIPPED, IDLE = (
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-    Status.IDLE,
-)
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 def threshold(value: int, children: int) -> int:

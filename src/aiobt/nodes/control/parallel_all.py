@@ -6,16 +6,8 @@ from typing import Any
 
 from aiobt.core.composite import ControlNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 from aiobt.nodes.control.parallel import threshold
-
-RUNNING, SUCCESS, FAILURE, SKIPPED, IDLE = (
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-    Status.IDLE,
-)
 
 
 class ParallelAll(ControlNode):

@@ -7,14 +7,7 @@ from typing import Any
 from aiobt.core.composite import ControlNode
 from aiobt.core.errors import LogicError
 from aiobt.core.ports import inout_port
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE, SKIPPED = (
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-)
+from aiobt.core.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 class PersistentSequence(ControlNode):

@@ -6,14 +6,7 @@ from typing import Any
 
 from aiobt.core.composite import ControlNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE, SKIPPED = (
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-)
+from aiobt.core.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 class RecoveryNode(ControlNode):

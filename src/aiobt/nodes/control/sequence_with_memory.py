@@ -5,15 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from aiobt.core.composite import ControlNode
-from aiobt.core.status import Status
-
-IDLE, RUNNING, SUCCESS, FAILURE, SKIPPED = (
-    Status.IDLE,
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-)
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 class SequenceWithMemory(ControlNode):

@@ -9,9 +9,7 @@ from typing import Any, ClassVar
 from aiobt.core.composite import ControlNode
 from aiobt.core.convert import to_text
 from aiobt.core.ports import PortInfo, input_port
-from aiobt.core.status import Status
-
-RUNNING, SKIPPED = Status.RUNNING, Status.SKIPPED
+from aiobt.core.status import RUNNING, SKIPPED, Status
 
 
 def values_equal(a: str, b: str, enums: dict[str, int]) -> bool:

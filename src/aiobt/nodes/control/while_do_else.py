@@ -3,9 +3,7 @@
 from __future__ import annotations
 
 from aiobt.core.composite import ControlNode
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
+from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
 
 
 class WhileDoElse(ControlNode):

@@ -7,9 +7,7 @@ from typing import Any
 
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-RUNNING = Status.RUNNING
+from aiobt.core.status import RUNNING, Status
 
 
 class Delay(DecoratorNode):

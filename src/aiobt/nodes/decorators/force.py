@@ -5,9 +5,7 @@ from __future__ import annotations
 from typing import ClassVar
 
 from aiobt.core.composite import DecoratorNode
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE = Status.RUNNING, Status.SUCCESS, Status.FAILURE
+from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
 
 
 class ForceSuccess(DecoratorNode):

@@ -5,10 +5,8 @@ from __future__ import annotations
 from typing import Any
 
 from aiobt.core.composite import DecoratorNode
-from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-IDLE, RUNNING = Status.IDLE, Status.RUNNING
+from aiobt.core.status import IDLE, RUNNING, Status
+from aiobt.nodes.conditions.goal_updated import GOAL_PORTS
 
 _NOTHING: Any = None
 
@@ -34,20 +32,7 @@ class GoalUpdatedController(DecoratorNode):
     """
 
     __slots__ = ("_goal", "_goals", "_updated")
-    PORTS = (
-        input_port(
-            "goal",
-            "geometry_msgs::msg::PoseStamped",
-            description='Destination to check. Takes in a blackboard variable, "{goal}" '
-            "if not specified.",
-        ),
-        input_port(
-            "goals",
-            "nav_msgs::msg::Goals",
-            description='Vector of goals to check. Takes in a blackboard variable, "{goals}" '
-            "if not specified.",
-        ),
-    )
+    PORTS = GOAL_PORTS
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)

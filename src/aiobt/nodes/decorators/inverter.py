@@ -3,10 +3,7 @@
 from __future__ import annotations
 
 from aiobt.core.composite import DecoratorNode, reset_node
-from aiobt.core.status import Status
-
-RUNNING, SUCCESS, FAILURE, IDLE = Status.RUNNING, Status.SUCCESS, Status.FAILURE, Status.IDLE
-SKIPPED = Status.SKIPPED
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
 
 
 class Inverter(DecoratorNode):

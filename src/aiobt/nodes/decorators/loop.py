@@ -9,10 +9,8 @@ from typing import Any, ClassVar
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.convert import converter_for
 from aiobt.core.ports import inout_port, input_port, output_port
-from aiobt.core.status import Status
+from aiobt.core.status import FAILURE, IDLE, RUNNING, Status
 from aiobt.nodes.decorators.status_port import status_from_text
-
-IDLE, RUNNING, FAILURE = Status.IDLE, Status.RUNNING, Status.FAILURE
 
 
 class LoopNode(DecoratorNode):

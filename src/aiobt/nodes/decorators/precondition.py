@@ -10,8 +10,6 @@ from aiobt.core.status import Status
 from aiobt.nodes.actions.script import ScriptCode
 from aiobt.nodes.decorators.status_port import status_from_text
 
-RUNNING = Status.RUNNING
-
 
 class Precondition(DecoratorNode):
     """``<Precondition if="battery > 20" else="FAILURE">``.

@@ -6,9 +6,7 @@ from typing import Any
 
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-IDLE, RUNNING, SUCCESS, FAILURE = Status.IDLE, Status.RUNNING, Status.SUCCESS, Status.FAILURE
+from aiobt.core.status import IDLE, RUNNING, SUCCESS, Status
 
 
 class RateController(DecoratorNode):

@@ -6,15 +6,7 @@ from typing import Any, ClassVar
 
 from aiobt.core.composite import DecoratorNode, reset_node
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-IDLE, RUNNING, SUCCESS, FAILURE, SKIPPED = (
-    Status.IDLE,
-    Status.RUNNING,
-    Status.SUCCESS,
-    Status.FAILURE,
-    Status.SKIPPED,
-)
+from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 class RetryUntilSuccessful(DecoratorNode):

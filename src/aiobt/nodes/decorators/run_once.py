@@ -6,9 +6,7 @@ from typing import Any
 
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-RUNNING, SKIPPED, IDLE = Status.RUNNING, Status.SKIPPED, Status.IDLE
+from aiobt.core.status import RUNNING, SKIPPED, Status
 
 
 class RunOnce(DecoratorNode):

@@ -5,9 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from aiobt.core.composite import DecoratorNode
-from aiobt.core.status import Status
-
-IDLE, RUNNING, FAILURE, SKIPPED = Status.IDLE, Status.RUNNING, Status.FAILURE, Status.SKIPPED
+from aiobt.core.status import FAILURE, IDLE, RUNNING, Status
 
 
 class SingleTrigger(DecoratorNode):

@@ -7,9 +7,7 @@ from typing import Any
 
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import Status
-
-RUNNING, FAILURE = Status.RUNNING, Status.FAILURE
+from aiobt.core.status import FAILURE, RUNNING, Status
 
 
 class Timeout(DecoratorNode):
