@@ -45,9 +45,6 @@ class SyncLeaf(TreeNode):
             self._set_status(status)
         return status
 
-    async def execute(self) -> Status:
-        return self.execute_sync()
-
     def execute_sync(self) -> Status:
         raise LogicError(f"{type(self).__name__} does not implement execute_sync()")
 

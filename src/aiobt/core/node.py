@@ -8,17 +8,18 @@ tree starts, polls and cancels; the :class:`~aiobt.core.tree.Tree` awaits
 their cleanup after the tick that halted them.
 
 Node authors implement ``execute_sync()`` (control nodes, decorators) or the
-hooks of a leaf base in :mod:`aiobt.core.leaves`. An ``async def execute()``
-still works for nodes written that way, as long as it does not wait on
-anything: it is driven to completion within the tick. Status changes notify
-the tree's listeners only when the status really changes.
+hooks of a leaf base in :mod:`aiobt.core.leaves`. A node class that defines
+``async def execute()`` or ``async def on_halt()`` is refused when the class
+is created: a tick never waits. Status changes notify the tree's listeners
+only when the status really changes.
 """
 
 from __future__ import annotations
 
 import asyncio
+import inspect
 import logging
-from collections.abc import Callable, Coroutine
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
@@ -130,6 +131,16 @@ class TreeNode:
         self._status = IDLE
         self._conditions: NodeConditions | None = None
 
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        for name, sync_name in (("execute", "execute_sync"), ("on_halt", "on_halt_sync")):
+            if inspect.iscoroutinefunction(cls.__dict__.get(name)):
+                raise TypeError(
+                    f"{cls.__qualname__}.{name} is a coroutine function: a tick or a halt "
+                    f"never waits; write def {sync_name}(self) instead, and put the "
+                    "waiting in an AsyncActionNode's async def run()"
+                )
+
     @classmethod
     def provided_ports(cls) -> tuple[PortInfo, ...]:
         return cls.PORTS
@@ -208,16 +219,8 @@ class TreeNode:
         return self.tick_sync()
 
     def execute_sync(self) -> Status:
-        """The node's own logic; returns its new status.
-
-        The default drives an ``async def execute()`` to completion; it must
-        not wait on anything (a tick never waits: use an AsyncActionNode).
-        """
-        status: Status = drive(self, self.execute(), "execute()")
-        return status
-
-    async def execute(self) -> Status:
-        raise LogicError(f"{type(self).__name__} implements neither execute_sync() nor execute()")
+        """The node's own logic; returns its new status. Never waits."""
+        raise LogicError(f"{type(self).__name__} does not implement execute_sync()")
 
     def halt_sync(self) -> None:
         """Stop the node and reset it to IDLE (BT.CPP's haltNode)."""
@@ -232,11 +235,7 @@ class TreeNode:
             self._conditions.on_halted(self)
 
     def on_halt_sync(self) -> None:
-        """Node-specific halt work; the default drives an ``async def on_halt()``."""
-        if type(self).on_halt is not TreeNode.on_halt:
-            drive(self, self.on_halt(), "on_halt()")
-
-    async def on_halt(self) -> None:
+        """Node-specific halt work; the default has none. Never waits."""
         return
 
     async def halt(self) -> None:
@@ -309,19 +308,3 @@ def tick_error(node: TreeNode, exc: BaseException) -> NodeError:
     if isinstance(exc, NodeError):
         return exc
     return NodeError(node.path, exc)
-
-
-def drive(node: TreeNode, coro: Coroutine[Any, Any, Any], what: str) -> Any:
-    """Run a coroutine that must not wait to its end, within the caller."""
-    try:
-        waited_on = coro.send(None)
-    except StopIteration as stop:
-        return stop.value
-    coro.close()
-    raise NodeError(
-        node.path,
-        LogicError(
-            f"{type(node).__name__}.{what} waited on {waited_on!r}: a tick or a halt never "
-            "waits; put the waiting in an AsyncActionNode's run()"
-        ),
-    )

@@ -6,7 +6,7 @@ import asyncio
 
 import pytest
 
-from aiobt import AsyncActionNode, BehaviorTreeFactory, NodeError, Status, TreeNode
+from aiobt import AsyncActionNode, BehaviorTreeFactory, Status, TreeNode
 from aiobt.testing.stubs import tree_xml
 
 S, F, R, IDLE = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.IDLE
@@ -47,21 +47,11 @@ class TimesOut(AsyncActionNode):
         return S
 
 
-class Waits(TreeNode):
-    """A node that (wrongly) awaits inside its tick."""
-
-    __slots__ = ()
-
-    async def execute(self) -> Status:
-        await asyncio.sleep(0.01)
-        return S
-
-
 @pytest.fixture
 def factory() -> BehaviorTreeFactory:
     Probe.log, Probe.tasks, Probe.waited = [], [], []
     factory = BehaviorTreeFactory()
-    for cls in (Probe, TimesOut, Waits):
+    for cls in (Probe, TimesOut):
         factory.register_node_type(cls)
     factory.register_simple_condition("No", lambda node: False)
     return factory
@@ -115,8 +105,20 @@ async def test_reactive_halt_cleanup_is_over_when_the_tick_returns(factory: Beha
     assert [task.cancelled() for task in Probe.tasks if task is not None] == [True]
 
 
-async def test_a_tick_that_waits_is_a_node_error_naming_the_node(factory: BehaviorTreeFactory):
-    tree = factory.create_tree_from_text(tree_xml('<Sequence><Waits name="w"/></Sequence>'))
-    with pytest.raises(NodeError, match=r"Waits\[w\].*never waits") as caught:
-        await tree.tick_exactly_once()
-    assert "AsyncActionNode" in str(caught.value)
+def test_a_node_whose_tick_would_wait_is_refused_when_its_class_is_made() -> None:
+    with pytest.raises(TypeError, match=r"Waits\.execute is a coroutine function.*execute_sync"):
+
+        class Waits(TreeNode):
+            __slots__ = ()
+
+            async def execute(self) -> Status:  # a tick that waits
+                await asyncio.sleep(0.01)
+                return S
+
+    with pytest.raises(TypeError, match=r"on_halt_sync"):
+
+        class HaltWaits(TreeNode):
+            __slots__ = ()
+
+            async def on_halt(self) -> None:
+                await asyncio.sleep(0.01)

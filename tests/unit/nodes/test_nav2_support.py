@@ -50,11 +50,11 @@ class Leaf(TreeNode):
     __slots__ = ()
     SCRIPT: ClassVar[Script]
 
-    async def execute(self) -> Status:
+    def execute_sync(self) -> Status:
         self.SCRIPT.log.append(self.name)
         return self.SCRIPT.next(self.name)
 
-    async def on_halt(self) -> None:
+    def on_halt_sync(self) -> None:
         if self._status is Status.RUNNING:
             self.SCRIPT.log.append(f"{self.name}:halt")
 

@@ -1,0 +1,67 @@
+"""The README's examples run as written (so they never rot)."""
+
+from __future__ import annotations
+
+import re
+import shlex
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from aiobt.cli.main import main
+
+REPO = Path(__file__).resolve().parents[3]
+README = (REPO / "README.md").read_text(encoding="utf-8")
+
+
+def _blocks(language: str) -> list[str]:
+    return re.findall(rf"```{language}\n(.*?)```", README, flags=re.S)
+
+
+def test_readme_opens_with_the_setup_and_test_commands_ci_runs() -> None:
+    first, second = _blocks("bash")[:2]
+    assert first.strip().endswith(".venv/bin/aiobt demo")
+    test_command = second.strip()
+    ci = (REPO / ".ci" / "run").read_text(encoding="utf-8")
+    assert ci.strip().splitlines()[-1] == test_command
+
+
+def test_embedding_example_runs_and_succeeds(tmp_path: Path) -> None:
+    [example] = _blocks("python")
+    # the example sleeps a wall-clock second per leaf; a shorter sleep keeps the test quick
+    script = tmp_path / "example.py"
+    script.write_text(
+        example.replace("await self.clock.sleep(1.0)", "await self.clock.sleep(0.01)")
+    )
+    done = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, timeout=60, check=False
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split() == ["hello", "world", "Status.SUCCESS"]
+
+
+def _commands() -> list[list[str]]:
+    """The ``aiobt`` commands of the "Running your own tree" block, comments dropped."""
+    block = _blocks("bash")[2].replace("\\\n", " ")
+    return [shlex.split(line.split("#")[0]) for line in block.splitlines() if line.strip()]
+
+
+def test_the_nav2_run_command_of_the_readme_succeeds(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    [command] = [c for c in _commands() if "trees/nav2/nav2_tree_nodes.xml" in c]
+    monkeypatch.chdir(REPO)
+    assert main(command[1:]) == 0
+    assert "SUCCESS after" in capsys.readouterr().out
+
+
+def test_the_nodes_command_of_the_readme_prints_a_model(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    [command] = [c for c in _commands() if "nodes" in c[:2]]
+    args = [a if a != "mypkg.nodes" else "aiobt.examples.patrol" for a in command[1:]]
+    assert args[-2:] == [">", "models.xml"]
+    assert main(args[:-2]) == 0
+    assert "<TreeNodesModel>" in capsys.readouterr().out
