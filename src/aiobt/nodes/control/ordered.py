@@ -7,6 +7,7 @@ ticked in order while they return the status that lets the walk go on
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any, ClassVar
 
 from aiobt.core.composite import ControlNode, reset_all
@@ -89,44 +90,45 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
     def fast(self: OrderedComposite) -> Status:
         # The common case, kept as short as it can be: a walk from the first
         # child (not resuming one that was RUNNING) with nobody listening to
-        # status changes and no pre/post conditions. Everything else, and the
-        # RUNNING status that only listeners could see mid-walk, goes through
-        # ``walk``.
+        # status changes and no pre/post conditions, while every child returns
+        # NEXT. Anything else goes through the general walk or the tail. The
+        # frame is kept small on purpose (helpers are methods, not closure
+        # cells): deep trees recurse through it once per level.
         if self._current or self._conditions is not None or self._ctx.listeners:
-            return walk(self)
-        children = self.children
-        index = skipped = 0
-        for child in children:
+            return self._walk()
+        for child in self.children:
             status = child.tick_sync()
-            if status is proceed:
-                index += 1
-            elif status is RUNNING:
-                self._current = index
-                if skipped:
-                    self._skipped = skipped
-                self._status = RUNNING
-                return RUNNING
-            elif status is stop:
-                break
-            elif status is SKIPPED:
-                index += 1
-                skipped += 1
-            else:
-                self._status = RUNNING
-                raise self.logic_error(f"child {child.path} returned IDLE")
-        else:
-            status = SKIPPED if skipped and skipped == len(children) else proceed
-        for child in children:
+            if status is not proceed:
+                return self._tail(child, status)
+        for child in self.children:
             if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
                 child.halt_sync()
             else:
                 child._status = IDLE
-        if status is SKIPPED:
-            self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
-        else:
-            self._status = status
-        return status
+        self._status = proceed
+        return proceed
 
+    def tail(self: OrderedComposite, child: TreeNode, status: Status) -> Status:
+        """The fast walk met a child that did not return NEXT (all before it did)."""
+        children = self.children
+        index = children.index(child)
+        if status is RUNNING:
+            self._current = index
+            self._status = RUNNING
+            return RUNNING
+        if status is stop:
+            _reset(children, True)
+            self._status = stop
+            return stop
+        self._status = RUNNING  # what BT.CPP's node shows during its tick
+        if status is SKIPPED:  # go on after it, counting the skip, as ``walk`` does
+            self._current = index + 1
+            self._skipped = 1
+            return walk(self)
+        raise self.logic_error(f"child {child.path} returned IDLE")
+
+    fast.tail = tail  # type: ignore[attr-defined]
+    fast.walk = walk  # type: ignore[attr-defined]
     return fast
 
 
@@ -148,11 +150,16 @@ class OrderedComposite(ControlNode):
     NEXT: ClassVar[Status] = SUCCESS
     STOP: ClassVar[Status] = FAILURE
     YIELDS: ClassVar[bool] = False
+    _walk: ClassVar[Callable[[OrderedComposite], Status]]
+    _tail: ClassVar[Callable[[OrderedComposite, TreeNode, Status], Status]]
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
-            cls.tick_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, True)  # type: ignore[method-assign]
+            tick = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, True)
+            cls.tick_sync = tick  # type: ignore[method-assign]
+            cls._walk = getattr(tick, "walk", tick)
+            cls._tail = getattr(tick, "tail", tick)  # (unused by the yielding variants)
         if "execute_sync" not in cls.__dict__:
             cls.execute_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, False)  # type: ignore[method-assign]
 
@@ -210,14 +217,28 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         return walk
 
     def fast(self: ReactiveComposite) -> Status:
-        # nobody listening and no pre/post conditions: statuses written in
-        # place, RUNNING only where it stays (see _ordered_walk's fast path)
+        # nobody listening and no pre/post conditions, every child NEXT: the
+        # short path (see _ordered_walk's); anything else goes to the tail
         if self._conditions is not None or self._ctx.listeners:
-            return walk(self)
-        children = self.children
-        all_skipped = True
-        for index, child in enumerate(children):
+            return self._walk()
+        for child in self.children:
             status = child.tick_sync()
+            if status is not proceed:
+                return self._tail(child, status)
+        for child in self.children:
+            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
+                child.halt_sync()
+            else:
+                child._status = IDLE
+        self._status = proceed
+        return proceed
+
+    def tail(self: ReactiveComposite, child: TreeNode, status: Status) -> Status:
+        """The fast walk met a child that did not return NEXT: finish the walk."""
+        children = self.children
+        index = children.index(child)
+        all_skipped = index == 0  # the children before it returned NEXT
+        while True:
             if status is proceed:
                 all_skipped = False
             elif status is RUNNING:
@@ -227,11 +248,15 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
                 return RUNNING
             elif status is stop:
                 _reset_running(children)
-                self._status = status
-                return status
+                self._status = stop
+                return stop
             elif status is not SKIPPED:
                 self._status = RUNNING
-                raise self.logic_error(f"child {child.path} returned IDLE")
+                raise self.logic_error(f"child {children[index].path} returned IDLE")
+            index += 1
+            if index == len(children):
+                break
+            status = children[index].tick_sync()
         _reset(children, True)
         if all_skipped:
             self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
@@ -239,6 +264,8 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         self._status = proceed
         return proceed
 
+    fast.tail = tail  # type: ignore[attr-defined]
+    fast.walk = walk  # type: ignore[attr-defined]
     return fast
 
 
@@ -254,11 +281,16 @@ class ReactiveComposite(ControlNode):
     __slots__ = ()
     NEXT: ClassVar[Status] = SUCCESS
     STOP: ClassVar[Status] = FAILURE
+    _walk: ClassVar[Callable[[ReactiveComposite], Status]]
+    _tail: ClassVar[Callable[[ReactiveComposite, TreeNode, Status], Status]]
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
-            cls.tick_sync = _reactive_walk(cls.NEXT, cls.STOP, True)  # type: ignore[method-assign]
+            tick = _reactive_walk(cls.NEXT, cls.STOP, True)
+            cls.tick_sync = tick  # type: ignore[method-assign]
+            cls._walk = tick.walk
+            cls._tail = tick.tail
         if "execute_sync" not in cls.__dict__:
             cls.execute_sync = _reactive_walk(cls.NEXT, cls.STOP, False)  # type: ignore[method-assign]
 
