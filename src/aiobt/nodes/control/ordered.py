@@ -241,9 +241,14 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         while True:
             if status is proceed:
                 all_skipped = False
-            elif status is RUNNING:
-                _reset(children[:index], True)
-                _reset_running(children[index + 1 :])
+            elif status is RUNNING:  # reset every other child, in order (BT.CPP's haltChild)
+                running = children[index]
+                for other in children:
+                    if other is not running:
+                        if other._status is RUNNING:
+                            other.halt_sync()
+                        else:
+                            other._status = IDLE
                 self._status = RUNNING
                 return RUNNING
             elif status is stop:

@@ -35,7 +35,12 @@ class RetryUntilSuccessful(DecoratorNode):
         self._count = 0
 
     def execute_sync(self) -> Status:
-        limit: int = self.get_input(self.LIMIT_PORT)
+        binding = self.config.inputs.get(self.LIMIT_PORT)
+        limit: int = (
+            binding.value  # a literal: no lookup per tick
+            if binding is not None and binding.key is None
+            else self.get_input(self.LIMIT_PORT)
+        )
         again = self.AGAIN
         finished = SUCCESS if again is FAILURE else FAILURE
         loop = self._count < limit or limit == -1
