@@ -5,7 +5,8 @@
 ``bench.transport.stamped_peer`` publishes PoseStamped messages stamped with
 ``time.monotonic()`` (shared by processes on one machine) at 500 Hz on four
 streams, round robin: typed publisher -> typed subscription, typed -> raw,
-raw -> raw, raw -> typed. This process measures arrival in its event loop
+raw -> raw, raw -> typed (``--rotate``: a new order every cycle).
+This process measures arrival in its event loop
 (raw subscribers hop into the loop like any asyncio program) and, for
 reference, arrival in the raw subscriber's Zenoh thread.
 """
@@ -62,7 +63,7 @@ def listen(bus: Bus) -> dict[str, list[float]]:
     return latency
 
 
-async def run(endpoint: str, count: int) -> str:
+async def run(endpoint: str, count: int, rotate: bool = False) -> str:
     settings = BusSettings(connect=(endpoint,), namespace=NS, connect_timeout=10.0)
     async with open_bus(settings) as bus:
         latency = listen(bus)
@@ -76,6 +77,7 @@ async def run(endpoint: str, count: int) -> str:
                 NS,
                 "--count",
                 str(count),
+                *(["--rotate"] if rotate else []),
             ]
         )
         try:
@@ -100,9 +102,14 @@ async def run(endpoint: str, count: int) -> str:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=8000, help="messages, all streams")
+    parser.add_argument(
+        "--rotate",
+        action="store_true",
+        help="shuffle the round-robin order every cycle (no stream always follows the same)",
+    )
     args = parser.parse_args()
     with running_router() as (_, endpoint):
-        print(asyncio.run(run(endpoint, args.count)))
+        print(asyncio.run(run(endpoint, args.count, args.rotate)))
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import random
 import sys
 import time
 
@@ -14,7 +15,7 @@ from aiobt.msgs import PoseStamped
 from aiobt.transport import BusSettings, add_bus_arguments, open_bus
 
 
-async def publish(settings: BusSettings, count: int, period: float) -> None:
+async def publish(settings: BusSettings, count: int, period: float, rotate: bool) -> None:
     async with open_bus(settings) as bus:
         typed = {name: bus.publisher(name, PoseStamped) for name in ("typed_typed", "typed_raw")}
         raw = {
@@ -24,7 +25,12 @@ async def publish(settings: BusSettings, count: int, period: float) -> None:
         await asyncio.sleep(1.5)  # let the receiver's subscriptions settle
         pose = PoseStamped.from_xy_yaw(1.0, 2.0, 0.5)
         streams = ["typed_typed", "typed_raw", "raw_raw", "raw_typed"]
+        order = random.Random(4)  # fixed seed: the same sequence every run
         for i in range(count):
+            if rotate and i % len(streams) == 0:
+                # a new order every cycle, so no stream always follows the same one
+                # (what the receiver did 2 ms before changes its cache misses)
+                order.shuffle(streams)
             name = streams[i % len(streams)]
             pose.header.stamp = time.monotonic()  # CLOCK_MONOTONIC is shared by processes
             if name in typed:
@@ -41,8 +47,9 @@ def main() -> int:
     add_bus_arguments(parser)
     parser.add_argument("--count", type=int, default=4000)
     parser.add_argument("--period", type=float, default=0.002)
+    parser.add_argument("--rotate", action="store_true", help="shuffle the order every cycle")
     args = parser.parse_args()
-    asyncio.run(publish(BusSettings.from_args(args), args.count, args.period))
+    asyncio.run(publish(BusSettings.from_args(args), args.count, args.period, args.rotate))
     return 0
 
 

@@ -10,8 +10,9 @@ from typing import Generic, Self, TypeVar
 
 import zenoh
 import zenoh.ext
+from pydantic import ValidationError
 
-from aiobt.msgs import MessageError, Msg, decoder
+from aiobt.msgs import MessageError, Msg
 from aiobt.transport import _z
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 
@@ -105,7 +106,8 @@ class Subscription(Generic[M]):
         self.dropped_invalid = 0
         self._bridge = bridge
         self._callback = callback
-        self._decode = decoder(model, key=key)
+        self._validate_json = model.__pydantic_validator__.validate_json
+        self._max_payload = bridge.max_payload
         # a bounded deque (oldest dropped) and the waiting readers' futures: leaner than
         # an asyncio.Queue on this per-message path
         self._queue: deque[M] = deque(maxlen=queue_size if queue_size > 0 else None)
@@ -118,18 +120,21 @@ class Subscription(Generic[M]):
     def on_sample(self, sample: zenoh.Sample) -> None:
         """Zenoh thread: decode here (off the loop), hand the model to the loop.
 
-        Kept lean: it runs for every message, usually with cold caches."""
-        if sample.kind != _PUT:
-            return
+        Kept lean: it runs for every message, usually with cold caches, and its
+        time adds to every message's latency. A good message costs the size check
+        and the validation only; the kind is looked at when validation fails (a
+        DELETE has no payload, so it always fails)."""
         payload = sample.payload.to_bytes()
-        if len(payload) > self._bridge.max_payload:
-            too_large = PayloadTooLarge(self.key, len(payload), self._bridge.max_payload)
+        if len(payload) > self._max_payload:
+            too_large = PayloadTooLarge(self.key, len(payload), self._max_payload)
             self._bridge.call(self._reject, too_large)
             return
         try:
-            message = self._decode(payload)  # errors name the key (it has no wildcards)
-        except MessageError as exc:
-            self._bridge.call(self._reject, exc)
+            message = self._validate_json(payload)
+        except ValidationError as exc:
+            if sample.kind == _PUT:  # errors name the key (it has no wildcards)
+                error = MessageError.from_validation(self.model, exc, self.key)
+                self._bridge.call(self._reject, error)
             return
         self._bridge.call(self._deliver, message)
 
@@ -144,8 +149,9 @@ class Subscription(Generic[M]):
 
     def _deliver(self, message: M) -> None:
         self.latest = message
+        if not self.received:
+            self._first.set()
         self.received += 1
-        self._first.set()
         if self._callback is not None:
             try:
                 self._callback(message)
