@@ -15,6 +15,36 @@ from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 
+def _short_path(proceed: Status) -> Any:
+    """The common tick of both composites, kept as short as it can be.
+
+    It applies when the walk starts from the first child (not resuming a
+    RUNNING one), nobody listens to status changes and no pre/post conditions
+    are attached, and lasts while every child returns ``proceed``; anything
+    else goes to the class's general ``_walk`` or its ``_tail``. The frame is
+    small on purpose (helpers are methods, not closure cells): deep trees
+    recurse through it once per level, and CPython 3.11 allocates a new stack
+    chunk per tick when they outgrow one.
+    """
+
+    def fast(self: Any) -> Status:
+        if self._current or self._conditions is not None or self._ctx.listeners:
+            return self._walk()  # type: ignore[no-any-return]
+        for child in self.children:
+            status = child.tick_sync()
+            if status is not proceed:
+                return self._tail(child, status)  # type: ignore[no-any-return]
+        for child in self.children:
+            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
+                child.halt_sync()
+            else:
+                child._status = IDLE
+        self._status = proceed
+        return proceed
+
+    return fast
+
+
 def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> Any:
     """The tick of an ordered composite, specialised per (NEXT, STOP, YIELDS).
 
@@ -87,26 +117,7 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
     if yields or not write:
         return walk
 
-    def fast(self: OrderedComposite) -> Status:
-        # The common case, kept as short as it can be: a walk from the first
-        # child (not resuming one that was RUNNING) with nobody listening to
-        # status changes and no pre/post conditions, while every child returns
-        # NEXT. Anything else goes through the general walk or the tail. The
-        # frame is kept small on purpose (helpers are methods, not closure
-        # cells): deep trees recurse through it once per level.
-        if self._current or self._conditions is not None or self._ctx.listeners:
-            return self._walk()
-        for child in self.children:
-            status = child.tick_sync()
-            if status is not proceed:
-                return self._tail(child, status)
-        for child in self.children:
-            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
-                child.halt_sync()
-            else:
-                child._status = IDLE
-        self._status = proceed
-        return proceed
+    fast = _short_path(proceed)
 
     def tail(self: OrderedComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT (all before it did)."""
@@ -127,8 +138,8 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
             return walk(self)
         raise self.logic_error(f"child {child.path} returned IDLE")
 
-    fast.tail = tail  # type: ignore[attr-defined]
-    fast.walk = walk  # type: ignore[attr-defined]
+    fast.tail = tail
+    fast.walk = walk
     return fast
 
 
@@ -216,22 +227,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
     if not write:
         return walk
 
-    def fast(self: ReactiveComposite) -> Status:
-        # nobody listening and no pre/post conditions, every child NEXT: the
-        # short path (see _ordered_walk's); anything else goes to the tail
-        if self._conditions is not None or self._ctx.listeners:
-            return self._walk()
-        for child in self.children:
-            status = child.tick_sync()
-            if status is not proceed:
-                return self._tail(child, status)
-        for child in self.children:
-            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
-                child.halt_sync()
-            else:
-                child._status = IDLE
-        self._status = proceed
-        return proceed
+    fast = _short_path(proceed)
 
     def tail(self: ReactiveComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT: finish the walk."""
@@ -269,8 +265,8 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         self._status = proceed
         return proceed
 
-    fast.tail = tail  # type: ignore[attr-defined]
-    fast.walk = walk  # type: ignore[attr-defined]
+    fast.tail = tail
+    fast.walk = walk
     return fast
 
 
@@ -288,6 +284,7 @@ class ReactiveComposite(ControlNode):
     STOP: ClassVar[Status] = FAILURE
     _walk: ClassVar[Callable[[ReactiveComposite], Status]]
     _tail: ClassVar[Callable[[ReactiveComposite, TreeNode, Status], Status]]
+    _current: ClassVar[int] = 0  # never resumes mid-way (read by the short path)
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
