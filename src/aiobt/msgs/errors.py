@@ -98,6 +98,19 @@ class WaitError(IntEnum):
     TIMEOUT = 741
 
 
+class ComputeRouteError(IntEnum):
+    """nav2_msgs ComputeRoute / ComputeAndTrackRoute (the route server)."""
+
+    NONE = 0
+    UNKNOWN = 400
+    TF_ERROR = 401
+    NO_VALID_GRAPH = 402
+    INDETERMINANT_NODES_ON_GRAPH = 403
+    TIMEOUT = 404
+    NO_VALID_ROUTE = 405
+    INVALID_EDGE_SCORER_USE = 406
+
+
 class ComputeCoveragePathError(IntEnum):
     """opennav_coverage's table (it has no UNKNOWN; 803 has two names there)."""
 

@@ -15,6 +15,7 @@ from aiobt.core.ports import input_port
 from aiobt.msgs.errors import (
     ComputePathThroughPosesError,
     ComputePathToPoseError,
+    ComputeRouteError,
     FollowPathError,
     SmoothPathError,
 )
@@ -129,10 +130,6 @@ class WouldASmootherRecoveryHelp(AreErrorCodesPresent):
     )
 
 
-# nav2_msgs ComputeRoute / ComputeAndTrackRoute: UNKNOWN, TIMEOUT, NO_VALID_ROUTE
-ROUTE_UNKNOWN, ROUTE_TIMEOUT, ROUTE_NO_VALID_ROUTE = 400, 404, 405
-
-
 class WouldARouteRecoveryHelp(AreErrorCodesPresent):
     """``<WouldARouteRecoveryHelp error_code="{route_error_code}"/>`` (Nav2).
 
@@ -143,4 +140,6 @@ class WouldARouteRecoveryHelp(AreErrorCodesPresent):
 
     __slots__ = ()
     PORTS = (_code_port("route server"), _codes_port("route server"))
-    DEFAULT_CODES = frozenset((ROUTE_UNKNOWN, ROUTE_TIMEOUT, ROUTE_NO_VALID_ROUTE))
+    DEFAULT_CODES = frozenset(
+        (ComputeRouteError.UNKNOWN, ComputeRouteError.TIMEOUT, ComputeRouteError.NO_VALID_ROUTE)
+    )
