@@ -29,7 +29,7 @@ from .geometry import STOP, PlanarPath, Velocity
 from .local_costmap import FrameShift, LocalCostmap, frame_transform
 from .robot_io import RobotTracker, sleep_bounded, twist_of
 from .session import ControllerConfig, FollowPathSession, FollowRequest, StepResult
-from .wire import TrackingFeedbackMsg
+from .wire import TrackingFeedbackMsg, tracking_feedback_msg
 
 log = logging.getLogger("aiobt_services.controller.service")
 Handle = GoalHandle[FollowPath.Goal, FollowPath.Result, FollowPath.Feedback]
@@ -158,7 +158,7 @@ class ControllerService:
             FollowPath.Feedback(distance_to_goal=fb.distance_to_goal, speed=abs(step.cmd.v))
         )
         if self._tracking is not None:
-            self._tracking.put(TrackingFeedbackMsg.of(fb, self.clock.now(), frame_id))
+            self._tracking.put(tracking_feedback_msg(fb, self.clock.now(), frame_id))
 
     # -- local costmap clearing -------------------------------------------------------------
     def _serve_clearing(self) -> None:

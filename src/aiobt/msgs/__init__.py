@@ -56,6 +56,7 @@ from aiobt.msgs.nav import (
     Odometry,
     Path,
     PowerSupplyStatus,
+    TrackingFeedback,
 )
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
@@ -130,6 +131,7 @@ __all__ = [
     "SmoothPathError",
     "Spin",
     "SpinError",
+    "TrackingFeedback",
     "Twist",
     "Vector3",
     "Wait",

@@ -11,7 +11,7 @@ import numpy.typing as npt
 from pydantic import Field, PrivateAttr, ValidationInfo, field_validator, model_validator
 
 from aiobt.msgs._base import Msg
-from aiobt.msgs.geometry import Header, Pose, PoseStamped, Twist
+from aiobt.msgs.geometry import Header, Point, Pose, PoseStamped, Twist
 
 MAX_MAP_CELLS = 100_000_000
 
@@ -211,3 +211,17 @@ class BatteryState(Msg):
     percentage: float = Field(default=1.0, ge=0.0, le=1.0, description="0..1")
     power_supply_status: PowerSupplyStatus = PowerSupplyStatus.UNKNOWN
     present: bool = True
+
+
+class TrackingFeedback(Msg):
+    """Nav2's ``nav2_msgs/TrackingFeedback``: how well the controller follows the
+    path (published on ``{ns}/tracking_feedback`` each control cycle; read by
+    IsWithinPathTrackingBounds)."""
+
+    header: Header = Field(default_factory=lambda: Header(frame_id="map"))
+    current_path_index: int = Field(default=0, ge=0)
+    cross_track_error: float = Field(default=0.0, description="m, > 0: robot left of the path")
+    heading_error: float = Field(default=0.0, description="rad, robot yaw - path tangent")
+    distance_to_goal: float = Field(default=0.0, ge=0.0)
+    remaining_path_length: float = Field(default=0.0, ge=0.0)
+    robot_position: Point = Field(default_factory=Point)

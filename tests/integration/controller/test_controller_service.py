@@ -22,8 +22,8 @@ from aiobt.msgs import (
     PoseStamped,
     Twist,
 )
+from aiobt.msgs import TrackingFeedback as TrackingFeedbackMsg
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.controller.wire import TrackingFeedbackMsg
 
 from .helpers import Spawn, path_through, start, yaw_error
 
