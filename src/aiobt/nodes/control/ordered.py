@@ -279,12 +279,11 @@ class ReactiveComposite(ControlNode):
     - all ``NEXT`` (or SKIPPED): reset all, ``NEXT`` (SKIPPED if all skipped).
     """
 
-    __slots__ = ()
+    __slots__ = ("_current",)
     NEXT: ClassVar[Status] = SUCCESS
     STOP: ClassVar[Status] = FAILURE
     _walk: ClassVar[Callable[[ReactiveComposite], Status]]
     _tail: ClassVar[Callable[[ReactiveComposite, TreeNode, Status], Status]]
-    _current: ClassVar[int] = 0  # never resumes mid-way (read by the short path)
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -295,6 +294,10 @@ class ReactiveComposite(ControlNode):
             cls._tail = tick.tail
         if "execute_sync" not in cls.__dict__:
             cls.execute_sync = _reactive_walk(cls.NEXT, cls.STOP, False)  # type: ignore[method-assign]
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._current = 0  # never resumes mid-way; read by the shared short path
 
 
 def _reset_running(children: list[TreeNode]) -> None:
