@@ -234,24 +234,35 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         children = self.children
         index = children.index(child)
         all_skipped = index == 0  # the children before it returned NEXT
+        clean = True  # no child before ``index`` was skipped (so none is RUNNING)
         while True:
             if status is proceed:
                 all_skipped = False
             elif status is RUNNING:  # reset every other child, in order (BT.CPP's haltChild)
                 running = children[index]
-                for other in children:
-                    if other is not running:
-                        if other._status is RUNNING:
-                            other.halt_sync()
-                        else:
-                            other._status = IDLE
+                if clean:
+                    for other in children:
+                        if other is running:
+                            break
+                        other._status = IDLE
+                    if index + 1 < len(children):
+                        _reset_running(children[index + 1 :])
+                else:
+                    for other in children:
+                        if other is not running:
+                            if other._status is RUNNING:
+                                other.halt_sync()
+                            else:
+                                other._status = IDLE
                 self._status = RUNNING
                 return RUNNING
             elif status is stop:
                 _reset_running(children)
                 self._status = stop
                 return stop
-            elif status is not SKIPPED:
+            elif status is SKIPPED:
+                clean = False
+            else:
                 self._status = RUNNING
                 raise self.logic_error(f"child {children[index].path} returned IDLE")
             index += 1
