@@ -8,6 +8,7 @@ feedback and ends the goal when a step is terminal; nothing here does I/O.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from enum import Enum
 
@@ -83,7 +84,7 @@ def require_allowance(value: float) -> float:
     return value
 
 
-class TimedBehavior:
+class TimedBehavior(ABC):
     """Base of the moving behaviors: start time, time allowance, pose freshness.
 
     Subclasses implement :meth:`_cycle`, called with a fresh pose; a time
@@ -127,8 +128,9 @@ class TimedBehavior:
             )
         return self._cycle(inputs, inputs.pose)
 
+    @abstractmethod
     def _cycle(self, inputs: Inputs, pose: Pose2D) -> BehaviorStep:
-        raise NotImplementedError
+        """One control cycle with a fresh pose: the command and whether it is done."""
 
     def progress(self) -> float:
         """The feedback figure (distance, angle or time) so far."""

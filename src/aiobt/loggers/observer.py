@@ -13,6 +13,7 @@ or collect :class:`Transition` records with :class:`TransitionRecorder`::
 from __future__ import annotations
 
 import time
+from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from types import TracebackType
 from typing import Self
@@ -33,7 +34,7 @@ class Transition:
     status: Status
 
 
-class StatusObserver:
+class StatusObserver(ABC):
     """Base of every logger: attached on construction, detached by :meth:`close`.
 
     It is also a context manager (``with Logger(tree) as log: ...``).
@@ -48,14 +49,15 @@ class StatusObserver:
         self._detach = tree.add_status_listener(self.on_transition)
         self._attached = True
 
+    @abstractmethod
     def on_transition(self, stamp: float, node: TreeNode, previous: Status, status: Status) -> None:
-        raise NotImplementedError
+        """One status change of one node (the tree's listener signature)."""
 
     def offset_us(self, stamp: float) -> int:
         """Microseconds of tree-clock time since this observer was attached."""
         return max(0, round((stamp - self.clock_start) * 1e6))
 
-    def flush(self) -> None:
+    def flush(self) -> None:  # noqa: B027 - a default that does nothing, on purpose
         """Write out what is buffered (loggers that buffer override this)."""
 
     def close(self) -> None:
