@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from collections.abc import Callable
 from typing import Any, ClassVar
 
 from aiobt.core import eager
@@ -24,123 +25,87 @@ log = logging.getLogger("aiobt.core.leaves")
 
 
 class SyncLeaf(TreeNode):
-    """A leaf whose tick is a plain function call (the parent's fast path)."""
+    """Base of the synchronous leaves below (the tick itself is TreeNode's)."""
 
     __slots__ = ()
-    is_sync: ClassVar[bool] = True
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         # The leaf bases below inline their execute_sync into a fast tick_sync;
         # a subclass with its own execute_sync gets the generic tick back.
         if "execute_sync" in cls.__dict__ and "tick_sync" not in cls.__dict__:
-            cls.tick_sync = SyncLeaf.tick_sync  # type: ignore[method-assign]
+            cls.tick_sync = TreeNode.tick_sync  # type: ignore[method-assign]
+
+
+class _OneCallLeaf(SyncLeaf):
+    """The tick of ConditionNode and SyncActionNode: one call of the author's
+    hook (``check`` or ``on_tick``, named by ``HOOK``), its result as a
+    Status; never RUNNING."""
+
+    __slots__ = ()
+    HOOK: ClassVar[str] = ""
+    _hook: ClassVar[Callable[[Any], Status | bool | None]]
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        cls._hook = getattr(cls, cls.HOOK)  # the class's own check/on_tick: one call per tick
 
     def tick_sync(self) -> Status:
-        conditions = self._conditions
-        if conditions is not None:
-            return conditions.tick_sync(self)
-        status = self.execute_sync()
-        if status is not SKIPPED:
-            self._set_status(status)
+        """TreeNode's tick with ``execute_sync`` inlined (the hot path)."""
+        if self._conditions is not None:
+            return self._conditions.tick_sync(self)
+        try:
+            status = self._hook()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        if status is not SUCCESS and status is not FAILURE:
+            status = self._result(status)
+            if status is SKIPPED:
+                return status
+        if status is not self._status:
+            if self._ctx.listeners:
+                self._set_status(status)
+            else:
+                self._status = status
         return status
 
     def execute_sync(self) -> Status:
-        raise LogicError(f"{type(self).__name__} does not implement execute_sync()")
+        try:
+            value = self._hook()
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        return self._result(value)
 
-    def halt_sync(self) -> None:
-        self._set_status(IDLE)
-        if self._conditions is not None:
-            self._conditions.on_halted(self)
+    def _result(self, value: Status | bool | None) -> Status:
+        try:
+            status = Status.of(value)
+        except Exception as exc:
+            raise tick_error(self, exc) from exc
+        if status is RUNNING:
+            message = f"{type(self).__name__}.{self.HOOK}() must not return RUNNING"
+            raise NodeError(self.path, LogicError(message))
+        return status
 
 
-class ConditionNode(SyncLeaf):
+class ConditionNode(_OneCallLeaf):
     """A check of the world; returns SUCCESS or FAILURE, never RUNNING."""
 
     __slots__ = ()
     KIND = NodeKind.CONDITION
+    HOOK = "check"
 
     def check(self) -> Status | bool:
         raise LogicError(f"{type(self).__name__} does not implement check()")
 
-    def tick_sync(self) -> Status:
-        """``SyncLeaf.tick_sync`` with ``execute_sync`` inlined (the hot path)."""
-        if self._conditions is not None:
-            return self._conditions.tick_sync(self)
-        try:
-            status = self.check()
-        except Exception as exc:
-            raise tick_error(self, exc) from exc
-        if status is not SUCCESS and status is not FAILURE:
-            status = self._result(status)
-            if status is SKIPPED:
-                return status
-        if status is not self._status:
-            if self._ctx.listeners:
-                self._set_status(status)
-            else:
-                self._status = status
-        return status
 
-    def execute_sync(self) -> Status:
-        try:
-            value = self.check()
-        except Exception as exc:
-            raise tick_error(self, exc) from exc
-        return self._result(value)
-
-    def _result(self, value: Status | bool | None) -> Status:
-        try:
-            status = Status.of(value)
-        except Exception as exc:
-            raise tick_error(self, exc) from exc
-        if status is RUNNING:
-            raise NodeError(self.path, LogicError("a condition must not return RUNNING"))
-        return status
-
-
-class SyncActionNode(SyncLeaf):
+class SyncActionNode(_OneCallLeaf):
     """An action that finishes within its tick."""
 
     __slots__ = ()
+    HOOK = "on_tick"
 
     def on_tick(self) -> Status | bool | None:
         raise LogicError(f"{type(self).__name__} does not implement on_tick()")
-
-    def tick_sync(self) -> Status:
-        """``SyncLeaf.tick_sync`` with ``execute_sync`` inlined (the hot path)."""
-        if self._conditions is not None:
-            return self._conditions.tick_sync(self)
-        try:
-            status = self.on_tick()
-        except Exception as exc:
-            raise tick_error(self, exc) from exc
-        if status is not SUCCESS and status is not FAILURE:
-            status = self._result(status)
-            if status is SKIPPED:
-                return status
-        if status is not self._status:
-            if self._ctx.listeners:
-                self._set_status(status)
-            else:
-                self._status = status
-        return status
-
-    def execute_sync(self) -> Status:
-        try:
-            value = self.on_tick()
-        except Exception as exc:
-            raise tick_error(self, exc) from exc
-        return self._result(value)
-
-    def _result(self, value: Status | bool | None) -> Status:
-        try:
-            status = Status.of(value)
-        except Exception as exc:
-            raise tick_error(self, exc) from exc
-        if status is RUNNING:
-            raise NodeError(self.path, LogicError("a SyncActionNode must not return RUNNING"))
-        return status
 
 
 class StatefulActionNode(SyncLeaf):

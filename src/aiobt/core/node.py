@@ -122,7 +122,6 @@ class TreeNode:
 
     KIND: ClassVar[str] = NodeKind.ACTION
     PORTS: ClassVar[tuple[PortInfo, ...]] = ()
-    is_sync: ClassVar[bool] = True  # every node ticks synchronously (kept for older code)
 
     def __init__(self, name: str, config: NodeConfig | None = None) -> None:
         self.name = name
