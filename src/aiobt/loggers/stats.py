@@ -3,9 +3,9 @@
 Status listeners only see changes, so a RUNNING node ticked again, or a
 skipped one (SKIPPED leaves a node IDLE), would be invisible. While attached,
 :class:`TreeStatistics` therefore swaps each node's class for a cached
-subclass whose ``tick``/``tick_sync`` count the call and its result; closing
-it restores the original classes. Nothing is instrumented when it is not
-attached.
+subclass whose ``tick_sync`` counts the call and its result (the awaitable
+``tick`` goes through it); closing it restores the original classes. Nothing
+is instrumented when it is not attached.
 """
 
 from __future__ import annotations
@@ -63,7 +63,7 @@ _COUNTED: dict[type[TreeNode], type[TreeNode]] = {}
 
 
 def _counted(cls: type[TreeNode]) -> type[TreeNode]:
-    """A subclass of ``cls`` whose tick methods also count (cached per class)."""
+    """A subclass of ``cls`` whose ``tick_sync`` also counts (cached per class)."""
     found = _COUNTED.get(cls)
     if found is not None:
         return found
