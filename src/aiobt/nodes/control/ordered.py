@@ -11,6 +11,7 @@ from collections.abc import Callable
 from typing import Any, ClassVar
 
 from aiobt.core.composite import ControlNode, reset_all
+from aiobt.core.errors import LogicError
 from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
@@ -143,7 +144,38 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
     return fast
 
 
-class OrderedComposite(ControlNode):
+class WalkedComposite(ControlNode):
+    """What both composites share: ``NEXT``/``STOP`` (the child results that
+    continue or end the walk), the resume index, and a tick built per class
+    from ``_make_tick`` when the class is created (the short path in
+    ``tick_sync``, the general ``_walk`` and ``_tail`` behind it)."""
+
+    __slots__ = ("_current",)
+    NEXT: ClassVar[Status] = SUCCESS
+    STOP: ClassVar[Status] = FAILURE
+    _walk: ClassVar[Callable[[Any], Status]]
+    _tail: ClassVar[Callable[[Any, TreeNode, Status], Status]]
+
+    @classmethod
+    def _make_tick(cls, write: bool) -> Any:
+        raise LogicError(f"{cls.__name__} does not say how it walks its children")
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
+            tick = cls._make_tick(True)
+            cls.tick_sync = tick  # type: ignore[method-assign]
+            cls._walk = getattr(tick, "walk", tick)
+            cls._tail = getattr(tick, "tail", tick)  # (unused by the yielding variants)
+        if "execute_sync" not in cls.__dict__:
+            cls.execute_sync = cls._make_tick(False)  # type: ignore[method-assign]
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._current = 0  # always 0 for the reactive pair
+
+
+class OrderedComposite(WalkedComposite):
     """Tick children in order, resuming at the RUNNING one (memory of the index).
 
     - a child RUNNING: RUNNING, and the same child is ticked next time;
@@ -157,26 +189,15 @@ class OrderedComposite(ControlNode):
     them when the class is created.
     """
 
-    __slots__ = ("_current", "_skipped")
-    NEXT: ClassVar[Status] = SUCCESS
-    STOP: ClassVar[Status] = FAILURE
+    __slots__ = ("_skipped",)
     YIELDS: ClassVar[bool] = False
-    _walk: ClassVar[Callable[[OrderedComposite], Status]]
-    _tail: ClassVar[Callable[[OrderedComposite, TreeNode, Status], Status]]
 
-    def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
-        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
-            tick = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, True)
-            cls.tick_sync = tick  # type: ignore[method-assign]
-            cls._walk = getattr(tick, "walk", tick)
-            cls._tail = getattr(tick, "tail", tick)  # (unused by the yielding variants)
-        if "execute_sync" not in cls.__dict__:
-            cls.execute_sync = _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, False)  # type: ignore[method-assign]
+    @classmethod
+    def _make_tick(cls, write: bool) -> Any:
+        return _ordered_walk(cls.NEXT, cls.STOP, cls.YIELDS, write)
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._current = 0
         self._skipped = 0
 
     def on_halt_sync(self) -> None:
@@ -281,7 +302,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
     return fast
 
 
-class ReactiveComposite(ControlNode):
+class ReactiveComposite(WalkedComposite):
     """Tick every child from the first on every tick (no memory of the index).
 
     - a child RUNNING: every other child is reset (a RUNNING one halted),
@@ -290,25 +311,11 @@ class ReactiveComposite(ControlNode):
     - all ``NEXT`` (or SKIPPED): reset all, ``NEXT`` (SKIPPED if all skipped).
     """
 
-    __slots__ = ("_current",)
-    NEXT: ClassVar[Status] = SUCCESS
-    STOP: ClassVar[Status] = FAILURE
-    _walk: ClassVar[Callable[[ReactiveComposite], Status]]
-    _tail: ClassVar[Callable[[ReactiveComposite, TreeNode, Status], Status]]
+    __slots__ = ()
 
-    def __init_subclass__(cls, **kwargs: Any) -> None:
-        super().__init_subclass__(**kwargs)
-        if "tick_sync" not in cls.__dict__:  # a subclass may wrap the tick (statistics)
-            tick = _reactive_walk(cls.NEXT, cls.STOP, True)
-            cls.tick_sync = tick  # type: ignore[method-assign]
-            cls._walk = tick.walk
-            cls._tail = tick.tail
-        if "execute_sync" not in cls.__dict__:
-            cls.execute_sync = _reactive_walk(cls.NEXT, cls.STOP, False)  # type: ignore[method-assign]
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        super().__init__(*args, **kwargs)
-        self._current = 0  # never resumes mid-way; read by the shared short path
+    @classmethod
+    def _make_tick(cls, write: bool) -> Any:
+        return _reactive_walk(cls.NEXT, cls.STOP, write)
 
 
 def _reset_running(children: list[TreeNode]) -> None:
