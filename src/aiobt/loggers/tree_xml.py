@@ -13,11 +13,12 @@ from dataclasses import dataclass
 
 from lxml import etree
 
-from aiobt.core.convert import to_text, type_name
+from aiobt.core.convert import to_text
 from aiobt.core.node import TreeNode
 from aiobt.core.ports import CONDITION_ATTRIBUTES, PortInfo
 from aiobt.core.tree import Tree
 from aiobt.nodes.subtree import SubTreeNode
+from aiobt.xml.model import add_node_model
 
 
 @dataclass(frozen=True, slots=True)
@@ -93,14 +94,7 @@ def _add_models(root: etree._Element, tree: Tree) -> None:
     model = etree.SubElement(root, "TreeNodesModel")
     for node_id in sorted(models):
         kind, ports = models[node_id]
-        element = etree.SubElement(model, kind, ID=node_id)
-        for port in ports.values():
-            attributes = {"name": port.name, "type": type_name(port.type)}
-            if port.has_default:
-                attributes["default"] = to_text(port.default)
-            port_element = etree.SubElement(element, port.direction.value, attributes)
-            if port.description:
-                port_element.text = port.description
+        add_node_model(model, kind, node_id, ports.values())
 
 
 def tree_to_xml(tree: Tree, *, metadata: bool = True) -> str:

@@ -170,16 +170,23 @@ _DIRECTIONS = {
 }
 
 
+def add_node_model(
+    model: etree._Element, kind: str, node_id: str, ports: Iterable[PortInfo]
+) -> None:
+    """Append ``<kind ID=node_id>`` with its ports to a ``<TreeNodesModel>``."""
+    element = etree.SubElement(model, kind, ID=node_id)
+    for port in ports:
+        attributes = {"name": port.name, "type": type_name(port.type)}
+        if port.has_default:
+            attributes["default"] = to_text(port.default)
+        port_element = etree.SubElement(element, port.direction.value, attributes)
+        if port.description:
+            port_element.text = port.description
+
+
 def write_tree_nodes_model(manifests: Iterable[NodeManifest]) -> str:
     root = etree.Element("root", BTCPP_format="4")
     model = etree.SubElement(root, "TreeNodesModel")
     for manifest in sorted(manifests, key=lambda m: m.id):
-        element = etree.SubElement(model, manifest.kind, ID=manifest.id)
-        for port in manifest.ports.values():
-            attributes = {"name": port.name, "type": type_name(port.type)}
-            if port.has_default:
-                attributes["default"] = to_text(port.default)
-            port_element = etree.SubElement(element, port.direction.value, attributes)
-            if port.description:
-                port_element.text = port.description
+        add_node_model(model, manifest.kind, manifest.id, manifest.ports.values())
     return etree.tostring(root, pretty_print=True, encoding="unicode")
