@@ -78,7 +78,7 @@ class ActionKeys:
 
     @property
     def any_result(self) -> str:
-        return self.results
+        return f"{self.base}/result/*"
 
     def status(self, goal_id: str) -> str:
         return f"{self.base}/status/{goal_id}"
@@ -88,10 +88,6 @@ class ActionKeys:
 
     def result(self, goal_id: str) -> str:
         return f"{self.base}/result/{goal_id}"
-
-    @property
-    def results(self) -> str:
-        return f"{self.base}/result/*"
 
     @property
     def alive(self) -> str:

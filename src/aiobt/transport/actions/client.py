@@ -21,7 +21,6 @@ from aiobt.transport.services import ServiceError, call
 G = TypeVar("G", bound=Msg)
 R = TypeVar("R", bound=ActionResult)
 F = TypeVar("F", bound=Msg)
-T = TypeVar("T")
 log = logging.getLogger("aiobt.transport.actions")
 _GOAL_STREAM_TIMEOUT = 7 * 24 * 3600.0  # the goal's query lives as long as the goal
 _RETRY_PAUSE = 0.02

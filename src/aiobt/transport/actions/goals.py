@@ -83,9 +83,6 @@ class ResultStore:
     def get(self, goal_id: str) -> tuple[bytes, bytes] | None:
         return self._results.get(goal_id)
 
-    def __contains__(self, goal_id: str) -> bool:
-        return goal_id in self._results
-
 
 class RecentIds:
     """Goal ids seen lately, to refuse a duplicate. One writer: the goal intake."""

@@ -93,7 +93,7 @@ class ActionServer(Generic[G, R, F]):
         self._queryables = [
             session.declare_queryable(keys.goal, callback(self._on_goal_query)),
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
-            session.declare_queryable(keys.results, callback(self._from_zenoh(self._on_result))),
+            session.declare_queryable(keys.any_result, callback(self._from_zenoh(self._on_result))),
         ]
         self._observed = Observers(session, keys)  # unobserved goals cost no extra puts
         self._token = session.liveliness().declare_token(keys.alive)
