@@ -8,7 +8,7 @@ from .base import ControlContext, Controller
 from .checkers import SimpleGoalChecker, SimpleProgressChecker, default_checkers
 from .collision import CollisionChecker, CostQuery, GridCostmap
 from .dwb import DWBController, DWBParams
-from .errors import ControllerError, FollowPathCode
+from .errors import ControllerError
 from .geometry import PlanarPath, Pose2D, Velocity, wrap_angle
 from .rpp import RegulatedPurePursuit, RPPParams
 from .session import ControllerConfig, FollowPathSession, FollowRequest, RobotState, StepResult
@@ -24,7 +24,6 @@ __all__ = [
     "CostQuery",
     "DWBController",
     "DWBParams",
-    "FollowPathCode",
     "FollowPathSession",
     "FollowRequest",
     "GridCostmap",

@@ -24,7 +24,7 @@ from aiobt.msgs import (
 from aiobt.transport import Bus, GoalHandle, Publisher
 
 from .collision import CollisionChecker
-from .errors import ControllerError, FollowPathCode
+from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Velocity
 from .local_costmap import FrameShift, LocalCostmap, frame_transform
 from .robot_io import RobotTracker, sleep_bounded, twist_of
@@ -50,8 +50,7 @@ def request_of(goal: FollowPath.Goal) -> FollowRequest:
 def result_of(error: ControllerError | None) -> FollowPath.Result:
     if error is None:
         return FollowPath.Result()
-    code = FollowPathError[error.code.name]
-    return FollowPath.Result(error_code=int(code), error_msg=error.message)
+    return FollowPath.Result(error_code=int(error.code), error_msg=error.message)
 
 
 @dataclass(slots=True)
@@ -134,7 +133,7 @@ class ControllerService:
             if not await sleep_bounded(self.clock, period, self.options.clock_timeout):
                 return result_of(
                     ControllerError(
-                        FollowPathCode.TF_ERROR,
+                        FollowPathError.TF_ERROR,
                         f"robot clock stopped for {self.options.clock_timeout:.1f} s "
                         "(simulation gone?); stopping",
                     )

@@ -11,11 +11,13 @@ import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
+from aiobt.msgs import FollowPathError
+
 from .base import ControlContext, Controller
 from .checkers import CheckerRegistry, GoalChecker, ProgressChecker, default_checkers
 from .collision import CollisionChecker
 from .dwb import DWBController
-from .errors import ControllerError, FollowPathCode
+from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Pose2D, Velocity
 from .rpp import RegulatedPurePursuit
 from .tracking import TrackingFeedback, project_onto_path, search_stop, tracking_feedback
@@ -73,7 +75,7 @@ def _pick(kind: str, wanted: str, default: str, known: Mapping[str, object]) -> 
     name = wanted or default
     if name not in known:
         raise ControllerError(
-            FollowPathCode.INVALID_CONTROLLER,
+            FollowPathError.INVALID_CONTROLLER,
             f"unknown {kind} {name!r}; known: {', '.join(sorted(known))}",
         )
     return name
@@ -81,21 +83,21 @@ def _pick(kind: str, wanted: str, default: str, known: Mapping[str, object]) -> 
 
 def validate_path(path: PlanarPath, known_frames: tuple[str, ...]) -> None:
     if len(path) == 0:
-        raise ControllerError(FollowPathCode.INVALID_PATH, "path is empty")
+        raise ControllerError(FollowPathError.INVALID_PATH, "path is empty")
     if len(path) == 1:
         raise ControllerError(
-            FollowPathCode.INVALID_PATH, "path has a single pose; at least two are needed"
+            FollowPathError.INVALID_PATH, "path has a single pose; at least two are needed"
         )
     if path.frame_id not in known_frames:
         raise ControllerError(
-            FollowPathCode.TF_ERROR,
+            FollowPathError.TF_ERROR,
             f"path frame {path.frame_id!r} is unknown; known frames: {', '.join(known_frames)}",
         )
     for name, column in (("x", path.xy[:, 0]), ("y", path.xy[:, 1]), ("yaw", path.yaw)):
         bad = [i for i, value in enumerate(column) if not math.isfinite(float(value))]
         if bad:
             raise ControllerError(
-                FollowPathCode.INVALID_PATH, f"path pose {bad[0]} has a non-finite {name}"
+                FollowPathError.INVALID_PATH, f"path pose {bad[0]} has a non-finite {name}"
             )
 
 
@@ -170,7 +172,7 @@ class FollowPathSession:
         path = self._request.path
         if cfg.time_allowance > 0.0 and now - self._started > cfg.time_allowance:
             raise ControllerError(
-                FollowPathCode.CONTROLLER_TIMED_OUT,
+                FollowPathError.CONTROLLER_TIMED_OUT,
                 f"goal not reached within the time allowance of {cfg.time_allowance:.1f} s",
             )
         if path.frame_id not in states and now - self._started <= cfg.initial_pose_wait:
@@ -180,7 +182,9 @@ class FollowPathSession:
         if self._goal_checker.is_goal_reached(state.pose, path.goal, state.velocity):
             return StepResult(STOP, feedback, succeeded=True)
         if not self._progress.check(state.pose, now):
-            raise ControllerError(FollowPathCode.FAILED_TO_MAKE_PROGRESS, "failed to make progress")
+            raise ControllerError(
+                FollowPathError.FAILED_TO_MAKE_PROGRESS, "failed to make progress"
+            )
         return StepResult(self._compute(now, state), feedback)
 
     def _track(self, path: PlanarPath, pose: Pose2D) -> TrackingFeedback:
@@ -194,20 +198,20 @@ class FollowPathSession:
         state = states.get(frame)
         if state is None:
             raise ControllerError(
-                FollowPathCode.TF_ERROR,
+                FollowPathError.TF_ERROR,
                 f"no robot pose received in frame {frame!r} "
                 f"within {self._config.initial_pose_wait:.1f} s",
             )
         age = now - state.stamp
         if age > self._config.pose_timeout:
             raise ControllerError(
-                FollowPathCode.TF_ERROR,
+                FollowPathError.TF_ERROR,
                 f"robot pose in frame {frame!r} is stale ({age:.2f} s old, "
                 f"pose_timeout {self._config.pose_timeout:.2f} s); stopping",
             )
         if not state.pose.is_finite():
             raise ControllerError(
-                FollowPathCode.TF_ERROR, f"robot pose in frame {frame!r} is not finite"
+                FollowPathError.TF_ERROR, f"robot pose in frame {frame!r} is not finite"
             )
         return state
 
@@ -234,7 +238,7 @@ class FollowPathSession:
         waited = now - self._failing_since
         if waited >= tolerance:
             raise ControllerError(
-                FollowPathCode.PATIENCE_EXCEEDED,
+                FollowPathError.PATIENCE_EXCEEDED,
                 f"controller patience exceeded: {error.message}; "
                 f"no valid control for {waited:.2f} s (failure_tolerance {tolerance:.2f} s)",
             )

@@ -9,7 +9,7 @@ import pytest
 
 from aiobt.msgs import FollowPath, FollowPathError, LaserScan, Path, PoseStamped
 from aiobt_services.controller.collision import INSCRIBED, LETHAL, NO_INFORMATION, CostQuery
-from aiobt_services.controller.errors import ControllerError, FollowPathCode
+from aiobt_services.controller.errors import ControllerError
 from aiobt_services.controller.geometry import Pose2D
 from aiobt_services.controller.local_costmap import FrameShift, LocalCostmap, frame_transform
 from aiobt_services.controller.service import path_of, request_of, result_of
@@ -66,8 +66,8 @@ def test_wire_goal_converts_and_errors_map_to_nav2_codes():
     assert request.path.frame_id == "map"
     assert request.path.xy.tolist() == [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]
     assert len(path_of(Path())) == 0
-    for code in FollowPathCode:
-        if code is FollowPathCode.NONE:
+    for code in FollowPathError:
+        if code is FollowPathError.NONE:
             continue
         result = result_of(ControllerError(code, "why"))
         assert result.error_code == FollowPathError[code.name] == code.value

@@ -7,8 +7,9 @@ import math
 import numpy as np
 import pytest
 
+from aiobt.msgs import FollowPathError
 from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
-from aiobt_services.controller.errors import ControllerError, FollowPathCode
+from aiobt_services.controller.errors import ControllerError
 from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
 from aiobt_services.controller.session import (
     ControllerConfig,
@@ -34,37 +35,37 @@ def _state(pose: Pose2D, stamp: float = 0.0) -> dict[str, RobotState]:
     [
         (
             FollowRequest(PlanarPath.from_poses("map", [])),
-            FollowPathCode.INVALID_PATH,
+            FollowPathError.INVALID_PATH,
             "path is empty",
         ),
         (
             FollowRequest(PlanarPath.from_poses("map", [(1.0, 0.0, 0.0)])),
-            FollowPathCode.INVALID_PATH,
+            FollowPathError.INVALID_PATH,
             "single pose",
         ),
         (
             FollowRequest(PlanarPath.from_poses("base_link", [(0, 0, 0), (1, 0, 0)])),
-            FollowPathCode.TF_ERROR,
+            FollowPathError.TF_ERROR,
             "path frame 'base_link' is unknown",
         ),
         (
             FollowRequest(PlanarPath.from_poses("map", [(0, 0, 0), (math.nan, 0, 0)])),
-            FollowPathCode.INVALID_PATH,
+            FollowPathError.INVALID_PATH,
             "path pose 1 has a non-finite x",
         ),
         (
             FollowRequest(straight(), controller_id="MPPI"),
-            FollowPathCode.INVALID_CONTROLLER,
+            FollowPathError.INVALID_CONTROLLER,
             "unknown controller id 'MPPI'; known: DWB, FollowPath",
         ),
         (
             FollowRequest(straight(), goal_checker_id="nope"),
-            FollowPathCode.INVALID_CONTROLLER,
+            FollowPathError.INVALID_CONTROLLER,
             "unknown goal checker id 'nope'",
         ),
         (
             FollowRequest(straight(), progress_checker_id="nope"),
-            FollowPathCode.INVALID_CONTROLLER,
+            FollowPathError.INVALID_CONTROLLER,
             "unknown progress checker id 'nope'",
         ),
     ],
@@ -90,7 +91,7 @@ def test_stale_pose_stops_robot_with_tf_error():
     step = session.step(0.6, _state(Pose2D(0, 0, 0), stamp=0.0))
     assert step.cmd == Velocity(0.0, 0.0)
     assert step.error is not None
-    assert step.error.code == FollowPathCode.TF_ERROR
+    assert step.error.code == FollowPathError.TF_ERROR
     assert "stale" in step.error.message
 
 
@@ -101,7 +102,7 @@ def test_missing_pose_is_awaited_briefly_then_a_tf_error():
     assert waiting.cmd == Velocity(0.0, 0.0)
     step = session.step(1.1, {})
     assert step.error is not None
-    assert step.error.code == FollowPathCode.TF_ERROR
+    assert step.error.code == FollowPathError.TF_ERROR
     assert "no robot pose received in frame 'map'" in step.error.message
 
 
@@ -114,7 +115,7 @@ def test_robot_that_does_not_move_fails_to_make_progress():
         now += 0.5
     step = session.step(10.5, _state(pose, 10.5))
     assert step.error is not None
-    assert step.error.code == FollowPathCode.FAILED_TO_MAKE_PROGRESS
+    assert step.error.code == FollowPathError.FAILED_TO_MAKE_PROGRESS
 
 
 def test_time_allowance_gives_controller_timed_out():
@@ -122,7 +123,7 @@ def test_time_allowance_gives_controller_timed_out():
     run, _ = drive(straight(10.0), config=config)
     assert run.result is not None
     assert run.result.error is not None
-    assert run.result.error.code == FollowPathCode.CONTROLLER_TIMED_OUT
+    assert run.result.error.code == FollowPathError.CONTROLLER_TIMED_OUT
     assert run.time == pytest.approx(2.05, abs=0.06)
 
 
@@ -138,7 +139,7 @@ def test_obstacle_ahead_stops_rpp_and_patience_runs_out():
     run, robot = drive(straight(4.0), collision=_wall_at(2.0))
     assert run.result is not None
     assert run.result.error is not None
-    assert run.result.error.code == FollowPathCode.PATIENCE_EXCEEDED
+    assert run.result.error.code == FollowPathError.PATIENCE_EXCEEDED
     assert "detected collision ahead" in run.result.error.message
     assert "no valid control for 0.3" in run.result.error.message
     assert 1.0 < robot.pose.x < 2.0
@@ -152,7 +153,7 @@ def test_obstacle_ahead_without_patience_fails_no_valid_control_at_once():
     run, robot = drive(straight(4.0), collision=_wall_at(2.0), config=config)
     assert run.result is not None
     assert run.result.error is not None
-    assert run.result.error.code == FollowPathCode.NO_VALID_CONTROL
+    assert run.result.error.code == FollowPathError.NO_VALID_CONTROL
     assert "detected collision ahead" in run.result.error.message
     assert 1.0 < robot.pose.x < 2.0
     assert run.commands[-2] != (0.0, 0.0)  # the first refused cycle ends the goal
@@ -165,7 +166,7 @@ def test_obstacle_ahead_makes_dwb_stop_short_then_fail_to_make_progress():
     run, robot = drive(straight(4.0), controller_id="DWB", collision=_wall_at(2.0))
     assert run.result is not None
     assert run.result.error is not None
-    assert run.result.error.code == FollowPathCode.FAILED_TO_MAKE_PROGRESS
+    assert run.result.error.code == FollowPathError.FAILED_TO_MAKE_PROGRESS
     assert 1.0 < robot.pose.x < 2.0
     assert run.commands[-1] == (0.0, 0.0)
 
