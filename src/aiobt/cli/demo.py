@@ -12,8 +12,7 @@ import argparse
 import sys
 
 from aiobt.cli import run as run_cli
-from aiobt.core.blackboard import Blackboard
-from aiobt.core.errors import TreeLoadError
+from aiobt.core.errors import BlackboardError, TreeLoadError
 from aiobt.examples import patrol
 
 
@@ -27,17 +26,10 @@ def run(args: argparse.Namespace) -> int:
         args.plugin.insert(0, "aiobt.examples.patrol")
     try:
         factory = run_cli.build_factory(args)
-        bb = Blackboard.create()
-        for key, value in patrol.INITIAL_STATE.items():
-            bb.set(key, value)
-        for item in args.entries:
-            key, _, value = item.partition("=")
-            bb.set(key, value)
-        clock = run_cli.make_clock(args.speed)
-        tree = factory.create_tree_from_text(
-            patrol.PATROL_XML, blackboard=bb, clock=clock, file="aiobt/examples/patrol.py"
-        )
-    except (TreeLoadError, ImportError) as exc:
+        factory.register_behavior_tree_from_text(patrol.PATROL_XML, file=patrol.__file__)
+        bb = run_cli.root_blackboard(args.entries, patrol.INITIAL_STATE)
+        tree = factory.create_tree(args.tree, blackboard=bb, clock=run_cli.make_clock(args.speed))
+    except (TreeLoadError, BlackboardError, ImportError) as exc:
         print(f"aiobt demo: {exc}", file=sys.stderr)
         return 2
     print(f"patrol mission: 3 waypoints, 2 laps, clock x{args.speed:g}, battery {bb['battery']}")

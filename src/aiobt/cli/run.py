@@ -16,13 +16,13 @@ import contextlib
 import importlib
 import logging
 import sys
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import TextIO
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock, ScaledClock, SystemClock
-from aiobt.core.errors import LogicError, NodeError, TreeLoadError
+from aiobt.core.errors import BlackboardError, LogicError, NodeError, TreeLoadError
 from aiobt.core.manifest import TestNodeConfig
 from aiobt.core.node import TreeNode
 from aiobt.core.status import Status
@@ -109,18 +109,16 @@ def build_factory(args: argparse.Namespace) -> BehaviorTreeFactory:
 
 def parse_stub(spec: str) -> tuple[str, TestNodeConfig]:
     """``PATTERN=STATUS[:SECONDS]`` -> (pattern, TestNodeConfig)."""
-    pattern, sep, rest = spec.partition("=")
+    pattern, _, rest = spec.partition("=")
     status_text, _, delay_text = (rest or "SUCCESS").partition(":")
+    status = Status.__members__.get(status_text.strip().upper())
     try:
-        status = Status[status_text.strip().upper()]
         delay = float(delay_text) if delay_text else 0.0
-    except (KeyError, ValueError):
+    except ValueError:
+        delay = -1.0
+    if not pattern or status not in (Status.SUCCESS, Status.FAILURE) or delay < 0.0:
         raise TreeLoadError(
             f"--stub {spec!r}: expected PATTERN=STATUS[:SECONDS] with STATUS SUCCESS or FAILURE"
-        ) from None
-    if not pattern or (not sep and rest) or status not in (Status.SUCCESS, Status.FAILURE):
-        raise TreeLoadError(
-            f"--stub {spec!r}: expected PATTERN=STATUS[:SECONDS], STATUS SUCCESS or FAILURE"
         )
     return pattern, TestNodeConfig(status=status, delay=delay)
 
@@ -131,8 +129,11 @@ def make_clock(speed: float) -> Clock:
     return SystemClock() if speed == 1.0 else ScaledClock(speed)
 
 
-def root_blackboard(entries: list[str]) -> Blackboard:
+def root_blackboard(entries: list[str], initial: Mapping[str, object] | None = None) -> Blackboard:
+    """The root blackboard: ``initial`` values, then the ``--set KEY=VALUE`` texts."""
     bb = Blackboard.create()
+    for key, value in (initial or {}).items():
+        bb.set(key, value)
     for item in entries:
         key, sep, value = item.partition("=")
         if not sep or not key:
@@ -234,15 +235,11 @@ async def _bounded(tree: Tree, period: float, max_time: float) -> Status:
 def run(args: argparse.Namespace) -> int:
     try:
         factory = build_factory(args)
-        clock = make_clock(args.speed)
-        tree = factory.create_tree_from_file(
-            args.file, blackboard=root_blackboard(args.entries), clock=clock
+        factory.register_behavior_tree_from_file(args.file)
+        tree = factory.create_tree(
+            args.tree, blackboard=root_blackboard(args.entries), clock=make_clock(args.speed)
         )
-        if args.tree:
-            tree = factory.create_tree(
-                args.tree, blackboard=root_blackboard(args.entries), clock=clock
-            )
-    except (TreeLoadError, ImportError, OSError) as exc:
+    except (TreeLoadError, BlackboardError, ImportError, OSError) as exc:
         print(f"aiobt run: {exc}", file=sys.stderr)
         return 2
     return finish(tree, args)
