@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from aiobt.core.composite import ControlNode
+from aiobt.core.node import TreeNode
 from aiobt.core.ports import input_port
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
@@ -14,7 +15,39 @@ def threshold(value: int, children: int) -> int:
     return max(children + value + 1, 0) if value < 0 else value
 
 
-class Parallel(ControlNode):
+class ParallelBase(ControlNode):
+    """What Parallel and ParallelAll share: the children that finished, the failures."""
+
+    __slots__ = ("_completed", "_failures")
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._completed: set[int] = set()
+        self._failures = 0
+
+    def _tick_pending(self, index: int, child: TreeNode) -> Status:
+        """Tick a child that has not finished yet, and note if it finishes now."""
+        status = child.tick_sync()
+        if status is SUCCESS:
+            self._completed.add(index)
+        elif status is FAILURE:
+            self._completed.add(index)
+            self._failures += 1
+        elif status is IDLE:
+            raise self.logic_error(f"child {child.path} returned IDLE")
+        return status
+
+    def _finish(self, status: Status) -> Status:
+        self.on_halt_sync()
+        return status
+
+    def on_halt_sync(self) -> None:
+        self._completed.clear()
+        self._failures = 0
+        self.reset_children()
+
+
+class Parallel(ParallelBase):
     """``<Parallel success_count="-1" failure_count="1">``.
 
     Ticks every child that has not finished yet, in order, and checks the
@@ -28,21 +61,11 @@ class Parallel(ControlNode):
       children is a logic error at the first tick.
     """
 
-    __slots__ = ("_completed", "_failures", "_successes")
+    __slots__ = ()
     PORTS = (
         input_port("success_count", int, -1, "number of children that must succeed (-1: all)"),
         input_port("failure_count", int, 1, "number of children that must fail (-1: all)"),
     )
-
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        super().__init__(*args, **kwargs)
-        self._completed: set[int] = set()
-        self._successes = 0
-        self._failures = 0
-
-    def _clear(self) -> None:
-        self._completed.clear()
-        self._successes = self._failures = 0
 
     def execute_sync(self) -> Status:
         success_count: int = self.get_input("success_count")
@@ -60,31 +83,14 @@ class Parallel(ControlNode):
         skipped = 0
         completed = self._completed
         for index, child in enumerate(self.children):
-            if index not in completed:
-                status = child.tick_sync()
-                if status is SUCCESS:
-                    completed.add(index)
-                    self._successes += 1
-                elif status is FAILURE:
-                    completed.add(index)
-                    self._failures += 1
-                elif status is SKIPPED:
-                    skipped += 1
-                elif status is IDLE:
-                    raise self.logic_error(f"child {child.path} returned IDLE")
-            if self._successes >= required_success or (
-                success_count < 0 and self._successes + skipped >= required_success
+            if index not in completed and self._tick_pending(index, child) is SKIPPED:
+                skipped += 1
+            failures = self._failures
+            successes = len(completed) - failures
+            if successes >= required_success or (
+                success_count < 0 and successes + skipped >= required_success
             ):
                 return self._finish(SUCCESS)
-            if count - self._failures < required_success or self._failures == required_failure:
+            if count - failures < required_success or failures == required_failure:
                 return self._finish(FAILURE)
         return SKIPPED if skipped == count else RUNNING
-
-    def _finish(self, status: Status) -> Status:
-        self._clear()
-        self.reset_children()
-        return status
-
-    def on_halt_sync(self) -> None:
-        self._clear()
-        self.reset_children()

@@ -2,15 +2,12 @@
 
 from __future__ import annotations
 
-from typing import Any
-
-from aiobt.core.composite import ControlNode
 from aiobt.core.ports import input_port
-from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
-from aiobt.nodes.control.parallel import threshold
+from aiobt.core.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
+from aiobt.nodes.control.parallel import ParallelBase, threshold
 
 
-class ParallelAll(ControlNode):
+class ParallelAll(ParallelBase):
     """``<ParallelAll max_failures="1">``: run every child to completion.
 
     When all children have finished (or were skipped) it returns FAILURE if at
@@ -19,7 +16,7 @@ class ParallelAll(ControlNode):
     SKIPPED if every child was skipped.
     """
 
-    __slots__ = ("_completed", "_failures")
+    __slots__ = ()
     PORTS = (
         input_port(
             "max_failures",
@@ -30,11 +27,6 @@ class ParallelAll(ControlNode):
         ),
     )
 
-    def __init__(self, *args: Any, **kwargs: Any) -> None:
-        super().__init__(*args, **kwargs)
-        self._completed: set[int] = set()
-        self._failures = 0
-
     def execute_sync(self) -> Status:
         count = len(self.children)
         max_failures = threshold(self.get_input("max_failures"), count)
@@ -44,29 +36,10 @@ class ParallelAll(ControlNode):
         skipped = 0
         completed = self._completed
         for index, child in enumerate(self.children):
-            if index in completed:
-                continue
-            status = child.tick_sync()
-            if status is SUCCESS:
-                completed.add(index)
-            elif status is FAILURE:
-                completed.add(index)
-                self._failures += 1
-            elif status is SKIPPED:
+            if index not in completed and self._tick_pending(index, child) is SKIPPED:
                 skipped += 1
-            elif status is IDLE:
-                raise self.logic_error(f"child {child.path} returned IDLE")
         if skipped == count:
             return SKIPPED
         if skipped + len(completed) < count:
             return RUNNING
-        self.reset_children()
-        failed = self._failures >= max_failures
-        completed.clear()
-        self._failures = 0
-        return FAILURE if failed else SUCCESS
-
-    def on_halt_sync(self) -> None:
-        self._completed.clear()
-        self._failures = 0
-        self.reset_children()
+        return self._finish(FAILURE if self._failures >= max_failures else SUCCESS)
