@@ -134,3 +134,24 @@ def test_run_writes_the_requested_logs(tmp_path: Path, capsys: pytest.CaptureFix
         assert db.execute("SELECT COUNT(*) FROM Transitions").fetchone()[0] == len(rows)
     out = capsys.readouterr().out
     assert "Sleep" in out  # the --stats rendering of the tree
+
+
+def test_run_picks_the_tree_asked_for_and_names_an_unknown_one(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    two = tmp_path / "two.xml"
+    two.write_text(
+        '<root BTCPP_format="4" main_tree_to_execute="Fails">'
+        '<BehaviorTree ID="Fails"><AlwaysFailure/></BehaviorTree>'
+        '<BehaviorTree ID="Works"><AlwaysSuccess/></BehaviorTree></root>'
+    )
+    assert main(["run", str(two)]) == 1
+    assert main(["run", str(two), "--tree", "Works"]) == 0
+    assert "tree Works: SUCCESS" in capsys.readouterr().out
+    assert main(["run", str(two), "--tree", "Work"]) == 2
+    assert "did you mean [Works]" in capsys.readouterr().err
+
+
+def test_demo_refuses_a_set_value_of_the_wrong_type(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["demo", "--set", "battery=low"]) == 2
+    assert "blackboard [battery]: cannot convert 'low'" in capsys.readouterr().err
