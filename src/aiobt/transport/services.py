@@ -138,6 +138,26 @@ class _Call:
             self.future.set_result(reply)
 
 
+async def first_reply(
+    session: zenoh.Session,
+    bridge: LoopBridge,
+    key: str,
+    timeout: float,  # noqa: ASYNC109
+    payload: bytes | None = None,
+) -> zenoh.Reply | None:
+    """Get ``key`` (with a JSON ``payload``, if any): the first reply, None if none came."""
+    pending = _Call(bridge)
+    session.get(
+        key,
+        callback(pending.on_reply, pending.on_drop),
+        payload=payload,
+        encoding=JSON if payload is not None else None,
+        timeout=timeout,
+    )
+    async with asyncio.timeout(timeout + 0.5):
+        return await pending.future
+
+
 async def call(
     session: zenoh.Session,
     bridge: LoopBridge,
@@ -149,16 +169,7 @@ async def call(
     """Send ``request``, return the decoded response; raise ServiceError/Unavailable."""
     payload = request.to_json()
     bridge.check_size(key, payload)
-    pending = _Call(bridge)
-    session.get(
-        key,
-        callback(pending.on_reply, pending.on_drop),
-        payload=payload,
-        encoding=JSON,
-        timeout=timeout,
-    )
-    async with asyncio.timeout(timeout + 0.5):
-        reply = await pending.future
+    reply = await first_reply(session, bridge, key, timeout, payload)
     if reply is None:
         raise ServiceUnavailable(f"{key}: no service answered")
     if reply.err is not None:

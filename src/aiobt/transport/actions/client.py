@@ -16,7 +16,7 @@ from aiobt.transport.actions.client_goal import ClientGoal, settle
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.presence import Presence
-from aiobt.transport.services import ServiceError, call
+from aiobt.transport.services import ServiceError, call, first_reply
 
 G = TypeVar("G", bound=Msg)
 R = TypeVar("R", bound=ActionResult)
@@ -188,14 +188,7 @@ async def _fetch_result(
     model: type[R],
     timeout: float,  # noqa: ASYNC109
 ) -> tuple[GoalState, R]:
-    future: asyncio.Future[zenoh.Reply | None] = bridge.loop.create_future()
-
-    def on_reply(reply: zenoh.Reply) -> None:
-        bridge.call(settle, future, reply)
-
-    session.get(key, callback(on_reply, lambda: bridge.call(settle, future, None)), timeout=timeout)
-    async with asyncio.timeout(timeout + 0.5):
-        reply = await future
+    reply = await first_reply(session, bridge, key, timeout)
     if reply is None or reply.err is not None:
         why = reply.err.payload.to_string() if reply and reply.err else "no server answered"
         raise ServiceError(f"{key}: {why}")
