@@ -226,10 +226,10 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
             elif status is RUNNING:
                 # the children before it just finished; a later one may still run
                 _reset(children[:index], quiet)
-                _reset_running(children[index + 1 :])
+                reset_all(children[index + 1 :])
                 return RUNNING
             elif status is stop:
-                _reset_running(children)
+                reset_all(children)
                 break
             elif status is not SKIPPED:
                 raise self.logic_error(f"child {child.path} returned IDLE")
@@ -267,7 +267,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
                             break
                         other._status = IDLE
                     if index + 1 < len(children):
-                        _reset_running(children[index + 1 :])
+                        reset_all(children[index + 1 :])
                 else:
                     for other in children:
                         if other is not running:
@@ -278,7 +278,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
                 self._status = RUNNING
                 return RUNNING
             elif status is stop:
-                _reset_running(children)
+                reset_all(children)
                 self._status = stop
                 return stop
             elif status is SKIPPED:
@@ -316,16 +316,6 @@ class ReactiveComposite(WalkedComposite):
     @classmethod
     def _make_tick(cls, write: bool) -> Any:
         return _reactive_walk(cls.NEXT, cls.STOP, write)
-
-
-def _reset_running(children: list[TreeNode]) -> None:
-    """Halt the RUNNING ones among ``children``, set the finished ones IDLE."""
-    for child in children:
-        status = child._status
-        if status is RUNNING:
-            child.halt_sync()
-        elif status is not IDLE:
-            child._set_status(IDLE)
 
 
 def _reset(children: list[TreeNode], quiet: bool) -> None:
