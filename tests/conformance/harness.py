@@ -64,6 +64,16 @@ class Step:
         return f"{text}\n    transitions: {' '.join(self.transitions)}"
 
 
+def tree_xml(body: str) -> str:
+    """A v4 document whose only tree, ``Main``, is ``body``."""
+    return f'<root BTCPP_format="4"><BehaviorTree ID="Main">{body}</BehaviorTree></root>'
+
+
+def results(steps: list[Step]) -> list[str]:
+    """The status each operation returned, in order."""
+    return [step.result for step in steps]
+
+
 class CallBudgetExceeded(RuntimeError):
     """A scripted leaf was called too often: the tree loops within one operation."""
 

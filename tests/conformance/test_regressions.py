@@ -4,24 +4,16 @@ from __future__ import annotations
 
 import pytest
 
-from tests.conformance.harness import Scenario, Step, assert_conforms
+from tests.conformance.harness import Scenario, assert_conforms, results, tree_xml
 
 pytestmark = pytest.mark.conformance
-
-
-def tree(body: str) -> str:
-    return f'<root BTCPP_format="4"><BehaviorTree ID="Main">{body}</BehaviorTree></root>'
-
-
-def results(steps: list[Step]) -> list[str]:
-    return [step.result for step in steps]
 
 
 async def test_tick_once_honours_a_wake_up_left_by_tick_exactly_once() -> None:
     # SequenceWithMemory emits a wake-up after its first child; tick_exactly_once
     # leaves it pending, and the next tick_once re-ticks because of it (BT.CPP's
     # tickRoot never clears the signal before ticking). aiobt used to clear it.
-    xml = tree(
+    xml = tree_xml(
         '<SequenceWithMemory name="seq"><ScriptedAction name="a"/>'
         '<ScriptedStateful name="s"/><ScriptedCondition name="c"/></SequenceWithMemory>'
     )
@@ -33,7 +25,7 @@ async def test_tick_once_honours_a_wake_up_left_by_tick_exactly_once() -> None:
 
 async def test_set_blackboard_copying_a_missing_entry_fails() -> None:
     # BT.CPP returns FAILURE; aiobt used to raise a LogicError.
-    xml = tree(
+    xml = tree_xml(
         '<Sequence name="seq"><SetBlackboard name="copy" output_key="var" value="{other}"/>'
         '<ScriptedAction name="a"/></Sequence>'
     )

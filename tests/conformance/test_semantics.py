@@ -8,22 +8,15 @@ from __future__ import annotations
 
 import pytest
 
-from tests.conformance.harness import Scenario, Step, assert_conforms
+from tests.conformance.harness import Scenario, Step, assert_conforms, results, tree_xml
 
 pytestmark = pytest.mark.conformance
 
 
-def tree(body: str) -> str:
-    return f'<root BTCPP_format="4"><BehaviorTree ID="Main">{body}</BehaviorTree></root>'
-
-
 async def run(body: str, scripts: dict[str, str], ops: str) -> list[Step]:
-    scenario = Scenario(tree(body), {k: tuple(v) for k, v in scripts.items()}, tuple(ops.split()))
+    scripted = {name: tuple(script) for name, script in scripts.items()}
+    scenario = Scenario(tree_xml(body), scripted, tuple(ops.split()))
     return await assert_conforms(scenario)
-
-
-def results(steps: list[Step]) -> list[str]:
-    return [step.result for step in steps]
 
 
 def calls(steps: list[Step]) -> list[list[str]]:

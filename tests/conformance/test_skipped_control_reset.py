@@ -7,6 +7,7 @@ import behaviortreepy as btcpp
 import pytest
 
 from aiobt import BehaviorTreeFactory, Status
+from tests.conformance.harness import tree_xml
 
 SKIPPING = (
     '<WhileDoElse _onHalted="halted := 1">'
@@ -24,13 +25,9 @@ TREES = {
 }
 
 
-def _xml(body: str) -> str:
-    return f'<root BTCPP_format="4"><BehaviorTree ID="M">{body}</BehaviorTree></root>'
-
-
 def _btcpp(body: str) -> tuple[str, str | None]:
     bb = btcpp.Blackboard.create()
-    tree = btcpp.BehaviorTreeFactory().create_tree_from_text(_xml(body), bb)
+    tree = btcpp.BehaviorTreeFactory().create_tree_from_text(tree_xml(body), bb)
     status = tree.tick_once()
     halted = bb.get_string("halted") if "halted" in bb.get_keys() else None
     tree.halt_tree()
@@ -41,7 +38,7 @@ def _btcpp(body: str) -> tuple[str, str | None]:
 @pytest.mark.parametrize("listening", [False, True], ids=["quiet", "listened"])
 @pytest.mark.parametrize("body", list(TREES.values()), ids=list(TREES))
 async def test_skipped_running_control_is_halted_by_its_parent(body: str, listening: bool) -> None:
-    tree = BehaviorTreeFactory().create_tree_from_text(_xml(body))
+    tree = BehaviorTreeFactory().create_tree_from_text(tree_xml(body))
     changes: list[str] = []
     if listening:
         tree.add_status_listener(lambda _t, node, _p, s: changes.append(f"{node.name}>{s.name}"))
