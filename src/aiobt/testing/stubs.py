@@ -23,6 +23,9 @@ XML IDs (each stub is identified by its ``name``):
 - ``StubAsyncAction`` — an async leaf: waits ``msec`` of the tree's clock, then
   returns ``result``; its halts are counted (the task is cancelled).
 
+``settle()`` lets the tasks a tick started take their first steps before a
+test moves a ManualClock.
+
 The log holds ``"name:event"`` strings, in order: ``start``, ``running``,
 ``halted`` (stateful actions), ``check`` (conditions), ``run``, ``done``,
 ``cancelled`` (async actions).
@@ -232,3 +235,10 @@ def tree_xml(body: str, tree_id: str = "MainTree", *extra_trees: str) -> str:
 async def tick_statuses(tick: Callable[[], Any], count: int) -> list[Status]:
     """Call an async ``tick`` (e.g. ``tree.tick_exactly_once``) ``count`` times."""
     return [await tick() for _ in range(count)]
+
+
+async def settle(steps: int = 5) -> None:
+    """Let started tasks (async leaves, timers) take their first steps before a
+    test moves robot time: ``steps`` passes of the event loop."""
+    for _ in range(steps):
+        await asyncio.sleep(0)

@@ -12,15 +12,9 @@ from aiobt.core.leaves import StatefulActionNode
 from aiobt.core.node import TreeNode
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
-from aiobt.testing.stubs import Stubs, tree_xml
+from aiobt.testing.stubs import Stubs, settle, tree_xml
 
 S, F, R, K, IDLE = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.SKIPPED, Status.IDLE
-
-
-async def _settle() -> None:
-    """Let started tasks take their first step before robot time moves."""
-    for _ in range(5):
-        await asyncio.sleep(0)
 
 
 async def test_tick_exactly_once_resets_only_the_root(
@@ -62,7 +56,7 @@ async def test_tick_while_running_ticks_at_period(
     tree = bt_factory.create_tree_from_text(tree_xml('<StubAction name="A"/>'), clock=manual_clock)
     ticking = asyncio.ensure_future(tree.tick_while_running(period=0.25))
     try:
-        await _settle()
+        await settle()
         await manual_clock.forward(1.0, step=0.125)  # binary fractions: no rounding
         assert await asyncio.wait_for(ticking, timeout=2.0) is S
     finally:
@@ -78,7 +72,7 @@ async def test_tick_while_running_sleep_cut_short_by_sleep_node(
     )
     ticking = asyncio.ensure_future(tree.tick_while_running(period=60.0))
     try:
-        await _settle()
+        await settle()
         await manual_clock.forward(0.3, step=0.1)
         assert await asyncio.wait_for(ticking, timeout=2.0) is S
     finally:
@@ -118,7 +112,7 @@ async def test_pause_resume_and_reasons(
         assert stubs.ticks("A") == 0  # paused: not ticked
         manual_clock.advance(1.0)
         tree.resume("battery ok")
-        await _settle()
+        await settle()
         await manual_clock.forward(0.2, step=0.1)
         assert await asyncio.wait_for(ticking, timeout=2.0) is S
     finally:

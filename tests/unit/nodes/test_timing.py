@@ -7,14 +7,9 @@ import asyncio
 from aiobt.core.clock import ManualClock
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
-from aiobt.testing.stubs import Stubs, tree_xml
+from aiobt.testing.stubs import Stubs, settle, tree_xml
 
 S, F, R, K, IDLE = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.SKIPPED, Status.IDLE
-
-
-async def _settle() -> None:
-    for _ in range(5):
-        await asyncio.sleep(0)
 
 
 async def test_timeout_halts_child_and_fails_after_clock_jump(
@@ -26,10 +21,10 @@ async def test_timeout_halts_child_and_fails_after_clock_jump(
     )
     assert await tree.tick_exactly_once() is R
     manual_clock.advance(0.999)
-    await _settle()
+    await settle()
     assert await tree.tick_exactly_once() is R
     manual_clock.advance(0.001)  # robot time jumps: the deadline is 1 s after the first tick
-    await _settle()
+    await settle()
     assert await tree.tick_once() is F
     assert stubs.events("W") == ["run", "cancelled"]
     assert all(node.status is IDLE for node in tree.nodes())
@@ -47,7 +42,7 @@ async def test_timeout_passes_result_of_fast_child_and_stops_timer(
     assert await tree.tick_exactly_once() is R
     await manual_clock.forward(0.5)
     assert await tree.tick_once() is F
-    await _settle()
+    await settle()
     assert manual_clock.pending_sleepers == 0
     await manual_clock.forward(1.0)
     assert stubs.halts("W") == 0
@@ -92,11 +87,11 @@ async def test_delay_waits_before_ticking_child(
     )
     assert await tree.tick_exactly_once() is R
     manual_clock.advance(0.5)
-    await _settle()
+    await settle()
     assert await tree.tick_exactly_once() is R
     assert stubs.ticks("A") == 0
     manual_clock.advance(0.5)
-    await _settle()
+    await settle()
     assert await tree.tick_once() is S
     assert stubs.ticks("A") == 1
     # a new activation waits again
@@ -135,7 +130,7 @@ async def test_sleep_runs_on_the_tree_clock_and_wakes_the_tree(
 
     ticking = asyncio.ensure_future(tree.tick_while_running(period=0.5))
     try:
-        await _settle()
+        await settle()
         assert manual_clock.pending_sleepers == 2  # Sleep, and the tree's period
         await manual_clock.forward(2.0, step=0.5)
         status = await asyncio.wait_for(ticking, timeout=2.0)

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import asyncio
-
 import pytest
 
 from aiobt.core.clock import ManualClock
@@ -12,7 +10,7 @@ from aiobt.core.manifest import TestNodeConfig
 from aiobt.core.node import TreeNode
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
-from aiobt.testing.stubs import Stubs, tree_xml
+from aiobt.testing.stubs import Stubs, settle, tree_xml
 
 MISSION = tree_xml(
     '<Sequence name="main">'
@@ -56,8 +54,7 @@ async def test_substitute_by_path_with_test_node_config(manual_clock: ManualCloc
     factory.add_substitution_rule("MainTree/Sequence[main]/*", TestNodeConfig(Status.SUCCESS))
     tree = factory.create_tree_from_text(MISSION, clock=manual_clock)
     assert await tree.tick_exactly_once() is Status.RUNNING  # move_fast: 2 s of clock time
-    for _ in range(5):
-        await asyncio.sleep(0)
+    await settle()
     await manual_clock.forward(2.0, step=0.5)
     assert await tree.tick_exactly_once() is Status.SUCCESS
     assert done == ["move_fast"]
