@@ -51,7 +51,16 @@ def test_error_code_numbers(table: type[IntEnum], name: str, code: int) -> None:
     assert table["NONE"] == 0
 
 
-def test_every_action_names_its_table() -> None:
-    assert msgs.FollowPath.ErrorCode is msgs.FollowPathError
+def test_every_action_names_its_own_table() -> None:
+    actions = [
+        value
+        for value in vars(msgs).values()
+        if isinstance(value, type)
+        and issubclass(value, msgs.ActionDef)
+        and value is not msgs.ActionDef
+    ]
+    assert len(actions) == 12
+    for action in actions:
+        assert action.ErrorCode is getattr(msgs, f"{action.__name__}Error"), action.__name__
+        assert action.ErrorCode["NONE"] == 0, action.__name__
     assert int(msgs.ComputePathToPose.ErrorCode.NO_VALID_PATH) == 208
-    assert msgs.Spin.ErrorCode is msgs.SpinError

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from typing import get_args, get_origin
 
 import numpy as np
 import pytest
@@ -177,12 +178,26 @@ def test_goals_accept_a_bare_list() -> None:
     assert [(g.x, g.y) for g in goals.goals] == [(1, 2), (3, 4)]
 
 
-def test_action_types_group_their_models() -> None:
-    assert msgs.ComputePathToPose.goal_type() is msgs.ComputePathToPose.Goal
-    assert msgs.FollowPath.result_type() is msgs.FollowPath.Result
-    assert msgs.Spin.feedback_type() is msgs.Spin.Feedback
+ACTIONS = [
+    value
+    for value in vars(msgs).values()
+    if isinstance(value, type) and issubclass(value, msgs.ActionDef) and value is not msgs.ActionDef
+]
+
+
+def test_every_action_declares_the_models_its_generic_parameters_name() -> None:
+    """Each action spells its models twice (``ActionDef[G, R, F]`` types the bus API,
+    ``Goal``/``Result``/``Feedback`` are what callers construct): they must agree."""
+    assert len(ACTIONS) == 12
+    for action in ACTIONS:
+        [base] = [b for b in action.__orig_bases__ if get_origin(b) is msgs.ActionDef]  # type: ignore[attr-defined]
+        declared = (action.goal_type(), action.result_type(), action.feedback_type())
+        assert get_args(base) == declared, action.__name__
+        aliases = tuple(vars(action)[name] for name in ("Goal", "Result", "Feedback"))
+        assert declared == aliases, action.__name__
+        assert issubclass(action.result_type(), msgs.ActionResult), action.__name__
+    assert len({action.name for action in ACTIONS}) == len(ACTIONS)
     assert msgs.FollowPath.name == "follow_path"
-    assert issubclass(msgs.Wait.Result, msgs.ActionResult)
     assert msgs.ClearEntireCostmap.service_name("global_costmap") == (
         "global_costmap/clear_entirely_global_costmap"
     )
