@@ -11,7 +11,7 @@ from typing import Any, ClassVar
 
 from aiobt.core.convert import converter_for
 from aiobt.core.leaves import ConditionNode
-from aiobt.core.ports import input_port
+from aiobt.core.ports import PortInfo, input_port
 from aiobt.msgs.errors import (
     ComputePathThroughPosesError,
     ComputePathToPoseError,
@@ -23,21 +23,21 @@ from aiobt.msgs.errors import (
 _to_codes = converter_for(list[int])
 
 
-def _code_port(server: str) -> Any:
-    return input_port(
-        "error_code",
-        int,
-        description="The active error code to compare against."
-        + (f" This should match the {server} error code." if server else ""),
-    )
-
-
-def _codes_port(server: str) -> Any:
-    return input_port(
-        "error_codes_to_check",
-        list[int],
-        description=f"The set of {server + ' ' if server else ''}error codes you wish to "
-        "compare against the active error code.",
+def _ports(server: str) -> tuple[PortInfo, PortInfo]:
+    """Nav2's two ports, their descriptions naming ``server`` (if any)."""
+    return (
+        input_port(
+            "error_code",
+            int,
+            description="The active error code to compare against."
+            + (f" This should match the {server} error code." if server else ""),
+        ),
+        input_port(
+            "error_codes_to_check",
+            list[int],
+            description=f"The set of {server + ' ' if server else ''}error codes you wish to "
+            "compare against the active error code.",
+        ),
     )
 
 
@@ -48,7 +48,7 @@ class AreErrorCodesPresent(ConditionNode):
     """
 
     __slots__ = ()
-    PORTS = (_code_port(""), _codes_port(""))
+    PORTS = _ports("")
     DEFAULT_CODES: ClassVar[frozenset[int]] = frozenset()
 
     def check(self) -> bool:
@@ -82,7 +82,7 @@ class WouldAControllerRecoveryHelp(AreErrorCodesPresent):
     """
 
     __slots__ = ()
-    PORTS = (_code_port("controller server"), _codes_port("controller server"))
+    PORTS = _ports("controller server")
     DEFAULT_CODES = frozenset(
         (
             FollowPathError.UNKNOWN,
@@ -102,7 +102,7 @@ class WouldAPlannerRecoveryHelp(AreErrorCodesPresent):
     """
 
     __slots__ = ()
-    PORTS = (_code_port("planner server"), _codes_port("planner server"))
+    PORTS = _ports("planner server")
     DEFAULT_CODES = frozenset(
         code
         for table in (ComputePathToPoseError, ComputePathThroughPosesError)
@@ -119,7 +119,7 @@ class WouldASmootherRecoveryHelp(AreErrorCodesPresent):
     """
 
     __slots__ = ()
-    PORTS = (_code_port("smoother server"), _codes_port("smoother server"))
+    PORTS = _ports("smoother server")
     DEFAULT_CODES = frozenset(
         (
             SmoothPathError.UNKNOWN,
@@ -139,7 +139,7 @@ class WouldARouteRecoveryHelp(AreErrorCodesPresent):
     """
 
     __slots__ = ()
-    PORTS = (_code_port("route server"), _codes_port("route server"))
+    PORTS = _ports("route server")
     DEFAULT_CODES = frozenset(
         (ComputeRouteError.UNKNOWN, ComputeRouteError.TIMEOUT, ComputeRouteError.NO_VALID_ROUTE)
     )
