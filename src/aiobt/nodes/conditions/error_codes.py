@@ -47,18 +47,27 @@ class AreErrorCodesPresent(ConditionNode):
     SUCCESS if ``error_code`` is one of ``error_codes_to_check``, else FAILURE.
     """
 
-    __slots__ = ()
+    __slots__ = ("_fixed_codes",)
     PORTS = _ports("")
     DEFAULT_CODES: ClassVar[frozenset[int]] = frozenset()
 
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        # a literal list (converted at load) or the default set is known now;
+        # only a blackboard-bound list is read at each tick
+        binding = self.config.inputs.get("error_codes_to_check")
+        self._fixed_codes: frozenset[int] | None = None
+        if binding is None:
+            self._fixed_codes = self.DEFAULT_CODES or None
+        elif binding.key is None:
+            self._fixed_codes = _as_codes(binding.value, self.path)
+
     def check(self) -> bool:
         code = int(self.get_input("error_code"))
-        return code in self._codes()
-
-    def _codes(self) -> frozenset[int]:
-        if not self.DEFAULT_CODES or self.has_input("error_codes_to_check"):
-            return _as_codes(self.get_input("error_codes_to_check"), self.path)
-        return self.DEFAULT_CODES
+        codes = self._fixed_codes
+        if codes is None:
+            codes = _as_codes(self.get_input("error_codes_to_check"), self.path)
+        return code in codes
 
 
 def _as_codes(value: Any, path: str) -> frozenset[int]:
