@@ -18,12 +18,22 @@ import pytest
 
 from aiobt.msgs import GoalState, PoseStamped, Twist, Wait
 from aiobt.testing.bus import ServiceProcess, running_router, spawn_service, start_router
-from aiobt.transport import Bus, BusSettings, BusUnavailable, GoalLost, open_bus
+from aiobt.transport import (
+    ActionClient,
+    Bus,
+    BusSettings,
+    BusUnavailable,
+    ClientGoal,
+    GoalLost,
+    open_bus,
+)
 
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 SERVER = "tests.integration.transport.action_server_proc"
 ZENOH_CLI = Path(sys.executable).with_name("zenoh")
+WaitClient = ActionClient[Wait.Goal, Wait.Result, Wait.Feedback]
+WaitGoal = ClientGoal[Wait.Goal, Wait.Result, Wait.Feedback]
 
 
 def start_server(spawn: Spawn, settings: BusSettings) -> ServiceProcess:
@@ -31,14 +41,22 @@ def start_server(spawn: Spawn, settings: BusSettings) -> ServiceProcess:
     return spawn(args)
 
 
-async def test_killed_server_fails_the_goal_fast_and_a_restart_serves_again(
+async def goal_under_way(
     bus: Bus, bus_settings: BusSettings, spawn: Spawn
-) -> None:
+) -> tuple[ServiceProcess, WaitClient, WaitGoal]:
+    """A server process running a long ``wait`` goal that has sent feedback already."""
     server = start_server(spawn, bus_settings)
     client = bus.action_client("wait", Wait)
     goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=10.0)
     async for _ in goal.feedback():
         break
+    return server, client, goal
+
+
+async def test_killed_server_fails_the_goal_fast_and_a_restart_serves_again(
+    bus: Bus, bus_settings: BusSettings, spawn: Spawn
+) -> None:
+    server, client, goal = await goal_under_way(bus, bus_settings, spawn)
     server.kill()
     killed = time.monotonic()
     with pytest.raises(GoalLost, match="lost"):
@@ -53,11 +71,7 @@ async def test_killed_server_fails_the_goal_fast_and_a_restart_serves_again(
 async def test_hung_server_is_noticed_within_the_lease(
     bus: Bus, bus_settings: BusSettings, spawn: Spawn
 ) -> None:
-    server = start_server(spawn, bus_settings)
-    client = bus.action_client("wait", Wait)
-    goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=10.0)
-    async for _ in goal.feedback():
-        break
+    server, _, goal = await goal_under_way(bus, bus_settings, spawn)
     os.kill(server.pid, signal.SIGSTOP)
     try:
         hung = time.monotonic()
