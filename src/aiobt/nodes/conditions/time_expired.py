@@ -82,11 +82,7 @@ class PathExpiringTimer(ConditionNode):
             self._started = True
             self._path, self._start = path, now
             return False
-        if (
-            path is not None
-            and path is not self._path
-            and (self._path is None or path != self._path)
-        ):
+        if _is_new_path(path, self._path):
             self._path, self._start = path, now
         if now - self._start < _period(self):
             return False
