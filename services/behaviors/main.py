@@ -11,10 +11,9 @@ from __future__ import annotations
 import argparse
 import asyncio
 import logging
-import math
-import signal
 
-from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt.transport import BusSettings, add_bus_arguments, open_bus
+from aiobt_services._cli import positive, run_service, stop_on_signals, unless_stopped
 from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
 from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
 
@@ -24,53 +23,41 @@ from .service import BehaviorOptions, BehaviorService
 log = logging.getLogger("aiobt_services.behaviors.main")
 
 
-def _positive(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value > 0.0):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
-    return value
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
     add_clock_arguments(parser)
     group = parser.add_argument_group("behaviors")
     add = group.add_argument
-    add("--rate", type=_positive, default=20.0, help="cycle rate, Hz (default: %(default)s)")
+    add("--rate", type=positive, default=20.0, help="cycle rate, Hz (default: %(default)s)")
     add(
         "--simulate-ahead-time",
-        type=_positive,
+        type=positive,
         default=2.0,
         help="collision look-ahead, s (default: %(default)s)",
     )
     add(
         "--pose-timeout",
-        type=_positive,
+        type=positive,
         default=0.5,
         help="stale odometry, s (default: %(default)s)",
     )
-    add("--robot-radius", type=_positive, default=0.22, help="m (default: %(default)s)")
+    add("--robot-radius", type=positive, default=0.22, help="m (default: %(default)s)")
     add(
         "--costmap-size",
-        type=_positive,
+        type=positive,
         default=5.0,
         help="local window side, m (default: %(default)s)",
     )
 
 
 async def serve(args: argparse.Namespace) -> None:
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
+    stop = stop_on_signals()
     async with open_bus(BusSettings.from_args(args)) as bus:
-        clock_task = asyncio.create_task(make_clock(bus, args.sim_time))
         stopper = asyncio.create_task(stop.wait())
-        await asyncio.wait({clock_task, stopper}, return_when=asyncio.FIRST_COMPLETED)
-        if not clock_task.done():
-            clock_task.cancel()
+        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
+        if made is None:
             return
-        clock, _ = clock_task.result()
+        clock, _ = made
         costmap = LocalCostmap(
             LocalCostmapParams(
                 size=args.costmap_size,
@@ -96,11 +83,4 @@ async def serve(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    try:
-        asyncio.run(serve(args))
-    except KeyboardInterrupt:
-        pass
-    except (BusUnavailable, BusConfigError) as exc:
-        log.error("behaviors: %s", exc)
-        return 1
-    return 0
+    return run_service(serve(args), log, "behaviors")

@@ -13,11 +13,16 @@ from __future__ import annotations
 import argparse
 import asyncio
 import logging
-import math
-import signal
 from dataclasses import replace
 
-from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt.transport import BusSettings, add_bus_arguments, open_bus
+from aiobt_services._cli import (
+    non_negative,
+    positive,
+    run_service,
+    stop_on_signals,
+    unless_stopped,
+)
 
 from .dwb import DWBController, DWBParams
 from .local_costmap import LocalCostmap, LocalCostmapParams
@@ -29,56 +34,42 @@ from .session import ControllerConfig
 log = logging.getLogger("aiobt_services.controller.main")
 
 
-def _positive(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value > 0.0):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
-    return value
-
-
-def _non_negative(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value >= 0.0):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
-    return value
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
     add_clock_arguments(parser)
     group = parser.add_argument_group("controller")
     add = group.add_argument
-    add("--rate", type=_positive, default=20.0, help="control rate, Hz (default: %(default)s)")
+    add("--rate", type=positive, default=20.0, help="control rate, Hz (default: %(default)s)")
     add(
         "--max-speed",
-        type=_positive,
+        type=positive,
         default=0.5,
         help="top speed (RPP desired, DWB max), m/s (default: %(default)s)",
     )
     add(
         "--pose-timeout",
-        type=_positive,
+        type=positive,
         default=0.5,
         help="stale-pose limit, s (default: %(default)s)",
     )
     add(
         "--failure-tolerance",
-        type=_non_negative,
+        type=non_negative,
         default=0.3,
         help="no valid control: stand still this long, then PATIENCE_EXCEEDED; "
         "0: NO_VALID_CONTROL at once, s (default: %(default)s)",
     )
     add(
         "--time-allowance",
-        type=_non_negative,
+        type=non_negative,
         default=0.0,
         help="CONTROLLER_TIMED_OUT after this long, s; 0: no limit (default: %(default)s)",
     )
-    add("--robot-radius", type=_positive, default=0.22, help="m (default: %(default)s)")
-    add("--inflation-radius", type=_positive, default=0.55, help="m (default: %(default)s)")
+    add("--robot-radius", type=positive, default=0.22, help="m (default: %(default)s)")
+    add("--inflation-radius", type=positive, default=0.55, help="m (default: %(default)s)")
     add(
         "--costmap-size",
-        type=_positive,
+        type=positive,
         default=5.0,
         help="local window side, m (default: %(default)s)",
     )
@@ -109,18 +100,13 @@ def costmap_from(args: argparse.Namespace) -> LocalCostmap:
 
 
 async def serve(args: argparse.Namespace) -> None:
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
+    stop = stop_on_signals()
     async with open_bus(BusSettings.from_args(args)) as bus:
-        clock_task = asyncio.create_task(make_clock(bus, args.sim_time))
         stopper = asyncio.create_task(stop.wait())
-        await asyncio.wait({clock_task, stopper}, return_when=asyncio.FIRST_COMPLETED)
-        if not clock_task.done():
-            clock_task.cancel()
+        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
+        if made is None:
             return
-        clock, _ = clock_task.result()
+        clock, _ = made
         service = ControllerService(
             bus, clock, config_from(args), costmap_from(args), ServiceOptions(args.clock_timeout)
         )
@@ -136,11 +122,4 @@ async def serve(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    try:
-        asyncio.run(serve(args))
-    except KeyboardInterrupt:
-        pass
-    except (BusUnavailable, BusConfigError) as exc:
-        log.error("controller: %s", exc)
-        return 1
-    return 0
+    return run_service(serve(args), log, "controller")

@@ -11,12 +11,10 @@ and ``srv/is_path_valid``; holds the liveliness token ``{ns}/nodes/planner``.
 from __future__ import annotations
 
 import argparse
-import asyncio
 import logging
-import math
-import signal
 
-from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt.transport import BusSettings, add_bus_arguments, open_bus
+from aiobt_services._cli import non_negative, positive, run_service, stop_on_signals
 from aiobt_services.costmap import InflationParams, ObstacleParams
 
 from .actions import ActionOptions, PlannerActions
@@ -26,20 +24,6 @@ from .state import CostmapOptions, GlobalCostmap
 from .traversal import SearchParams
 
 log = logging.getLogger("aiobt_services.planner.main")
-
-
-def _non_negative(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value >= 0.0):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
-    return value
-
-
-def _positive(text: str) -> float:
-    value = _non_negative(text)
-    if value == 0.0:
-        raise argparse.ArgumentTypeError("must be > 0")
-    return value
 
 
 def _factor(text: str) -> int:
@@ -53,24 +37,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
     group = parser.add_argument_group("planner")
     add = group.add_argument
-    add(
-        "--robot-radius", type=_non_negative, default=0.22, help="inscribed radius, m (%(default)s)"
-    )
-    add("--inflation-radius", type=_non_negative, default=0.55, help="m (default: %(default)s)")
-    add("--cost-scaling-factor", type=_non_negative, default=3.0, help="1/m (%(default)s)")
-    add("--obstacle-range", type=_positive, default=2.5, help="mark up to, m (%(default)s)")
-    add("--raytrace-range", type=_positive, default=3.0, help="clear up to, m (%(default)s)")
+    add("--robot-radius", type=non_negative, default=0.22, help="inscribed radius, m (%(default)s)")
+    add("--inflation-radius", type=non_negative, default=0.55, help="m (default: %(default)s)")
+    add("--cost-scaling-factor", type=non_negative, default=3.0, help="1/m (%(default)s)")
+    add("--obstacle-range", type=positive, default=2.5, help="mark up to, m (%(default)s)")
+    add("--raytrace-range", type=positive, default=3.0, help="clear up to, m (%(default)s)")
     add(
         "--cost-penalty",
-        type=_non_negative,
+        type=non_negative,
         default=2.0,
         help="cost weight in search (%(default)s)",
     )
     add("--downsample", type=_factor, default=2, help="search on NxN cell blocks (%(default)s)")
     add("--no-allow-unknown", action="store_true", help="never plan through unknown cells")
-    add("--max-planning-time", type=_positive, default=2.0, help="s, then TIMEOUT (%(default)s)")
-    add("--row-spacing", type=_positive, default=0.5, help="coverage rows, m (%(default)s)")
-    add("--headland-width", type=_non_negative, default=0.5, help="coverage, m (%(default)s)")
+    add("--max-planning-time", type=positive, default=2.0, help="s, then TIMEOUT (%(default)s)")
+    add("--row-spacing", type=positive, default=0.5, help="coverage rows, m (%(default)s)")
+    add("--headland-width", type=non_negative, default=0.5, help="coverage, m (%(default)s)")
 
 
 def build(args: argparse.Namespace) -> tuple[GlobalCostmap, PlannerActions]:
@@ -94,10 +76,7 @@ def build(args: argparse.Namespace) -> tuple[GlobalCostmap, PlannerActions]:
 
 
 async def serve(args: argparse.Namespace) -> None:
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
+    stop = stop_on_signals()
     world, actions = build(args)
     async with open_bus(BusSettings.from_args(args)) as bus:
         PlannerService(bus, world, actions).start()
@@ -106,11 +85,4 @@ async def serve(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    try:
-        asyncio.run(serve(args))
-    except KeyboardInterrupt:
-        pass
-    except (BusUnavailable, BusConfigError) as exc:
-        log.error("planner: %s", exc)
-        return 1
-    return 0
+    return run_service(serve(args), log, "planner")

@@ -2,23 +2,15 @@
 
 from __future__ import annotations
 
-import argparse
-import logging
 import sys
+
+from aiobt_services._cli import module_main
 
 from .main import add_arguments, run
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m aiobt_services.robot", description=__doc__)
-    parser.add_argument("-v", "--verbose", action="count", default=0, help="more logging")
-    add_arguments(parser)
-    args = parser.parse_args(argv)
-    logging.basicConfig(
-        level=logging.DEBUG if args.verbose > 1 else logging.INFO,
-        format="%(asctime)s %(levelname).1s %(name)s: %(message)s",
-    )
-    return run(args)
+    return module_main("python -m aiobt_services.robot", __doc__, add_arguments, run, argv)
 
 
 if __name__ == "__main__":

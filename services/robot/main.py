@@ -15,7 +15,6 @@ import argparse
 import asyncio
 import logging
 import os
-import signal
 from pathlib import Path
 
 from aiobt.msgs import (
@@ -29,14 +28,8 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
-from aiobt.transport import (
-    Bus,
-    BusConfigError,
-    BusSettings,
-    BusUnavailable,
-    add_bus_arguments,
-    open_bus,
-)
+from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
+from aiobt_services._cli import run_service, stop_on_signals
 
 from . import convert, messages
 from .mapfile import MapError, load_map
@@ -100,10 +93,7 @@ def _serve_steps(bus: Bus, runner: SimRunner) -> None:
 
 
 async def serve(args: argparse.Namespace, sim: Simulation) -> None:
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
+    stop = stop_on_signals()
     async with open_bus(BusSettings.from_args(args)) as bus:
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
@@ -145,12 +135,7 @@ def run(args: argparse.Namespace) -> int:
         log.error("robot: %s", exc)
         return 2
     with sim:
-        try:
-            asyncio.run(serve(args, sim))
-        except KeyboardInterrupt:
-            pass
-        except (BusUnavailable, BusConfigError) as exc:
-            log.error("robot: %s", exc)
+        if run_service(serve(args, sim), log, "robot") != 0:
             return 1
         if args.snapshot_on_exit:
             Path(args.snapshot_on_exit).write_bytes(render_png(sim))

@@ -5,16 +5,11 @@ from __future__ import annotations
 import argparse
 import math
 
+from aiobt_services._cli import positive
+
 from .drive import DriveLimits
 from .sensors import LidarConfig, NoiseConfig
 from .sim import SimConfig
-
-
-def _positive(text: str) -> float:
-    value = float(text)
-    if not (math.isfinite(value) and value > 0.0):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
-    return value
 
 
 def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
@@ -27,7 +22,7 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add(
         "--speed",
-        type=_positive,
+        type=positive,
         default=1.0,
         help="sim time runs this many times faster than wall time (default: %(default)s)",
     )
@@ -36,7 +31,7 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_true",
         help="deterministic: sim time moves only on {ns}/srv/step requests",
     )
-    add("--dt", type=_positive, default=0.01, help="physics step, s (default: %(default)s)")
+    add("--dt", type=positive, default=0.01, help="physics step, s (default: %(default)s)")
     add("--gui", action="store_true", help="open the pybullet GUI (needs a display)")
     add(
         "--start",
@@ -51,18 +46,18 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
         default="teleport",
         help="{ns}/initialpose moves the robot, or only re-seats localization",
     )
-    add("--max-linear", type=_positive, default=1.0, help="m/s (default: %(default)s)")
-    add("--max-angular", type=_positive, default=2.0, help="rad/s (default: %(default)s)")
+    add("--max-linear", type=positive, default=1.0, help="m/s (default: %(default)s)")
+    add("--max-angular", type=positive, default=2.0, help="rad/s (default: %(default)s)")
     add(
         "--cmd-timeout",
-        type=_positive,
+        type=positive,
         default=0.5,
         help="stop when no cmd_vel for this long, s of sim time (default: %(default)s)",
     )
-    add("--scan-hz", type=_positive, default=10.0, help="lidar rate (default: %(default)s)")
-    add("--odom-hz", type=_positive, default=50.0, help="odom and pose rate (default: %(default)s)")
+    add("--scan-hz", type=positive, default=10.0, help="lidar rate (default: %(default)s)")
+    add("--odom-hz", type=positive, default=50.0, help="odom and pose rate (default: %(default)s)")
     add("--lidar-rays", type=int, default=360, help="beams per scan (default: %(default)s)")
-    add("--lidar-range", type=_positive, default=12.0, help="m (default: %(default)s)")
+    add("--lidar-range", type=positive, default=12.0, help="m (default: %(default)s)")
     add("--odom-noise", type=float, default=0.0, help="relative std of wheel speed error")
     add("--slip", type=float, default=0.0, help="fraction of wheel motion lost to slip")
     add("--pose-noise", type=float, default=0.0, help="std of localization error, m")

@@ -1,0 +1,85 @@
+"""What the service commands share: argument types, the ``python -m`` entry, the run loop.
+
+Each service's ``main`` module keeps its own options and wiring; this module
+holds the parts that were the same in all of them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import math
+import signal
+from collections.abc import Callable, Coroutine
+from typing import Any, TypeVar
+
+from aiobt.transport import BusConfigError, BusUnavailable
+
+T = TypeVar("T")
+
+
+def positive(text: str) -> float:
+    """argparse type: a finite float > 0."""
+    value = float(text)
+    if not (math.isfinite(value) and value > 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
+    return value
+
+
+def non_negative(text: str) -> float:
+    """argparse type: a finite float >= 0."""
+    value = float(text)
+    if not (math.isfinite(value) and value >= 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    return value
+
+
+def module_main(
+    prog: str,
+    description: str | None,
+    add_arguments: Callable[[argparse.ArgumentParser], None],
+    run: Callable[[argparse.Namespace], int],
+    argv: list[str] | None = None,
+) -> int:
+    """``python -m aiobt_services.<name>``: the service's options plus ``-v``, logging set up."""
+    parser = argparse.ArgumentParser(prog=prog, description=description)
+    parser.add_argument("-v", "--verbose", action="count", default=0, help="more logging")
+    add_arguments(parser)
+    args = parser.parse_args(argv)
+    logging.basicConfig(
+        level=logging.DEBUG if args.verbose > 1 else logging.INFO,
+        format="%(asctime)s %(levelname).1s %(name)s: %(message)s",
+    )
+    return run(args)
+
+
+def stop_on_signals() -> asyncio.Event:
+    """An event set by SIGINT or SIGTERM (call inside the running loop)."""
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    return stop
+
+
+async def unless_stopped(work: Coroutine[Any, Any, T], stopper: asyncio.Task[Any]) -> T | None:
+    """``work``'s result, or None (``work`` cancelled) if ``stopper`` finishes first."""
+    task = asyncio.create_task(work)
+    await asyncio.wait({task, stopper}, return_when=asyncio.FIRST_COMPLETED)
+    if not task.done():
+        task.cancel()
+        return None
+    return task.result()
+
+
+def run_service(main: Coroutine[Any, Any, None], log: logging.Logger, name: str) -> int:
+    """Run ``main`` to its end: 0, or 1 (logged on ``log``) when the bus cannot be opened."""
+    try:
+        asyncio.run(main)
+    except KeyboardInterrupt:
+        pass
+    except (BusUnavailable, BusConfigError) as exc:
+        log.error("%s: %s", name, exc)
+        return 1
+    return 0
