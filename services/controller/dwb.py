@@ -17,7 +17,7 @@ import numpy as np
 from .base import ControlContext
 from .collision import NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
-from .geometry import FloatArray, PlanarPath, Pose2D, Velocity, wrap_angle
+from .geometry import FloatArray, PlanarPath, Pose2D, Velocity, turn_rate, wrap_angle
 from .tracking import project_onto_path, search_stop
 
 
@@ -149,10 +149,9 @@ class DWBController:
 
     def _rotate_to(self, angle_error: float, speed: Velocity, ctx: ControlContext) -> Velocity:
         p = self.params
-        magnitude = min(p.rotate_to_goal_vel, math.sqrt(2.0 * p.acc_lim_theta * abs(angle_error)))
-        w = math.copysign(magnitude, angle_error)
-        step = p.acc_lim_theta * ctx.dt
-        return Velocity(0.0, min(max(w, speed.w - step), speed.w + step))
+        return Velocity(
+            0.0, turn_rate(angle_error, p.rotate_to_goal_vel, p.acc_lim_theta, speed.w, ctx.dt)
+        )
 
 
 def _min_distance(points: FloatArray, polyline: FloatArray) -> FloatArray:

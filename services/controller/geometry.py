@@ -20,6 +20,20 @@ def wrap_angle(angle: float) -> float:
     return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
+def turn_rate(
+    angle_error: float, max_rate: float, accel: float, previous: float, dt: float
+) -> float:
+    """Angular speed to turn in place by ``angle_error``, stopping on the heading.
+
+    At most ``max_rate`` and ``sqrt(2 accel |error|)`` (decelerates instead of
+    overshooting), and within ``accel * dt`` of the ``previous`` rate.
+    """
+    magnitude = min(max_rate, math.sqrt(2.0 * accel * abs(angle_error)))
+    w = math.copysign(magnitude, angle_error)
+    step = accel * dt
+    return min(max(w, previous - step), previous + step)
+
+
 @dataclass(slots=True, frozen=True)
 class Pose2D:
     """A planar pose: position in metres, heading in radians."""

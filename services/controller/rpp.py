@@ -18,7 +18,7 @@ import numpy as np
 from .base import ControlContext
 from .collision import INSCRIBED, NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
-from .geometry import PlanarPath, Pose2D, Velocity, to_robot_frame, wrap_angle
+from .geometry import PlanarPath, Pose2D, Velocity, to_robot_frame, turn_rate, wrap_angle
 from .tracking import project_onto_path, remaining_length, search_stop
 
 
@@ -151,12 +151,9 @@ class RegulatedPurePursuit:
 
     def _rotate(self, pose: Pose2D, angle_error: float, ctx: ControlContext) -> Velocity:
         p = self.params
-        # decelerate so the rotation stops on the heading instead of overshooting
-        reachable = math.sqrt(2.0 * p.max_angular_accel * abs(angle_error))
-        magnitude = min(p.rotate_to_heading_angular_vel, reachable)
-        w = math.copysign(magnitude, angle_error)
-        step = p.max_angular_accel * ctx.dt
-        w = min(max(w, self._last_w - step), self._last_w + step)
+        w = turn_rate(
+            angle_error, p.rotate_to_heading_angular_vel, p.max_angular_accel, self._last_w, ctx.dt
+        )
         if (
             p.use_collision_detection
             and ctx.collision is not None
