@@ -5,15 +5,14 @@ python -m bench.transport.peer --connect tcp/127.0.0.1:PORT --namespace bench
 
 from __future__ import annotations
 
-import argparse
 import asyncio
-import signal
 import sys
 
 import zenoh
 
 from aiobt.msgs import ClearCostmapResponse, ClearEntireCostmap, PoseStamped, Wait
-from aiobt.transport import BusSettings, GoalHandle, add_bus_arguments, open_bus
+from aiobt.testing.bus import service_main
+from aiobt.transport import Bus, GoalHandle
 
 
 def raw_endpoints(session: zenoh.Session, ns: str, loop: asyncio.AbstractEventLoop) -> list[object]:
@@ -43,40 +42,26 @@ def raw_endpoints(session: zenoh.Session, ns: str, loop: asyncio.AbstractEventLo
     ]
 
 
-async def serve(settings: BusSettings) -> None:
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
-
-    async def trivial(
-        goal: Wait.Goal, handle: GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
-    ) -> Wait.Result:
-        return Wait.Result(total_elapsed_time=goal.time)
-
-    async with open_bus(settings) as bus:
-        raw = raw_endpoints(bus.session, bus.namespace, loop)
-        pong = bus.publisher("pong", PoseStamped)
-        bus.subscribe("ping", PoseStamped, callback=pong.put)
-        bus.action_server("trivial", Wait, trivial)
-        bus.serve(
-            "echo",
-            ClearEntireCostmap.Request,
-            ClearCostmapResponse,
-            lambda request: ClearCostmapResponse(),
-        )
-        print("ready", flush=True)
-        await stop.wait()
-        for entity in raw:
-            entity.undeclare()  # type: ignore[attr-defined]
+async def trivial(
+    goal: Wait.Goal, handle: GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
+) -> Wait.Result:
+    return Wait.Result(total_elapsed_time=goal.time)
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser()
-    add_bus_arguments(parser)
-    asyncio.run(serve(BusSettings.from_args(parser.parse_args())))
-    return 0
+def declare(bus: Bus) -> list[object]:
+    """The raw baselines and aiobt's endpoints (all undeclared when the bus closes)."""
+    raw = raw_endpoints(bus.session, bus.namespace, asyncio.get_running_loop())
+    pong = bus.publisher("pong", PoseStamped)
+    bus.subscribe("ping", PoseStamped, callback=pong.put)
+    bus.action_server("trivial", Wait, trivial)
+    bus.serve(
+        "echo",
+        ClearEntireCostmap.Request,
+        ClearCostmapResponse,
+        lambda request: ClearCostmapResponse(),
+    )
+    return raw
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(service_main(declare))

@@ -2,10 +2,13 @@
 
 Processes start with ``subprocess`` (fork+exec: a forked Zenoh process hangs)
 and are stopped by PID. Their output goes to a log file, shown on failure.
+:func:`service_main` is the other end: the ``main`` of such a process.
 """
 
 from __future__ import annotations
 
+import argparse
+import asyncio
 import contextlib
 import os
 import signal
@@ -14,8 +17,12 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterator, Mapping, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from aiobt.transport import Bus, BusSettings
 
 LOOPBACK = "127.0.0.1"
 
@@ -137,3 +144,29 @@ def running_router(
         yield proc, where
     finally:
         proc.cleanup()
+
+
+def service_main(declare: Callable[[Bus], object]) -> int:
+    """``main`` of a test or benchmark service process (bus options from the command line):
+    opens the bus, ``declare(bus)``, prints ``ready``, serves until SIGINT or SIGTERM.
+    What ``declare`` returns is kept referenced until then (e.g. raw Zenoh entities)."""
+    from aiobt.transport import BusSettings, add_bus_arguments
+
+    parser = argparse.ArgumentParser()
+    add_bus_arguments(parser)
+    asyncio.run(_serve(BusSettings.from_args(parser.parse_args()), declare))
+    return 0
+
+
+async def _serve(settings: BusSettings, declare: Callable[[Bus], object]) -> None:
+    from aiobt.transport import open_bus
+
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):  # before opening: a stop is never missed
+        loop.add_signal_handler(sig, stop.set)
+    async with open_bus(settings) as bus:
+        declared = declare(bus)
+        print("ready", flush=True)
+        await stop.wait()
+        del declared  # undeclared with the session

@@ -5,17 +5,15 @@ python -m tests.integration.transport.action_server_proc --connect EP --namespac
 
 from __future__ import annotations
 
-import argparse
-import asyncio
-import signal
 import sys
 
 from aiobt.core.clock import SystemClock
 from aiobt.msgs import Wait
-from aiobt.transport import BusSettings, GoalHandle, add_bus_arguments, open_bus
+from aiobt.testing.bus import service_main
+from aiobt.transport import Bus, GoalHandle
 
 
-async def serve(settings: BusSettings) -> None:
+def declare(bus: Bus) -> None:
     clock = SystemClock()
 
     async def execute(
@@ -27,22 +25,8 @@ async def serve(settings: BusSettings) -> None:
             await clock.sleep(min(0.05, left))
         return Wait.Result(total_elapsed_time=clock.now() - start)
 
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
-    async with open_bus(settings) as bus:
-        bus.action_server("wait", Wait, execute)
-        print("ready", flush=True)
-        await stop.wait()
-
-
-def main() -> int:
-    parser = argparse.ArgumentParser()
-    add_bus_arguments(parser)
-    asyncio.run(serve(BusSettings.from_args(parser.parse_args())))
-    return 0
+    bus.action_server("wait", Wait, execute)
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(service_main(declare))
