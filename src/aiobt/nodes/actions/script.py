@@ -14,19 +14,24 @@ from aiobt.script import ScriptError, compile_script
 
 class ScriptCode:
     """A script port (``code``, ``if``): compiled at load when it is a literal,
-    else (a ``{key}``) compiled when first read and again whenever it changes."""
+    else (a ``{key}``) compiled when first read and again whenever it changes.
 
-    __slots__ = ("_compiled", "_node", "_port", "_text")
+    An action's empty code does nothing (BT.CPP); a ``condition``'s is an error.
+    """
 
-    def __init__(self, node: TreeNode, *, allow_empty: bool, port: str = "code") -> None:
+    __slots__ = ("_compiled", "_condition", "_literal", "_node", "_port", "_text")
+
+    def __init__(self, node: TreeNode, *, condition: bool, port: str = "code") -> None:
         self._node = node
         self._port = port
+        self._condition = condition
         self._text: str | None = None
         self._compiled: CompiledScript | None = None
+        self._literal: str | None = None  # the code, when it is fixed at load
         binding = node.config.inputs.get(port)
         if binding is not None and binding.key is None:
-            text = str(binding.value)
-            if text or not allow_empty:
+            self._literal = text = str(binding.value)
+            if text or condition:
                 self._load(text)
 
     def _load(self, text: str) -> None:
@@ -36,17 +41,20 @@ class ScriptCode:
             raise ScriptError(f'{self._port}="{text}": {exc}') from exc
         self._text = text
 
-    def run(self, as_condition: bool) -> Any:
+    def run(self) -> Any:
+        """Run the code; a condition's value, or None (empty code)."""
         node = self._node
-        text = str(node.get_input(self._port))
-        if text != self._text and (text or as_condition):
-            self._load(text)
+        text = self._literal
+        if text is None:
+            text = str(node.get_input(self._port))
+            if text != self._text and (text or self._condition):
+                self._load(text)
         compiled = self._compiled
         if compiled is None or not text:
             return None
         bb, enums = node.config.blackboard, node.config.context.enums
         try:
-            return compiled.check(bb, enums) if as_condition else compiled(bb, enums)
+            return compiled.check(bb, enums) if self._condition else compiled(bb, enums)
         except ScriptError as exc:
             raise node.logic_error(f'{self._port}="{text}": {exc}') from exc
 
@@ -64,8 +72,8 @@ class Script(SyncActionNode):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._code = ScriptCode(self, allow_empty=True)
+        self._code = ScriptCode(self, condition=False)
 
     def on_tick(self) -> Status:
-        self._code.run(as_condition=False)
+        self._code.run()
         return Status.SUCCESS

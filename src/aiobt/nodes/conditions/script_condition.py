@@ -27,7 +27,7 @@ class ScriptCondition(ConditionNode):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._code = ScriptCode(self, allow_empty=False)
+        self._code = ScriptCode(self, condition=True)
 
     def check(self) -> Status:
-        return Status.SUCCESS if self._code.run(as_condition=True) else Status.FAILURE
+        return Status.SUCCESS if self._code.run() else Status.FAILURE

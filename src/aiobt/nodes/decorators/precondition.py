@@ -29,7 +29,7 @@ class Precondition(DecoratorNode):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._script = ScriptCode(self, allow_empty=False, port="if")
+        self._script = ScriptCode(self, condition=True, port="if")
         self._children_running = False
 
     def _else(self) -> Status:
@@ -39,7 +39,7 @@ class Precondition(DecoratorNode):
     def execute_sync(self) -> Status:
         otherwise = self._else()
         if not self._children_running:
-            self._children_running = bool(self._script.run(as_condition=True))
+            self._children_running = bool(self._script.run())
             if not self._children_running:
                 return otherwise
         status = self.tick_child()
