@@ -10,7 +10,7 @@ from aiobt.core.composite import DecoratorNode
 from aiobt.core.convert import converter_for
 from aiobt.core.ports import inout_port, input_port, output_port
 from aiobt.core.status import FAILURE, IDLE, RUNNING, Status
-from aiobt.nodes.decorators.status_port import status_from_text
+from aiobt.nodes.decorators.status_port import status_input
 
 
 class LoopNode(DecoratorNode):
@@ -76,10 +76,6 @@ class LoopNode(DecoratorNode):
             )
         return self._queue
 
-    def _if_empty(self) -> Status:
-        value = self.get_input("if_empty")
-        return value if isinstance(value, Status) else status_from_text(str(value))
-
     def execute_sync(self) -> Status:
         if self._status is IDLE:
             self._child_running = False
@@ -87,7 +83,7 @@ class LoopNode(DecoratorNode):
         if not self._child_running:
             self._queue = self._source()
             if not self._queue:
-                return self._if_empty()
+                return status_input(self, "if_empty")
             self.set_output("value", self._queue.popleft())
             if self._status is IDLE:
                 self._set_status(RUNNING)

@@ -8,7 +8,7 @@ from aiobt.core.composite import DecoratorNode
 from aiobt.core.ports import input_port
 from aiobt.core.status import Status
 from aiobt.nodes.actions.script import ScriptCode
-from aiobt.nodes.decorators.status_port import status_from_text
+from aiobt.nodes.decorators.status_port import status_input
 
 
 class Precondition(DecoratorNode):
@@ -32,12 +32,8 @@ class Precondition(DecoratorNode):
         self._script = ScriptCode(self, condition=True, port="if")
         self._children_running = False
 
-    def _else(self) -> Status:
-        value = self.get_input("else")
-        return value if isinstance(value, Status) else status_from_text(str(value))
-
     def execute_sync(self) -> Status:
-        otherwise = self._else()
+        otherwise = status_input(self, "else")
         if not self._children_running:
             self._children_running = bool(self._script.run())
             if not self._children_running:
