@@ -21,6 +21,7 @@ from aiobt.transport.session import open_session
 from aiobt.transport.settings import BusSettings
 
 M = TypeVar("M", bound=Msg)
+T = TypeVar("T")
 Req = TypeVar("Req", bound=Msg)
 Resp = TypeVar("Resp", bound=Msg)
 G = TypeVar("G", bound=Msg)
@@ -50,7 +51,8 @@ class Bus:
     def namespace(self) -> str:
         return self.keys.namespace
 
-    def _track(self, entity: M | Any) -> Any:
+    def _track(self, entity: T) -> T:
+        """Close ``entity`` with the bus (newest first)."""
         self._closables.append(entity)
         return entity
 
@@ -60,14 +62,14 @@ class Bus:
         """A publisher on ``{ns}/{name}``; ``reliable``: block, not drop, when congested."""
         key = self.keys.topic(name)
         pub = topics.declare_publisher(self.session, self.bridge, key, model, reliable=reliable)
-        return self._track(pub)  # type: ignore[no-any-return]
+        return self._track(pub)
 
     def latched_publisher(self, name: str, model: type[M]) -> topics.Publisher[M]:
         """A publisher whose last value late subscribers (``latched=True``) still get."""
         pub = topics.declare_latched_publisher(
             self.session, self.bridge, self.keys.topic(name), model
         )
-        return self._track(pub)  # type: ignore[no-any-return]
+        return self._track(pub)
 
     def subscribe(
         self,
@@ -88,7 +90,7 @@ class Bus:
             latched=latched,
             queue_size=queue_size,
         )
-        return self._track(sub)  # type: ignore[no-any-return]
+        return self._track(sub)
 
     def serve(
         self,
@@ -102,7 +104,7 @@ class Bus:
         server = services.ServiceServer(
             self.session, self.bridge, key, (request, response), handler
         )
-        return self._track(server)  # type: ignore[no-any-return]
+        return self._track(server)
 
     async def call(
         self,
@@ -129,7 +131,7 @@ class Bus:
     def declare_token(self, name: str) -> zenoh.LivelinessToken:
         """A liveliness token on ``{ns}/{name}`` (e.g. ``nodes/planner``), until the bus closes."""
         token = self.session.liveliness().declare_token(self.keys.topic(name))
-        return self._track(token)  # type: ignore[no-any-return]
+        return self._track(token)
 
     def action_server(
         self,
@@ -150,13 +152,13 @@ class Bus:
             preemption=preemption,
             accept=accept,
         )
-        return self._track(server)  # type: ignore[no-any-return]
+        return self._track(server)
 
     def action_client(self, name: str, action: type[ActionDef[G, R, F]]) -> ActionClient[G, R, F]:
         """A client of action server ``name`` (see :class:`ActionClient`)."""
         keys = self.keys.action(name)
         client = ActionClient(self.session, self.bridge, keys, action, self.presence(keys.alive))
-        return self._track(client)  # type: ignore[no-any-return]
+        return self._track(client)
 
     async def close(self) -> None:
         """Undeclare everything (newest first), then close the session. Idempotent."""
