@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -132,8 +133,9 @@ def test_run_writes_the_requested_logs(tmp_path: Path, capsys: pytest.CaptureFix
     ]
     with sqlite3.connect(logs[2]) as db:
         assert db.execute("SELECT COUNT(*) FROM Transitions").fetchone()[0] == len(rows)
-    out = capsys.readouterr().out
-    assert "Sleep" in out  # the --stats rendering of the tree
+    out = capsys.readouterr().out  # the --stats rendering of the tree, after the trace
+    assert "├── ○ AlwaysSuccess [IDLE] ticks=1 ok=1 fail=0" in out
+    assert re.search(r"└── ○ Sleep \[IDLE\] ticks=\d+ ok=1 fail=0", out)
 
 
 def test_run_picks_the_tree_asked_for_and_names_an_unknown_one(
