@@ -14,7 +14,6 @@ Run: ``.venv/bin/python -m bench.controller.control_cycle``
 from __future__ import annotations
 
 import argparse
-import itertools
 import math
 import time
 
@@ -34,15 +33,7 @@ from aiobt_services.controller.unicycle import Unicycle
 
 
 def polyline(points: list[tuple[float, float]], spacing: float = 0.05) -> PlanarPath:
-    xy: list[tuple[float, float]] = []
-    for (x0, y0), (x1, y1) in itertools.pairwise(points):
-        n = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / spacing))
-        xy.extend((x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n) for i in range(n))
-    xy.append(points[-1])
-    arr = np.asarray(xy)
-    d = np.diff(arr, axis=0)
-    yaw = np.arctan2(d[:, 1], d[:, 0])
-    return PlanarPath("map", arr, np.append(yaw, yaw[-1]))
+    return PlanarPath.through(points, spacing)
 
 
 def course() -> PlanarPath:

@@ -6,7 +6,9 @@ per-cycle work (closest point, lookahead, tracking error) is vectorised.
 
 from __future__ import annotations
 
+import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -75,6 +77,21 @@ class PlanarPath:
     def from_poses(cls, frame_id: str, poses: list[tuple[float, float, float]]) -> PlanarPath:
         array = np.asarray(poses, dtype=np.float64).reshape(-1, 3)
         return cls(frame_id, array[:, :2].copy(), array[:, 2].copy())
+
+    @classmethod
+    def through(
+        cls, points: Sequence[tuple[float, float]], spacing: float = 0.05, frame_id: str = "map"
+    ) -> PlanarPath:
+        """A path through ``points`` sampled every ``spacing`` m or less, yaw along the path."""
+        out: list[tuple[float, float]] = []
+        for (x0, y0), (x1, y1) in itertools.pairwise(points):
+            n = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / spacing))
+            out.extend((x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n) for i in range(n))
+        out.append(points[-1])
+        xy = np.asarray(out, dtype=np.float64)
+        d = np.diff(xy, axis=0)
+        yaw = np.arctan2(d[:, 1], d[:, 0])
+        return cls(frame_id, xy, np.append(yaw, yaw[-1]))
 
     def __len__(self) -> int:
         return int(self.xy.shape[0])

@@ -2,16 +2,15 @@
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Callable, Sequence
 
-import numpy as np
 import pytest
 
 from aiobt.msgs import Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
+from aiobt_services.controller.geometry import PlanarPath
 
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 SPEED = "4"
@@ -37,17 +36,10 @@ async def start(
 
 def path_through(points: Sequence[tuple[float, float]], spacing: float = 0.05) -> Path:
     """A dense map-frame path through ``points``, yaw along the path."""
-    xy: list[tuple[float, float]] = []
-    for (x0, y0), (x1, y1) in itertools.pairwise(points):
-        n = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / spacing))
-        xy.extend((x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n) for i in range(n))
-    xy.append(points[-1])
-    arr = np.asarray(xy)
-    d = np.diff(arr, axis=0)
-    yaw = np.append(np.arctan2(d[:, 1], d[:, 0]), math.atan2(d[-1, 1], d[-1, 0]))
+    planar = PlanarPath.through(points, spacing)
     poses = [
         PoseStamped.from_xy_yaw(float(x), float(y), float(a))
-        for (x, y), a in zip(arr, yaw, strict=True)
+        for (x, y), a in zip(planar.xy, planar.yaw, strict=True)
     ]
     return Path(poses=poses)
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -24,15 +23,7 @@ SPACING = 0.05
 
 def polyline(points: list[tuple[float, float]], frame: str = "map") -> PlanarPath:
     """A densely sampled path through ``points`` with yaw along the path."""
-    out: list[tuple[float, float]] = []
-    for (x0, y0), (x1, y1) in itertools.pairwise(points):
-        n = max(1, math.ceil(math.hypot(x1 - x0, y1 - y0) / SPACING))
-        out.extend((x0 + (x1 - x0) * i / n, y0 + (y1 - y0) * i / n) for i in range(n))
-    out.append(points[-1])
-    xy = np.asarray(out)
-    d = np.diff(xy, axis=0)
-    yaw = np.arctan2(d[:, 1], d[:, 0])
-    return PlanarPath(frame, xy, np.append(yaw, yaw[-1]))
+    return PlanarPath.through(points, SPACING, frame)
 
 
 def straight(length: float = 4.0) -> PlanarPath:

@@ -9,7 +9,14 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from aiobt_services.behaviors import Inputs, SpinBehavior
-from aiobt_services.controller.geometry import Pose2D, Velocity, integrate_arc, wrap_angle
+from aiobt_services.controller.geometry import (
+    PlanarPath,
+    Pose2D,
+    Velocity,
+    integrate_arc,
+    turn_rate,
+    wrap_angle,
+)
 from aiobt_services.controller.unicycle import Unicycle
 
 finite = st.floats(-50.0, 50.0, allow_nan=False)
@@ -51,3 +58,24 @@ def test_spin_accounts_any_angle_from_any_start(start_yaw, target):
     assert step.succeeded
     assert abs(step.feedback - abs(target)) < 0.05
     assert abs(wrap_angle(robot.pose.yaw - (start_yaw + target))) < 0.07
+
+
+def test_path_through_points_is_dense_and_keeps_the_corners():
+    path = PlanarPath.through([(0.0, 0.0), (1.0, 0.0), (1.0, 0.52)], spacing=0.1)
+    assert path.frame_id == "map"
+    assert path.xy[0].tolist() == [0.0, 0.0]
+    assert path.xy[-1].tolist() == [1.0, 0.52]
+    assert [1.0, 0.0] in path.xy.tolist()
+    assert float(path.segment_lengths().max()) <= 0.1 + 1e-12
+    assert len(path) == 10 + 6 + 1
+    assert path.yaw[0] == 0.0
+    assert math.isclose(path.yaw[-1], math.pi / 2)
+
+
+def test_turn_rate_decelerates_onto_the_heading_and_limits_acceleration():
+    # far from the heading: capped by max_rate, reached only as fast as accel allows
+    assert turn_rate(3.0, 1.0, 2.0, previous=1.0, dt=0.1) == 1.0
+    assert math.isclose(turn_rate(3.0, 1.0, 2.0, previous=0.0, dt=0.1), 0.2)
+    # close to it: sqrt(2 a |e|), with the error's sign
+    assert math.isclose(turn_rate(-0.01, 1.0, 2.0, previous=-0.2, dt=0.1), -0.2)
+    assert math.isclose(turn_rate(-0.04, 1.0, 2.0, previous=-0.4, dt=0.1), -0.4)
