@@ -14,7 +14,7 @@ from typing import Any, get_origin
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.conditions import NodeConditions
-from aiobt.core.convert import convert, converter_for
+from aiobt.core.convert import convert, converter_for, type_name
 from aiobt.core.errors import TreeLoadError
 from aiobt.core.manifest import NodeManifest
 from aiobt.core.node import NodeConfig, NodeKind, PortBinding, TreeContext, TreeNode
@@ -297,8 +297,6 @@ def _bind_port(config: NodeConfig, port: PortInfo, text: str, bb: Blackboard, si
     try:
         value = convert(text, port.type)
     except (ValueError, TypeError) as exc:
-        from aiobt.core.convert import type_name
-
         raise site.error(
             f"port [{port.name}]: cannot convert {text!r} to {type_name(port.type)}: {exc}"
         ) from exc
@@ -315,8 +313,6 @@ def _declare_entry(bb: Blackboard, key: str, port: PortInfo, site: _Site) -> Non
     elif entry.type is None and not entry.has_value:
         entry.type = tp
     elif entry.type is not None and entry.type != tp and not _numeric_pair(entry.type, tp):
-        from aiobt.core.convert import type_name
-
         raise site.error(
             f"port [{port.name}] uses blackboard key [{key}] as {type_name(tp)}, "
             f"but it was declared as {type_name(entry.type)} elsewhere"
