@@ -84,6 +84,17 @@ def test_key_layout() -> None:
     assert action.goal_selector("abc") == "robot/action/follow_path/goal?id=abc"
     assert action.status("abc") == "robot/action/follow_path/status/abc"
     assert action.result("abc") == "robot/action/follow_path/result/abc"
+    assert action.feedback("abc") == "robot/action/follow_path/feedback/abc"
+    assert (action.goal, action.cancel, action.alive) == (
+        "robot/action/follow_path/goal",
+        "robot/action/follow_path/cancel",
+        "robot/action/follow_path",
+    )
+    assert (action.any_status, action.any_feedback, action.any_result) == (
+        "robot/action/follow_path/status/*",
+        "robot/action/follow_path/feedback/*",
+        "robot/action/follow_path/result/*",
+    )
     with pytest.raises(ValueError, match="topic"):
         keys.topic("a//b")
 
