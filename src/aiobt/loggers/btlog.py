@@ -45,8 +45,7 @@ class BtlogLogger(StatusObserver):
             if not 0 <= node.uid <= 0xFFFF:
                 raise ValueError(f"BtlogLogger: uid {node.uid} of {node.path} does not fit 16 bits")
         self._buffer = bytearray()
-        self._count = 0
-        self._flush_every = flush_every
+        self._flush_bytes = flush_every * _RECORD.size
         xml = tree_to_xml(tree).encode("utf-8")
         self._file = self.path.open("wb")
         super().__init__(tree)
@@ -56,15 +55,13 @@ class BtlogLogger(StatusObserver):
     def on_transition(self, stamp: float, node: TreeNode, previous: Status, status: Status) -> None:
         offset = min(self.offset_us(stamp), _MAX_OFFSET)
         self._buffer += _RECORD.pack(offset & 0xFFFFFFFF, offset >> 32, node.uid, status.value)
-        self._count += 1
-        if self._count >= self._flush_every:
+        if len(self._buffer) >= self._flush_bytes:
             self.flush()
 
     def flush(self) -> None:
         if self._buffer and not self._file.closed:
             self._file.write(self._buffer)
             self._buffer.clear()
-            self._count = 0
             self._file.flush()
 
     def close(self) -> None:

@@ -163,3 +163,14 @@ async def test_logger_detaches_on_close(tmp_path: Path) -> None:
     assert tree.context.listeners == []
     await tree.tick_once()
     assert read_btlog((tmp_path / "a.btlog").read_bytes()).records == []
+
+
+async def test_btlog_writes_every_flush_every_records(tmp_path: Path) -> None:
+    tree = BehaviorTreeFactory().create_tree_from_text(DOC)
+    path = tmp_path / "batched.btlog"
+    with BtlogLogger(tree, path, flush_every=4), TransitionRecorder(tree) as recorder:
+        await tree.tick_once()
+        total = len(recorder.transitions)
+        assert total > 4
+        assert _record_count(path) == total - total % 4  # whole batches only
+    assert _record_count(path) == total  # the rest on close
