@@ -10,8 +10,8 @@ config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import logging
-import os
 import signal
 import sys
 import threading
@@ -57,20 +57,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def settings_from_args(args: argparse.Namespace) -> BusSettings:
-    listen = tuple(args.listen or ())
-    if not listen and not (args.config or _env_config()):
-        listen = (DEFAULT_ROUTER,)
-    return BusSettings(
+    """Router settings; without ``--listen`` nor a config file it listens on the default."""
+    settings = BusSettings(
         mode="router",
-        listen=listen,
+        listen=tuple(args.listen or ()),
         connect=tuple(args.connect or ()),
         config_file=args.config,
         lease_ms=args.lease_ms,
     )
-
-
-def _env_config() -> str | None:
-    return os.environ.get("ZENOH_CONFIG") or None
+    if not settings.listen and not settings.effective_config_file:
+        return dataclasses.replace(settings, listen=(DEFAULT_ROUTER,))
+    return settings
 
 
 def run(args: argparse.Namespace) -> int:

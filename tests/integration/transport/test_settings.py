@@ -10,8 +10,9 @@ from pathlib import Path
 
 import pytest
 
+from aiobt.cli import router
 from aiobt.testing.bus import free_endpoint
-from aiobt.transport import BusConfigError, BusSettings, Keys, add_bus_arguments
+from aiobt.transport import DEFAULT_ROUTER, BusConfigError, BusSettings, Keys, add_bus_arguments
 
 
 def parse(*argv: str) -> BusSettings:
@@ -72,6 +73,23 @@ def test_bad_settings_name_the_flag_or_file(tmp_path: Path) -> None:
         BusSettings(config_file=str(broken)).zenoh_config()
     with pytest.raises(BusConfigError, match="connect/endpoints"):
         BusSettings(connect=("not an endpoint",)).zenoh_config()
+
+
+def test_router_listens_on_the_default_unless_told_or_configured(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def router_settings(*argv: str) -> BusSettings:
+        parser = argparse.ArgumentParser()
+        router.add_arguments(parser)
+        return router.settings_from_args(parser.parse_args(list(argv)))
+
+    monkeypatch.delenv("ZENOH_CONFIG", raising=False)
+    assert router_settings().listen == (DEFAULT_ROUTER,)
+    assert router_settings().mode == "router"
+    assert router_settings("-l", "tcp/127.0.0.1:9").listen == ("tcp/127.0.0.1:9",)
+    assert router_settings("--config", "router.json5").listen == ()  # the file says where
+    monkeypatch.setenv("ZENOH_CONFIG", "router.json5")
+    assert router_settings().listen == ()
 
 
 def test_key_layout() -> None:
