@@ -72,19 +72,21 @@ def settings_from_args(args: argparse.Namespace) -> BusSettings:
 
 def run(args: argparse.Namespace) -> int:
     try:
-        config = settings_from_args(args).zenoh_config()
+        settings = settings_from_args(args)
+        config = settings.zenoh_config()
     except BusConfigError as exc:
         log.error("%s", exc)
         return 2
+    where = ", ".join(settings.listen) or "the config file's endpoints"
     try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:
-        log.error("cannot start the router (listen %s): %s", args.listen or "default", exc)
+        log.error("cannot start the router (listen %s): %s", where, exc)
         return 1
     stop = threading.Event()
     previous = {sig: signal.signal(sig, _setter(stop)) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        log.info("router %s listening on %s", session.zid(), ", ".join(args.listen or ["config"]))
+        log.info("router %s listening on %s", session.zid(), where)
         while not stop.wait(0.5):
             pass
         log.info("router stopping")
