@@ -9,7 +9,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -67,11 +67,22 @@ STOP = Velocity(0.0, 0.0)
 
 @dataclass(slots=True, frozen=True)
 class PlanarPath:
-    """A path in one frame: ``xy`` is (N, 2), ``yaw`` is (N,)."""
+    """A path in one frame: ``xy`` is (N, 2), ``yaw`` is (N,).
+
+    The segment lengths are computed once here: the control loop reads them
+    several times per cycle (search windows, remaining length, DWB's local path).
+    """
 
     frame_id: str
     xy: FloatArray
     yaw: FloatArray
+    _lengths: FloatArray = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        diff = np.diff(self.xy, axis=0)
+        lengths: FloatArray = np.hypot(diff[:, 0], diff[:, 1])
+        lengths.flags.writeable = False
+        object.__setattr__(self, "_lengths", lengths)
 
     @classmethod
     def from_poses(cls, frame_id: str, poses: list[tuple[float, float, float]]) -> PlanarPath:
@@ -102,9 +113,8 @@ class PlanarPath:
         return Pose2D(float(x), float(y), float(self.yaw[-1]))
 
     def segment_lengths(self) -> FloatArray:
-        diff = np.diff(self.xy, axis=0)
-        lengths: FloatArray = np.hypot(diff[:, 0], diff[:, 1])
-        return lengths
+        """Length of each of the N - 1 segments (read-only, computed at construction)."""
+        return self._lengths
 
     def length(self) -> float:
         return float(self.segment_lengths().sum())
