@@ -71,9 +71,6 @@ class GridCostmap:
         out[inside] = self.costs[rows[inside], cols[inside]]
         return out
 
-    def cost_at(self, x: float, y: float) -> int:
-        return int(self.costs_at(np.array([[x, y]]))[0])
-
     def fill_box(self, x0: float, y0: float, x1: float, y1: float, cost: int) -> None:
         """Set every cell whose centre lies in the box to ``cost`` (test helper)."""
         res = self._resolution

@@ -26,10 +26,6 @@ if TYPE_CHECKING:
 log = logging.getLogger("aiobt_services.controller.robot_io")
 
 
-def pose_of(position_x: float, position_y: float, yaw: float) -> Pose2D:
-    return Pose2D(position_x, position_y, yaw)
-
-
 def twist_of(cmd: Velocity) -> Twist:
     return Twist.planar(cmd.v, cmd.w)
 
