@@ -46,6 +46,8 @@ def _stamp(part: str, what: str) -> float:
         nanoseconds = int(part)
     except ValueError:
         raise MessageError(what, "header.stamp", f"'{part}' is not integer nanoseconds") from None
+    if nanoseconds < 0:  # here, not in Header's validation: a Path's header is built directly
+        raise MessageError(what, "header.stamp", f"'{part}' is negative")
     return nanoseconds * 1e-9
 
 

@@ -78,3 +78,12 @@ def test_path_and_goals_round_trip() -> None:
         msgs.path_from_string("0;map;1;2")
     with pytest.raises(MessageError):
         msgs.goals_from_string("1;2;3")
+
+
+def test_a_negative_stamp_is_a_message_error_naming_the_stamp() -> None:
+    with pytest.raises(MessageError) as caught:
+        msgs.path_from_string("-5;map")
+    assert (caught.value.model, caught.value.field) == ("Path", "header.stamp")
+    with pytest.raises(MessageError) as caught:
+        msgs.pose_stamped_from_string("-5;map;1;2;0;0;0;0;1")
+    assert (caught.value.model, caught.value.field) == ("PoseStamped", "header.stamp")
