@@ -108,8 +108,7 @@ def goals_from_string(text: str) -> Goals:
     parts = _split(text)
     if len(parts) % _POSE_FIELDS:
         raise MessageError("Goals", "<string>", f"expected 9 fields per pose, got {len(parts)}")
-    chunks = [parts[i : i + _POSE_FIELDS] for i in range(0, len(parts), _POSE_FIELDS)]
-    return Goals(goals=[_pose_from_parts(chunk, "Goals") for chunk in chunks])
+    return Goals(goals=_poses(parts, "Goals"))
 
 
 def path_from_string(text: str) -> Path:
@@ -119,9 +118,15 @@ def path_from_string(text: str) -> Path:
             "Path", "<string>", f"expected 'stamp;frame' then 9 fields per pose, got {len(parts)}"
         )
     header = Header(stamp=_stamp(parts[0], "Path"), frame_id=parts[1])
-    body = parts[2:]
-    chunks = [body[i : i + _POSE_FIELDS] for i in range(0, len(body), _POSE_FIELDS)]
-    return Path(header=header, poses=[_pose_from_parts(chunk, "Path") for chunk in chunks])
+    return Path(header=header, poses=_poses(parts[2:], "Path"))
+
+
+def _poses(parts: Sequence[str], what: str) -> list[PoseStamped]:
+    """Poses of 9 fields each (the caller checked the count)."""
+    return [
+        _pose_from_parts(parts[i : i + _POSE_FIELDS], what)
+        for i in range(0, len(parts), _POSE_FIELDS)
+    ]
 
 
 def _num(value: float) -> str:
