@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Protocol
+from typing import ClassVar, Protocol
 
 from .collision import CollisionChecker
+from .errors import no_valid_control
 from .geometry import PlanarPath, Pose2D, Velocity
 
 
@@ -31,3 +32,27 @@ class Controller(Protocol):
     def reset(self) -> None: ...
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity: ...
+
+
+class PlanFollower:
+    """What RPP and DWB share: the plan and the segment the robot was last projected onto."""
+
+    __slots__ = ("_path", "_segment")
+    name: ClassVar[str]  # in the "no path" error
+
+    def __init__(self) -> None:
+        self._path: PlanarPath | None = None
+        self._segment = 0
+
+    def set_plan(self, path: PlanarPath) -> None:
+        self._path = path
+        self._segment = 0
+
+    def reset(self) -> None:
+        self._path = None
+        self._segment = 0
+
+    def _require_path(self) -> PlanarPath:
+        if self._path is None:
+            raise no_valid_control(f"{self.name} has no path to follow")
+        return self._path

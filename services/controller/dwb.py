@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .base import ControlContext
+from .base import ControlContext, PlanFollower
 from .collision import NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
 from .geometry import FloatArray, PlanarPath, Pose2D, Velocity, turn_rate, wrap_angle
@@ -41,28 +41,18 @@ class DWBParams:
     rotate_to_goal_vel: float = 1.0
 
 
-class DWBController:
+class DWBController(PlanFollower):
     """Dynamic-window sampling controller scored by path, goal and obstacle critics."""
 
-    __slots__ = ("_path", "_segment", "params")
+    __slots__ = ("params",)
+    name = "DWB"
 
     def __init__(self, params: DWBParams | None = None) -> None:
+        super().__init__()
         self.params = params or DWBParams()
-        self._path: PlanarPath | None = None
-        self._segment = 0
-
-    def set_plan(self, path: PlanarPath) -> None:
-        self._path = path
-        self._segment = 0
-
-    def reset(self) -> None:
-        self._path = None
-        self._segment = 0
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity:
-        if self._path is None:
-            raise no_valid_control("DWB has no path to follow")
-        path = self._path
+        path = self._require_path()
         goal = path.goal
         if pose.distance_to(goal) < ctx.goal_xy_tolerance:
             return self._rotate_to(wrap_angle(goal.yaw - pose.yaw), speed, ctx)

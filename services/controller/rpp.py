@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .base import ControlContext
+from .base import ControlContext, PlanFollower
 from .collision import INSCRIBED, NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
 from .geometry import PlanarPath, Pose2D, Velocity, to_robot_frame, turn_rate, wrap_angle
@@ -50,24 +50,19 @@ class RPPParams:
     max_robot_pose_search_dist: float = 2.0
 
 
-class RegulatedPurePursuit:
+class RegulatedPurePursuit(PlanFollower):
     """The ``FollowPath`` controller id."""
 
-    __slots__ = ("_last_w", "_path", "_segment", "params")
+    __slots__ = ("_last_w", "params")
+    name = "RegulatedPurePursuit"
 
     def __init__(self, params: RPPParams | None = None) -> None:
+        super().__init__()
         self.params = params or RPPParams()
-        self._path: PlanarPath | None = None
-        self._segment = 0
         self._last_w = 0.0
 
-    def set_plan(self, path: PlanarPath) -> None:
-        self._path = path
-        self._segment = 0
-
     def reset(self) -> None:
-        self._path = None
-        self._segment = 0
+        super().reset()
         self._last_w = 0.0
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity:
@@ -95,11 +90,6 @@ class RegulatedPurePursuit:
         self._check_arc(pose, cmd, math.hypot(*carrot), ctx.collision)
         self._last_w = w
         return cmd
-
-    def _require_path(self) -> PlanarPath:
-        if self._path is None:
-            raise no_valid_control("RegulatedPurePursuit has no path to follow")
-        return self._path
 
     def _lookahead(self, speed: Velocity) -> float:
         p = self.params

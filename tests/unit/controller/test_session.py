@@ -8,9 +8,12 @@ import numpy as np
 import pytest
 
 from aiobt.msgs import FollowPathError
+from aiobt_services.controller.base import ControlContext
 from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
+from aiobt_services.controller.dwb import DWBController
 from aiobt_services.controller.errors import ControllerError
 from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
+from aiobt_services.controller.rpp import RegulatedPurePursuit
 from aiobt_services.controller.session import (
     ControllerConfig,
     FollowPathSession,
@@ -231,3 +234,20 @@ def test_tracking_feedback_does_not_jump_to_a_u_turns_return_leg():
     assert fb.cross_track_error == pytest.approx(0.25, abs=1e-6)  # left of the outbound leg
     assert fb.current_path_index in (9, 10)  # the foot point is pose 10 itself
     assert fb.remaining_path_length == pytest.approx(path.length() - 0.5, abs=0.01)
+
+
+@pytest.mark.parametrize(
+    ("make", "name"), [(RegulatedPurePursuit, "RegulatedPurePursuit"), (DWBController, "DWB")]
+)
+def test_controllers_refuse_to_drive_without_a_plan_and_forget_it_on_reset(make, name):
+    controller = make()
+    ctx = ControlContext(0.05, 0.25, None)
+    start = Pose2D(0.0, 0.0, 0.0)
+    with pytest.raises(ControllerError, match=f"^{name} has no path to follow$") as caught:
+        controller.compute_velocity(start, Velocity(0.0, 0.0), ctx)
+    assert caught.value.code == FollowPathError.NO_VALID_CONTROL
+    controller.set_plan(straight())
+    assert controller.compute_velocity(start, Velocity(0.0, 0.0), ctx).v > 0.0  # drives off
+    controller.reset()
+    with pytest.raises(ControllerError, match="has no path"):
+        controller.compute_velocity(start, Velocity(0.0, 0.0), ctx)
