@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import threading
 import zlib
 from enum import IntEnum
 from typing import Any, Self
@@ -101,6 +102,11 @@ def _decode_cells(data: bytes, meta: MapMetaData) -> npt.NDArray[np.int8]:
     return array
 
 
+# the cells the ``data`` validator just decoded in this thread, with the data and
+# metadata they came from, for model_post_init (which runs right after it)
+_just_decoded = threading.local()
+
+
 class OccupancyGrid(Msg):
     """A grid of int8 cells (-1 unknown, 0 free .. 100 occupied), row-major from the origin.
 
@@ -128,12 +134,17 @@ class OccupancyGrid(Msg):
     @classmethod
     def _check_cells(cls, value: bytes, info: ValidationInfo) -> bytes:
         meta = info.data.get("info")
-        if isinstance(meta, MapMetaData):
-            _decode_cells(value, meta)
+        if isinstance(meta, MapMetaData):  # decoded once: model_post_init takes the cells
+            _just_decoded.cells = (value, meta, _decode_cells(value, meta))
         return value
 
     def model_post_init(self, context: Any, /) -> None:
-        self._array = _decode_cells(self.data, self.info)
+        decoded = getattr(_just_decoded, "cells", None)
+        _just_decoded.cells = None
+        if decoded is not None and decoded[0] is self.data and decoded[1] is self.info:
+            self._array = decoded[2]
+        else:
+            self._array = _decode_cells(self.data, self.info)
 
     @property
     def array(self) -> npt.NDArray[np.int8]:

@@ -6,9 +6,11 @@ import math
 from typing import get_args, get_origin
 
 import numpy as np
+import numpy.typing as npt
 import pytest
 
 import aiobt.msgs as msgs
+import aiobt.msgs.nav as nav
 from aiobt.msgs import MessageError, Msg, PoseStamped, decode
 
 SAMPLES: list[Msg] = [
@@ -125,6 +127,25 @@ def test_occupancy_grid_is_compact_and_numpy_inside() -> None:
     assert again.array.shape == (200, 300)
     assert np.array_equal(again.array, cells)
     assert (again.info.width, again.info.height) == (300, 200)
+
+
+def test_occupancy_grid_cells_are_decoded_once_per_message(monkeypatch: pytest.MonkeyPatch) -> None:
+    grid = msgs.OccupancyGrid.from_array(np.arange(-1, 99).reshape(10, 10), 0.1)
+    payload = grid.to_json()
+    decoded: list[int] = []
+    real = nav._decode_cells
+
+    def counting(data: bytes, meta: msgs.MapMetaData) -> npt.NDArray[np.int8]:
+        decoded.append(meta.width)
+        return real(data, meta)
+
+    monkeypatch.setattr(nav, "_decode_cells", counting)
+    again = msgs.OccupancyGrid.from_json(payload)
+    assert decoded == [10]
+    assert np.array_equal(again.array, grid.array)
+    other = msgs.OccupancyGrid.from_array([[0, 100]], 0.1)  # a new grid: its own cells
+    assert decoded == [10, 2]
+    assert other.array.tolist() == [[0, 100]]
 
 
 def test_occupancy_grid_accepts_a_plain_list_and_checks_it() -> None:
