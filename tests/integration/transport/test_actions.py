@@ -244,6 +244,36 @@ async def test_status_is_published_for_observers(bus: Bus, client_bus: Bus) -> N
     assert {s.goal_id for s in statuses} == {goal.goal_id}
 
 
+async def test_feedback_and_result_are_published_for_observers(bus: Bus, client_bus: Bus) -> None:
+    serve_wait(bus)
+    seen: list[tuple[str, bytes, bytes]] = []  # (key, attachment, payload)
+
+    def observe(sample: zenoh.Sample) -> None:
+        tag = sample.attachment.to_bytes() if sample.attachment is not None else b""
+        seen.append((str(sample.key_expr), tag, sample.payload.to_bytes()))
+
+    base = f"{bus.namespace}/action/wait"
+    observers = [
+        client_bus.session.declare_subscriber(f"{base}/{kind}/*", observe)
+        for kind in ("feedback", "result")
+    ]
+    await asyncio.sleep(0.2)
+    client = client_bus.action_client("wait", Wait)
+    goal = await client.send_goal(Wait.Goal(time=0.06), server_timeout=5.0)
+    result = await goal.result(timeout=5.0)
+    await asyncio.sleep(0.2)
+    for observer in observers:
+        observer.undeclare()  # type: ignore[no-untyped-call]
+    feedback = [
+        decode(Wait.Feedback, p) for k, _, p in seen if k == f"{base}/feedback/{goal.goal_id}"
+    ]
+    results = [(tag, p) for k, tag, p in seen if k == f"{base}/result/{goal.goal_id}"]
+    assert len(feedback) >= 2
+    assert feedback[0].time_left == pytest.approx(0.06)
+    assert [tag for tag, _ in results] == [b"result:4"]
+    assert decode(Wait.Result, results[0][1]) == result
+
+
 async def test_oversized_goal_is_refused(bus_settings: BusSettings, client_bus: Bus) -> None:
     small = BusSettings(
         connect=bus_settings.connect, namespace=bus_settings.namespace, max_payload=2000
