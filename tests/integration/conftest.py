@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import uuid
 from collections.abc import AsyncIterator, Callable, Generator, Iterator, Sequence
 
@@ -60,8 +61,10 @@ def spawn(request: pytest.FixtureRequest) -> Iterator[Callable[[Sequence[str]], 
 
     yield start
     failed = getattr(request.node, "rep_call", None)
-    for proc in started:
-        proc.stop()
-        if failed is not None and failed.failed:
-            print(f"--- output of {' '.join(proc.args)} ---\n{proc.output()}")
-        proc.cleanup()
+    with contextlib.ExitStack() as cleanups:  # every process is stopped, even if one fails to
+        for proc in started:
+            cleanups.callback(proc.cleanup)
+        for proc in started:
+            proc.stop()
+            if failed is not None and failed.failed:
+                print(f"--- output of {' '.join(proc.args)} ---\n{proc.output()}")
