@@ -54,6 +54,7 @@ class Switch(ControlNode):
 
     __slots__ = ("_running",)
     CASES: ClassVar[int] = 0
+    CASE_PORTS: ClassVar[tuple[str, ...]] = ()  # "case_1" .. "case_N", made once per class
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
@@ -63,17 +64,18 @@ class Switch(ControlNode):
     def provided_ports(cls) -> tuple[PortInfo, ...]:
         return (
             input_port("variable", str),
-            *(input_port(f"case_{i}", str) for i in range(1, cls.CASES + 1)),
+            *(input_port(name, str) for name in cls.CASE_PORTS),
         )
 
     def _match(self) -> int:
         variable = self.get_input("variable", None)
         if variable is None:
             return self.CASES
+        text = to_text(variable)
         enums = self._ctx.enums
-        for index in range(self.CASES):
-            case = self.get_input(f"case_{index + 1}", None)
-            if case is not None and values_equal(to_text(variable), to_text(case), enums):
+        for index, name in enumerate(self.CASE_PORTS):
+            case = self.get_input(name, None)
+            if case is not None and values_equal(text, to_text(case), enums):
                 return index
         return self.CASES
 
@@ -103,9 +105,13 @@ class Switch(ControlNode):
 
 
 def _switch(cases: int) -> type[Switch]:
-    cls = type(
-        f"Switch{cases}", (Switch,), {"__slots__": (), "CASES": cases, "__doc__": Switch.__doc__}
-    )
+    namespace = {
+        "__slots__": (),
+        "CASES": cases,
+        "CASE_PORTS": tuple(f"case_{i}" for i in range(1, cases + 1)),
+        "__doc__": Switch.__doc__,
+    }
+    cls = type(f"Switch{cases}", (Switch,), namespace)
     cls.__module__ = __name__
     return cls
 
