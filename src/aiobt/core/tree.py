@@ -147,7 +147,14 @@ class Tree:
 
     async def tick_exactly_once(self) -> Status:
         """Tick the root once (a wake-up it emits stays pending, as in BT.CPP)."""
-        return self._finish(await self._tick_root())
+        # _tick_root and _finish inlined: one coroutine per tree tick, not two
+        root = self.root
+        status = root.tick_sync()
+        if self.context.cleanups:  # async leaves halted during the tick
+            await self.context.settle()
+        if status is SUCCESS or status is FAILURE:
+            root.reset_status()
+        return status
 
     async def tick_once(self) -> Status:
         """Tick, then tick again while RUNNING and a wake-up is pending.

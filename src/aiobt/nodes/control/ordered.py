@@ -16,32 +16,57 @@ from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 
-def _short_path(proceed: Status) -> Any:
-    """The common tick of both composites, kept as short as it can be.
+def _short_path(proceed: Status, stop: Status, reactive: bool) -> Any:
+    """The common tick of the composites, kept as short as it can be.
 
     It applies when the walk starts from the first child (not resuming a
     RUNNING one), nobody listens to status changes and no pre/post conditions
-    are attached, and lasts while every child returns ``proceed``; anything
-    else goes to the class's general ``_walk`` or its ``_tail``. The frame is
-    small on purpose (helpers are methods, not closure cells): deep trees
-    recurse through it once per level, and CPython 3.11 allocates a new stack
-    chunk per tick when they outgrow one.
+    are attached. It handles the walk that ends on a child returning
+    ``proceed`` (all did), RUNNING or ``stop`` after children that all returned
+    ``proceed``; anything else goes to the class's general ``_walk`` or its
+    ``_tail``. The frame is small on purpose (helpers are methods, not closure
+    cells): deep trees recurse through it once per level, and CPython 3.11
+    allocates a new stack chunk per tick when they outgrow one.
     """
 
     def fast(self: Any) -> Status:
         if self._current or self._conditions is not None or self._ctx.listeners:
             return self._walk()  # type: ignore[no-any-return]
-        for child in self.children:
+        children = self.children
+        for child in children:
             status = child.tick_sync()
             if status is not proceed:
+                if status is RUNNING:
+                    if reactive:
+                        # reset the others in order (BT.CPP's haltChild): those before
+                        # it returned ``proceed``; a later one may still be RUNNING
+                        after = False
+                        for other in children:
+                            if after:
+                                if other._status is RUNNING:
+                                    other.halt_sync()
+                                else:
+                                    other._status = IDLE
+                            elif other is child:
+                                after = True
+                            else:
+                                other._status = IDLE
+                    elif child is not children[0]:
+                        self._current = children.index(child)  # resume there
+                    self._status = RUNNING
+                    return RUNNING
+                if status is stop:
+                    break
                 return self._tail(child, status)  # type: ignore[no-any-return]
-        for child in self.children:
+        else:
+            status = proceed
+        for child in children:
             if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
                 child.halt_sync()
             else:
                 child._status = IDLE
-        self._status = proceed
-        return proceed
+        self._status = status
+        return status
 
     return fast
 
@@ -118,7 +143,7 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
     if yields or not write:
         return walk
 
-    fast = _short_path(proceed)
+    fast = _short_path(proceed, stop, False)
 
     def tail(self: OrderedComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT (all before it did)."""
@@ -248,7 +273,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
     if not write:
         return walk
 
-    fast = _short_path(proceed)
+    fast = _short_path(proceed, stop, True)
 
     def tail(self: ReactiveComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT: finish the walk."""
