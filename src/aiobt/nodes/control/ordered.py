@@ -33,6 +33,7 @@ def _short_path(proceed: Status, stop: Status, reactive: bool) -> Any:
         if self._current or self._conditions is not None or self._ctx.listeners:
             return self._walk()  # type: ignore[no-any-return]
         children = self.children
+        status: Status
         for child in children:
             status = child.tick_sync()
             if status is not proceed:
