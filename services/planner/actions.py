@@ -2,7 +2,10 @@
 
 Searches run in a worker thread on a snapshot of the costmap, so the event
 loop (and every other goal's cancellation) stays responsive; cancelling a
-goal sets the search's cancel flag, which it checks every ~1000 expansions.
+goal sets the search's cancel flag, which the Python searches check every
+~1000 expansions and the compiled Dijkstra (GridBased's default) before and
+after its one uninterruptible call (~6 ms on the default world; it holds the
+GIL meanwhile, so the loop stalls that long).
 Every failure becomes a result with Nav2's error code and a message.
 """
 

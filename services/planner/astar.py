@@ -1,10 +1,13 @@
-"""GridBased: cost-aware 8-connected A* on a :class:`Traversal` (optimal for its metric).
+"""GridBased with ``use_astar``: cost-aware 8-connected A* on a :class:`Traversal`.
 
 A step into a cell costs ``step_length * weight(cell)``, ``step_length`` 1 or
 sqrt(2) cells and ``weight >= 1``, so the octile heuristic is admissible and
 consistent, and the first time the goal is popped its cost is optimal (to within
-the 2**-20 cell fixed point of the heap keys). This is the planner service's hot
-path, written for CPython speed (flat lists, int heap keys, unrolled neighbours).
+the 2**-20 cell fixed point of the heap keys). GridBased's default is the
+compiled Dijkstra (``dijkstra.py``) on the same metric; this A* is the option
+that expands fewer cells for near goals, checks its budget every ~1000
+expansions, and is the in-tree optimality reference. Written for CPython speed
+(flat lists, int heap keys, unrolled neighbours).
 """
 
 from __future__ import annotations

@@ -50,6 +50,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add("--downsample", type=_factor, default=2, help="search on NxN cell blocks (%(default)s)")
     add("--no-allow-unknown", action="store_true", help="never plan through unknown cells")
+    add(
+        "--use-astar",
+        action="store_true",
+        help="GridBased searches with the CPython A* instead of the compiled Dijkstra",
+    )
     add("--max-planning-time", type=positive, default=2.0, help="s, then TIMEOUT (%(default)s)")
     add("--row-spacing", type=positive, default=0.5, help="coverage rows, m (%(default)s)")
     add("--headland-width", type=non_negative, default=0.5, help="coverage, m (%(default)s)")
@@ -63,7 +68,9 @@ def build(args: argparse.Namespace) -> tuple[GlobalCostmap, PlannerActions]:
         obstacles=ObstacleParams(
             obstacle_max_range=args.obstacle_range, raytrace_max_range=args.raytrace_range
         ),
-        search=SearchParams(args.cost_penalty, not args.no_allow_unknown, args.downsample),
+        search=SearchParams(
+            args.cost_penalty, not args.no_allow_unknown, args.downsample, args.use_astar
+        ),
     )
     world = GlobalCostmap(costmap_options)
     actions = PlannerActions(

@@ -9,6 +9,7 @@ from collections.abc import Callable, Sequence
 from aiobt_services.costmap import CostGrid
 
 from .astar import astar
+from .dijkstra import compiled_dijkstra
 from .errors import PlanningError
 from .theta import theta_star
 from .traversal import Budget, SearchParams, Traversal
@@ -16,7 +17,17 @@ from .traversal import Budget, SearchParams, Traversal
 Pose2D = tuple[float, float, float]
 Search = Callable[[Traversal, int, int, Budget | None], list[int]]
 
-PLANNERS: dict[str, Search] = {"GridBased": astar, "ThetaStar": theta_star}
+
+def grid_based(
+    traversal: Traversal, start: int, goal: int, budget: Budget | None = None
+) -> list[int]:
+    """A cheapest cost-aware 8-connected path: the compiled Dijkstra, or the CPython
+    A* (same metric and optimum) when the traversal's ``params.use_astar`` is set."""
+    search = astar if traversal.params.use_astar else compiled_dijkstra
+    return search(traversal, start, goal, budget)
+
+
+PLANNERS: dict[str, Search] = {"GridBased": grid_based, "ThetaStar": theta_star}
 DEFAULT_PLANNER = "GridBased"
 
 

@@ -20,6 +20,7 @@ import numpy.typing as npt
 from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, GridGeometry
 
 from .errors import PlanningCancelled, PlanningError
+from .sparse import GridGraph
 
 SQRT2 = math.sqrt(2.0)
 CHECK_EVERY = 1024
@@ -32,6 +33,7 @@ class SearchParams:
     cost_penalty: float = 2.0
     allow_unknown: bool = True
     downsample: int = 1
+    use_astar: bool = False  # GridBased: the CPython A* instead of the compiled Dijkstra
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.cost_penalty) and self.cost_penalty >= 0.0):
@@ -72,10 +74,22 @@ def downsample_costs(costs: npt.NDArray[np.uint8], factor: int) -> npt.NDArray[n
     return result
 
 
+class _GraphCache:
+    """The compiled graph of a traversal's weights, built on first use, shared by its
+    opened copies (it describes the weights before any block was opened)."""
+
+    __slots__ = ("graph", "lock")
+
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.graph: GridGraph | None = None
+
+
 class Traversal:
     """Step weights of a :class:`CostGrid` (``inf`` = impassable), padded and flat."""
 
-    __slots__ = ("_coords", "costs", "fine", "geometry", "params", "passable", "stride", "weights")
+    __slots__ = ("_base", "_coords", "_graph", "costs", "fine", "geometry", "params", "passable",
+                 "stride", "weights")  # fmt: skip
 
     def __init__(self, grid: CostGrid, params: SearchParams | None = None) -> None:
         self.params = params or SearchParams()
@@ -92,7 +106,22 @@ class Traversal:
         padded[1:-1, 1:-1] = np.where(self.passable, weight, math.inf)
         self.stride = int(padded.shape[1])
         self.weights: list[float] = padded.ravel().tolist()
+        padded.flags.writeable = False
+        self._base: npt.NDArray[np.float64] = padded
+        self._graph = _GraphCache()
         self._coords: tuple[npt.NDArray[np.intp], npt.NDArray[np.intp]] | None = None
+
+    def graph(self) -> GridGraph:
+        """The compiled search graph of these weights, built once (thread-safe).
+
+        Blocks opened by :meth:`opened` are not in it: the compiled search
+        handles an opened goal itself, and edges already leave blocked cells.
+        """
+        cache = self._graph
+        with cache.lock:
+            if cache.graph is None:
+                cache.graph = GridGraph(self._base)
+            return cache.graph
 
     def _passable(self, costs: npt.NDArray[np.uint8]) -> npt.NDArray[np.bool_]:
         unknown = costs == NO_INFORMATION

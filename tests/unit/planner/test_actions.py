@@ -112,9 +112,10 @@ async def test_through_poses_codes() -> None:
     assert any(math.hypot(p.x - 4.0, p.y - 1.0) < 1e-9 for p in result.path.poses)
 
 
-async def test_timeout_code() -> None:
+@pytest.mark.parametrize("planner_id", ["GridBased", "ThetaStar"])
+async def test_timeout_code(planner_id: str) -> None:
     actions = PlannerActions(world(400), ActionOptions(max_planning_time=1e-6))
-    goal = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(18.0, 18.0), planner_id="ThetaStar")
+    goal = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(18.0, 18.0), planner_id=planner_id)
     result = await actions.compute_path_to_pose(goal, None)
     assert result.error_code == To.TIMEOUT
 

@@ -1,4 +1,4 @@
-"""GridBased (A*) and ThetaStar: optimality, clearance, every error code."""
+"""GridBased (compiled Dijkstra or A*) and ThetaStar: optimality, clearance, every error code."""
 
 from __future__ import annotations
 
@@ -30,8 +30,18 @@ def cells_of(grid, poses) -> list[tuple[int, int]]:
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.integers(0, 2**31), st.floats(0.0, 0.35), st.integers(5, 24), st.integers(5, 24))
-def test_gridbased_is_optimal_against_dijkstra(seed: int, density: float, w: int, h: int) -> None:
+@given(
+    st.integers(0, 2**31),
+    st.floats(0.0, 0.35),
+    st.integers(5, 24),
+    st.integers(5, 24),
+    st.booleans(),
+)
+def test_gridbased_is_optimal_against_dijkstra(
+    seed: int, density: float, w: int, h: int, use_astar: bool
+) -> None:
+    """Both GridBased searches (compiled Dijkstra, CPython A*) against the plain one."""
+    params = SearchParams(use_astar=use_astar)
     rng = np.random.default_rng(seed)
     costs = rng.integers(0, 253, size=(h, w)).astype(np.uint8)
     costs[rng.random((h, w)) < density] = LETHAL
@@ -46,10 +56,10 @@ def test_gridbased_is_optimal_against_dijkstra(seed: int, density: float, w: int
     )
     if math.isinf(expected):
         with pytest.raises(PlanningError) as err:
-            plan(grid, start, goal)
+            plan(grid, start, goal, params=params)
         assert err.value.reason == "NO_VALID_PATH"
         return
-    got = path_cost(weights, cells_of(grid, plan(grid, start, goal)))
+    got = path_cost(weights, cells_of(grid, plan(grid, start, goal, params=params)))
     assert got == pytest.approx(expected, rel=1e-9, abs=1e-5)  # keys are 2**-20 fixed point
 
 
@@ -151,24 +161,29 @@ def test_unknown_cells_are_avoided_unless_allowed() -> None:
     assert err.value.reason == "NO_VALID_PATH"
 
 
-def big_maze() -> Traversal:
+def big_maze(use_astar: bool = False) -> Traversal:
     costs = np.zeros((300, 300), dtype=np.uint8)
     costs[:, 150] = LETHAL
-    return Traversal(grid_from(costs, 0.05))
+    return Traversal(grid_from(costs, 0.05), SearchParams(use_astar=use_astar))
 
 
-@pytest.mark.parametrize("planner_id", ["GridBased", "ThetaStar"])
-def test_time_budget_gives_timeout(planner_id: str) -> None:
+@pytest.mark.parametrize(
+    ("planner_id", "use_astar"), [("GridBased", False), ("GridBased", True), ("ThetaStar", False)]
+)
+def test_time_budget_gives_timeout(planner_id: str, use_astar: bool) -> None:
+    """The Python searches time out at a periodic check, the compiled one before its call."""
+    maze = big_maze(use_astar)
     with pytest.raises(PlanningError) as err:
-        plan(big_maze(), (1.0, 7.5, 0.0), (14.0, 7.5, 0.0), planner_id, Budget(max_seconds=0.0))
+        plan(maze, (1.0, 7.5, 0.0), (14.0, 7.5, 0.0), planner_id, Budget(max_seconds=0.0))
     assert err.value.reason == "TIMEOUT"
 
 
-def test_cancel_flag_stops_the_search() -> None:
+@pytest.mark.parametrize("use_astar", [False, True])
+def test_cancel_flag_stops_the_search(use_astar: bool) -> None:
     budget = Budget()
     budget.cancel.set()
     with pytest.raises(PlanningCancelled):
-        plan(big_maze(), (1.0, 7.5, 0.0), (14.0, 7.5, 0.0), budget=budget)
+        plan(big_maze(use_astar), (1.0, 7.5, 0.0), (14.0, 7.5, 0.0), budget=budget)
 
 
 def test_cached_traversal_is_not_modified_by_opening_a_block() -> None:
