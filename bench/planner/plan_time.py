@@ -1,12 +1,15 @@
 """Planning time across the default world (office, 20 x 20 m at 0.05 m), longest pairs.
 
-Run: ``.venv/bin/python -m bench.planner.plan_time [--pairs 20] [--repeats 5]``
+Run: ``.venv/bin/python -m bench.planner.plan_time [--pairs 20] [--repeats 5] [--theta]``
 
 Start/goal pairs are the farthest-apart (straight-line) pairs among random free,
-reachable cells of the office world, plus the two ends of its longest shortest
-path (found by a double sweep). Every planner plans every pair ``--repeats``
-times; the plain-Python Dijkstra baseline plans each pair once, on the same
-grid, in the same process. Prints a markdown table.
+reachable cells of the office world. Every planner configuration plans every
+pair ``--repeats`` times on a traversal built beforehand (the service caches it
+per costmap version); one row also rebuilds the traversal and its compiled graph
+before every plan (a costmap that changed since the last plan, e.g. a new scan).
+The plain-Python Dijkstra baseline plans the first ``--baseline-pairs`` pairs
+once, on the same full-resolution grid and metric, in the same process.
+Prints what a costmap change costs, then a markdown table.
 """
 
 from __future__ import annotations
@@ -76,8 +79,9 @@ def world_pose(grid: CostGrid, cell: Cell) -> tuple[float, float, float]:
     return (*grid.geometry.cell_to_world(*cell), 0.0)
 
 
-def time_planner(grid, pairs, planner_id: str, downsample: int, repeats: int) -> list[float]:
-    traversal = Traversal(grid, SearchParams(downsample=downsample))
+def time_planner(grid, pairs, planner_id: str, params: SearchParams, repeats: int) -> list[float]:
+    traversal = Traversal(grid, params)
+    traversal.graph()  # built once per costmap version in the service
     times = []
     for a, b in pairs:
         for _ in range(repeats):
@@ -87,8 +91,62 @@ def time_planner(grid, pairs, planner_id: str, downsample: int, repeats: int) ->
     return times
 
 
+def time_with_rebuild(grid, pairs, params: SearchParams, repeats: int) -> list[float]:
+    """GridBased as the first plan after a costmap change: traversal and graph included."""
+    times = []
+    for a, b in pairs:
+        for _ in range(repeats):
+            began = time.perf_counter()
+            plan(Traversal(grid, params), world_pose(grid, a), world_pose(grid, b))
+            times.append(time.perf_counter() - began)
+    return times
+
+
+def change_costs(grid: CostGrid) -> None:
+    """Print what one costmap change costs: master grid, traversal, compiled graph."""
+    occupancy = load_map(OFFICE).grid
+    began = time.perf_counter()
+    for _ in range(10):
+        Costmap.from_occupancy(occupancy, grid.geometry).master  # noqa: B018
+    rebuild = (time.perf_counter() - began) / 10
+    print(f"costmap load + inflate (400x400): {rebuild * 1000:.1f} ms")
+    for factor in (2, 1):
+        build, graph = [], []
+        for _ in range(5):
+            t0 = time.perf_counter()
+            traversal = Traversal(grid, SearchParams(downsample=factor))
+            t1 = time.perf_counter()
+            traversal.graph()
+            build.append(t1 - t0)
+            graph.append(time.perf_counter() - t1)
+        print(
+            f"downsample {factor}: traversal {statistics.median(build) * 1000:.1f} ms, "
+            f"compiled graph {statistics.median(graph) * 1000:.1f} ms "
+            f"({traversal.graph().edges} edges)"
+        )
+
+
 def percentile(values: list[float], q: float) -> float:
     return float(np.percentile(np.asarray(values), q))
+
+
+def baseline(grid: CostGrid, pairs: list[tuple[Cell, Cell]]) -> list[float]:
+    weights = step_weights(grid)
+    times = []
+    for a, b in pairs:
+        began = time.perf_counter()
+        cost, _ = dijkstra(weights, a, b)
+        times.append(time.perf_counter() - began)
+        assert math.isfinite(cost)
+    return times
+
+
+CONFIGS = [
+    ("GridBased, downsample 2 (service default: compiled Dijkstra)", "GridBased", 2, False),
+    ("GridBased, full res (compiled Dijkstra)", "GridBased", 1, False),
+    ("GridBased --use-astar, downsample 2 (CPython A*)", "GridBased", 2, True),
+    ("GridBased --use-astar, full res (CPython A*)", "GridBased", 1, True),
+]
 
 
 def main() -> None:
@@ -98,32 +156,40 @@ def main() -> None:
     parser.add_argument("--baseline-pairs", type=int, default=8)
     parser.add_argument("--theta", action="store_true", help="also time ThetaStar")
     args = parser.parse_args()
+    with open("/proc/loadavg") as loadavg:
+        print(f"load average at start: {loadavg.read().split()[:3]}")
     grid = office()
-    began = time.perf_counter()
-    for _ in range(10):
-        Costmap.from_occupancy(load_map(OFFICE).grid, grid.geometry).master  # noqa: B018
-    rebuild = (time.perf_counter() - began) / 10
     pairs = far_pairs(grid, args.pairs, np.random.default_rng(7))
     lengths = [math.dist(a, b) * grid.geometry.resolution for a, b in pairs]
     print(f"{len(pairs)} pairs, straight-line {min(lengths):.1f}..{max(lengths):.1f} m")
-    print(f"costmap load + inflate (400x400): {rebuild * 1000:.1f} ms")
-    weights = step_weights(grid)
-    base = []
-    for a, b in pairs[: args.baseline_pairs]:
-        t0 = time.perf_counter()
-        cost, _ = dijkstra(weights, a, b)
-        base.append(time.perf_counter() - t0)
-        assert math.isfinite(cost)
-    rows = [("plain-Python Dijkstra (baseline)", base)]
-    configs = [
-        ("GridBased, full res (A*)", "GridBased", 1),
-        ("GridBased, downsample 2 (service default)", "GridBased", 2),
+    change_costs(grid)
+    rows = [
+        ("plain-Python Dijkstra (baseline, full res)", baseline(grid, pairs[: args.baseline_pairs]))
     ]
+    for label, planner_id, factor, use_astar in CONFIGS:
+        params = SearchParams(downsample=factor, use_astar=use_astar)
+        rows.append((label, time_planner(grid, pairs, planner_id, params, args.repeats)))
+    rows.append(
+        (
+            "GridBased, downsample 2, rebuilding traversal + graph per plan",
+            time_with_rebuild(grid, pairs, SearchParams(downsample=2), args.repeats),
+        )
+    )
     if args.theta:
-        configs.append(("ThetaStar, downsample 2", "ThetaStar", 2))
-    for label, planner_id, factor in configs:
-        rows.append((label, time_planner(grid, pairs, planner_id, factor, args.repeats)))
-    base_p50 = statistics.median(base)
+        params = SearchParams(downsample=2)
+        rows.append(
+            (
+                "ThetaStar, downsample 2",
+                time_planner(grid, pairs, "ThetaStar", params, args.repeats),
+            )
+        )
+    table(rows)
+    with open("/proc/loadavg") as loadavg:
+        print(f"load average at end: {loadavg.read().split()[:3]}")
+
+
+def table(rows: list[tuple[str, list[float]]]) -> None:
+    base_p50 = statistics.median(rows[0][1])
     print("| planner | n | p50 ms | p99 ms | max ms | p50 speed-up vs Dijkstra |")
     print("|---|---|---|---|---|---|")
     for label, times in rows:
