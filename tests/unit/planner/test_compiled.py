@@ -3,6 +3,7 @@ opened blocks, the cached graph, budget and cancel checks around the compiled ca
 
 from __future__ import annotations
 
+import argparse
 import itertools
 import math
 
@@ -15,6 +16,7 @@ from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION
 from aiobt_services.planner.astar import astar
 from aiobt_services.planner.dijkstra import compiled_dijkstra
 from aiobt_services.planner.errors import PlanningCancelled, PlanningError
+from aiobt_services.planner.main import add_arguments, build
 from aiobt_services.planner.planning import plan
 from aiobt_services.planner.sparse import GridGraph, Reach
 from aiobt_services.planner.traversal import Budget, SearchParams, Traversal
@@ -31,6 +33,16 @@ def flat_cost(traversal: Traversal, path: list[int]) -> float:
         assert math.isfinite(traversal.weights[b]), f"{b} is not passable"
         total += (math.sqrt(2.0) if dr and dc else 1.0) * traversal.weights[b]
     return total
+
+
+def reference_cost(traversal: Traversal, start: int, goal: int) -> float:
+    """The CPython A*'s optimum (``inf`` when it finds no path)."""
+    try:
+        return flat_cost(traversal, astar(traversal, start, goal))
+    except PlanningError as exc:
+        if exc.reason != "NO_VALID_PATH":
+            raise
+        return math.inf
 
 
 def random_traversal(seed: int, density: float, size: tuple[int, int], factor: int) -> Traversal:
@@ -70,17 +82,12 @@ def test_compiled_dijkstra_matches_astar_cost_with_opened_ends(
         return
     start, goal = traversal.locate(*a, "start"), traversal.locate(*b, "goal")
     leg = traversal.opened(*a).opened(*b)
-    try:
-        reference = astar(leg, start, goal)
-    except PlanningError as exc:
-        reference, reason = [], exc.reason
-    if not reference:
-        assert reason == "NO_VALID_PATH"
+    expected = reference_cost(leg, start, goal)
+    if math.isinf(expected):
         with pytest.raises(PlanningError) as err:
             compiled_dijkstra(leg, start, goal)
         assert err.value.reason == "NO_VALID_PATH"
         return
-    expected = flat_cost(leg, reference)
     path = compiled_dijkstra(leg, start, goal)
     assert (path[0], path[-1]) == (start, goal)
     assert flat_cost(leg, path) == pytest.approx(expected, rel=1e-9, abs=1e-5)
@@ -138,3 +145,21 @@ def test_budget_and_cancel_are_checked_around_the_compiled_call(
     with pytest.raises(PlanningCancelled):
         compiled_dijkstra(traversal, start, goal, budget)
     assert budget.cancel.is_set()
+
+
+def test_the_service_option_selects_the_python_astar() -> None:
+    """``--use-astar`` reaches GridBased: on a small grid the A* finishes before its
+    first periodic budget check, the compiled search checks before it starts."""
+    parser = argparse.ArgumentParser()
+    add_arguments(parser)
+    world, _ = build(parser.parse_args([]))
+    assert world.options.search == SearchParams(downsample=2)
+    world, _ = build(parser.parse_args(["--use-astar", "--downsample", "1"]))
+    assert world.options.search == SearchParams(downsample=1, use_astar=True)
+    grid = grid_from(np.zeros((4, 30), dtype=np.uint8))
+    cancelled = Budget()
+    cancelled.cancel.set()
+    ends = ((0.05, 0.05, 0.0), (2.95, 0.35, 0.0))
+    assert plan(Traversal(grid, world.options.search), *ends, budget=cancelled)
+    with pytest.raises(PlanningCancelled):
+        plan(Traversal(grid, SearchParams(downsample=1)), *ends, budget=cancelled)
