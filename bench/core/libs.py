@@ -120,8 +120,20 @@ def aiobt_tick(spec: Spec, counting: bool = False) -> Callable[[], Awaitable[Sta
 
 @contextmanager
 def aiobt_inner_counted() -> Iterator[None]:
-    """Count every tick of aiobt's inner nodes (tick_sync patched on the classes)."""
-    saved = {cls: cls.__dict__.get("tick_sync") for cls in AIOBT_INNER}
+    """Count every tick of aiobt's inner nodes (tick_sync patched on the classes).
+
+    Composites built into a tree have a class of their own, a subclass with a
+    tick unrolled for their children (``aiobt.nodes.control.unrolled``): every
+    subclass that defines its own ``tick_sync`` is patched too.
+    """
+    classes: list[type[TreeNode]] = []
+    pending = list(AIOBT_INNER)
+    while pending:
+        cls = pending.pop()
+        if cls in AIOBT_INNER or "tick_sync" in cls.__dict__:
+            classes.append(cls)
+        pending.extend(cls.__subclasses__())
+    saved = {cls: cls.__dict__.get("tick_sync") for cls in classes}
 
     def wrap(execute: Any) -> Any:
         def counted(self: TreeNode) -> Status:

@@ -194,6 +194,12 @@ class TreeNode:
     def attach_conditions(self, conditions: NodeConditions | None) -> None:
         self._conditions = conditions
 
+    def on_tree_built(self) -> None:
+        """Called once by :class:`Tree` when the tree holding this node is complete
+        (its children are final). A node may prepare its hot path here; the
+        default does nothing."""
+        return
+
     # -- tick and halt ------------------------------------------------------------
     def tick_sync(self) -> Status:
         """Tick once: pre-conditions, :meth:`execute_sync`, status, post-conditions."""

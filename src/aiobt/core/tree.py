@@ -94,6 +94,8 @@ class Tree:
         self._resumed = asyncio.Event()
         self._resumed.set()
         context.wake_up = self._wake.emit
+        for node in self.nodes():
+            node.on_tree_built()
 
     @property
     def clock(self) -> Clock:

@@ -14,46 +14,77 @@ from aiobt.core.composite import ControlNode, reset_all
 from aiobt.core.errors import LogicError
 from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
+from aiobt.nodes.control.unrolled import reroll, unroll
 
 
-def _short_path(proceed: Status, stop: Status, reactive: bool) -> Any:
-    """The common tick of the composites, kept as short as it can be.
+def _short_path(proceed: Status, stop: Status) -> Any:
+    """The common tick of Sequence and Fallback, kept as short as it can be.
 
     It applies when the walk starts from the first child (not resuming a
     RUNNING one), nobody listens to status changes and no pre/post conditions
-    are attached. It handles the walk that ends on a child returning
-    ``proceed`` (all did), RUNNING or ``stop`` after children that all returned
-    ``proceed``; anything else goes to the class's general ``_walk`` or its
-    ``_tail``. The frame is small on purpose (helpers are methods, not closure
-    cells): deep trees recurse through it once per level, and CPython 3.11
-    allocates a new stack chunk per tick when they outgrow one.
+    are attached. It handles the walks that end on a child returning RUNNING
+    or ``stop`` after children that all returned ``proceed``, or with every
+    child returning ``proceed``; anything else goes to the class's general
+    ``_walk`` or its ``_tail``. The frame is small on purpose (few locals and
+    cells; helpers are methods): deep trees recurse through it once per
+    level, and CPython 3.11 allocates a new stack chunk per tick when they
+    outgrow one (``tests/unit/nodes/test_frame_size.py`` keeps it small).
     """
 
     def fast(self: Any) -> Status:
         if self._current or self._conditions is not None or self._ctx.listeners:
             return self._walk()  # type: ignore[no-any-return]
-        children = self.children
         status: Status
+        for child in self.children:
+            status = child.tick_sync()
+            if status is not proceed:
+                break
+        else:
+            status = proceed
+        if status is not proceed and status is not stop:
+            # (out of the loop: the iterator's stack slot is free again)
+            if status is RUNNING:
+                self._current = self.children.index(child)  # resume there
+                self._status = RUNNING
+                return RUNNING
+            return self._tail(child, status)  # type: ignore[no-any-return]
+        for child in self.children:
+            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
+                child.halt_sync()
+            else:
+                child._status = IDLE
+        self._status = status
+        return status
+
+    return fast
+
+
+def _reactive_short_path(proceed: Status, stop: Status) -> Any:
+    """:func:`_short_path` for the reactive pair (every tick starts at the first
+    child; a RUNNING child resets the others)."""
+
+    def fast(self: Any) -> Status:
+        if self._conditions is not None or self._ctx.listeners:
+            return self._walk()  # type: ignore[no-any-return]
+        status: Status
+        children = self.children
         for child in children:
             status = child.tick_sync()
             if status is not proceed:
                 if status is RUNNING:
-                    if reactive:
-                        # reset the others in order (BT.CPP's haltChild): those before
-                        # it returned ``proceed``; a later one may still be RUNNING
-                        after = False
-                        for other in children:
-                            if after:
-                                if other._status is RUNNING:
-                                    other.halt_sync()
-                                else:
-                                    other._status = IDLE
-                            elif other is child:
-                                after = True
+                    # reset the others in order (BT.CPP's haltChild): those before
+                    # it returned ``proceed``; a later one may still be RUNNING
+                    after = False
+                    for other in children:
+                        if after:
+                            if other._status is RUNNING:
+                                other.halt_sync()
                             else:
                                 other._status = IDLE
-                    elif child is not children[0]:
-                        self._current = children.index(child)  # resume there
+                        elif other is child:
+                            after = True
+                        else:
+                            other._status = IDLE
                     self._status = RUNNING
                     return RUNNING
                 if status is stop:
@@ -144,7 +175,7 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
     if yields or not write:
         return walk
 
-    fast = _short_path(proceed, stop, False)
+    fast = _short_path(proceed, stop)
 
     def tail(self: OrderedComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT (all before it did)."""
@@ -199,6 +230,14 @@ class WalkedComposite(ControlNode):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         self._current = 0  # always 0 for the reactive pair
+
+    def on_tree_built(self) -> None:
+        """Switch to a tick unrolled for these children (:mod:`unrolled`)."""
+        unroll(self)
+
+    def add_child(self, child: TreeNode) -> None:
+        reroll(self)  # a child added to a built tree: back to the shared tick
+        super().add_child(child)
 
 
 class OrderedComposite(WalkedComposite):
@@ -274,7 +313,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
     if not write:
         return walk
 
-    fast = _short_path(proceed, stop, True)
+    fast = _reactive_short_path(proceed, stop)
 
     def tail(self: ReactiveComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT: finish the walk."""
