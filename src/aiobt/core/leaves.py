@@ -18,7 +18,7 @@ from typing import Any, ClassVar
 
 from aiobt.core import eager
 from aiobt.core.errors import LogicError, NodeError
-from aiobt.core.node import NodeKind, TreeNode, tick_error
+from aiobt.core.node import NodeKind, TreeNode, own_copy, tick_error
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
 
 log = logging.getLogger("aiobt.core.leaves")
@@ -34,7 +34,7 @@ class SyncLeaf(TreeNode):
         # The leaf bases below inline their execute_sync into a fast tick_sync;
         # a subclass with its own execute_sync gets the generic tick back.
         if "execute_sync" in cls.__dict__ and "tick_sync" not in cls.__dict__:
-            cls.tick_sync = TreeNode.tick_sync  # type: ignore[method-assign]
+            cls.tick_sync = own_copy(TreeNode.tick_sync)  # type: ignore[method-assign]
 
 
 class _OneCallLeaf(SyncLeaf):

@@ -19,6 +19,7 @@ from __future__ import annotations
 import asyncio
 import inspect
 import logging
+import types
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
@@ -115,6 +116,22 @@ class PortSource(Protocol):
     def provided_ports(cls) -> tuple[PortInfo, ...]: ...
 
 
+def own_copy(function: Callable[..., Any]) -> Any:
+    """``function`` with a copy of its code object.
+
+    CPython specialises bytecode in place, per code object: a hot tick shared
+    by many classes keeps missing its caches (each call site sees many types).
+    A class (or a node) given its own copy gets caches that see it alone.
+    """
+    return types.FunctionType(
+        function.__code__.replace(),
+        function.__globals__,
+        function.__name__,
+        function.__defaults__,
+        function.__closure__,
+    )
+
+
 class TreeNode:
     """Base of every node. Subclasses implement ``execute_sync()``."""
 
@@ -196,9 +213,17 @@ class TreeNode:
 
     def on_tree_built(self) -> None:
         """Called once by :class:`Tree` when the tree holding this node is complete
-        (its children are final). A node may prepare its hot path here; the
-        default does nothing."""
-        return
+        (its children are final). A node may prepare its hot path here.
+
+        The default gives the node's class its own copy of an inherited
+        ``tick_sync`` (:func:`own_copy`), so that the tick's call of the
+        class's hooks is specialised for that class alone. (A ``tick_sync``
+        patched onto a base class later is not seen by subclasses copied
+        before.)
+        """
+        cls = type(self)
+        if "tick_sync" not in cls.__dict__:
+            cls.tick_sync = own_copy(cls.tick_sync)  # type: ignore[method-assign]
 
     # -- tick and halt ------------------------------------------------------------
     def tick_sync(self) -> Status:
