@@ -54,3 +54,31 @@ async def test_skipped_running_control_is_halted_by_its_parent(body: str, listen
     if listening:
         assert "WhileDoElse>IDLE" in changes
     assert tree.find("WhileDoElse").status is Status.IDLE
+
+
+def _halted_when(parent: str) -> str:
+    skipping = SKIPPING.replace("halted := 1", "halted := step")
+    return (
+        f'<Sequence><Script code="step := 0"/><{parent}>{skipping}'
+        f'<Script code="step := step + 1"/></{parent}></Sequence>'
+    )
+
+
+@pytest.mark.conformance
+@pytest.mark.parametrize("listening", [False, True], ids=["quiet", "listened"])
+@pytest.mark.parametrize("parent", ["ReactiveSequence", "ReactiveFallback"])
+async def test_a_reactive_parent_halts_a_skipped_running_child_before_the_next_one(
+    parent: str, listening: bool
+) -> None:
+    # BT.CPP's reactive nodes haltChild(index) on SKIPPED, "to allow it to be
+    # skipped again": the halt comes before the next sibling is ticked (step 0)
+    body = _halted_when(parent)
+    tree = BehaviorTreeFactory().create_tree_from_text(tree_xml(body))
+    if listening:
+        tree.add_status_listener(lambda *_: None)
+    status = await tree.tick_once()
+    halted = tree.root_blackboard.get("halted")
+    expected_status, expected_halted = _btcpp(body)
+    assert expected_halted is not None
+    assert float(expected_halted) == 0
+    assert (status.name, halted) == (expected_status, 0)

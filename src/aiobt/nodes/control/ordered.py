@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any, ClassVar
 
-from aiobt.core.composite import ControlNode, reset_all
+from aiobt.core.composite import ControlNode, reset_all, reset_node
 from aiobt.core.errors import LogicError
 from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
@@ -296,7 +296,9 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
             elif status is stop:
                 reset_all(children)
                 break
-            elif status is not SKIPPED:
+            elif status is SKIPPED:
+                reset_node(child)  # BT.CPP: reset at once, "to allow it to be skipped again"
+            else:
                 raise self.logic_error(f"child {child.path} returned IDLE")
         else:
             _reset(children, quiet)
@@ -320,26 +322,18 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         children = self.children
         index = children.index(child)
         all_skipped = index == 0  # the children before it returned NEXT
-        clean = True  # no child before ``index`` was skipped (so none is RUNNING)
         while True:
             if status is proceed:
                 all_skipped = False
             elif status is RUNNING:  # reset every other child, in order (BT.CPP's haltChild)
+                # (those before it returned NEXT or were reset when skipped: none runs)
                 running = children[index]
-                if clean:
-                    for other in children:
-                        if other is running:
-                            break
-                        other._status = IDLE
-                    if index + 1 < len(children):
-                        reset_all(children[index + 1 :])
-                else:
-                    for other in children:
-                        if other is not running:
-                            if other._status is RUNNING:
-                                other.halt_sync()
-                            else:
-                                other._status = IDLE
+                for other in children:
+                    if other is running:
+                        break
+                    other._status = IDLE
+                if index + 1 < len(children):
+                    reset_all(children[index + 1 :])
                 self._status = RUNNING
                 return RUNNING
             elif status is stop:
@@ -347,7 +341,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
                 self._status = stop
                 return stop
             elif status is SKIPPED:
-                clean = False
+                reset_node(children[index])  # at once, as BT.CPP does
             else:
                 self._status = RUNNING
                 raise self.logic_error(f"child {children[index].path} returned IDLE")

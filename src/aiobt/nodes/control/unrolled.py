@@ -28,50 +28,63 @@ import types
 from functools import cache
 from typing import Any
 
+from aiobt.core.node import TreeNode
 from aiobt.core.status import IDLE, RUNNING
 
 MAX_CHILDREN = 12  # beyond this the shared loop is used (the code would grow as n**2)
 
 
-def _reset_lines(indent: str, indices: range, skip_idle: bool) -> list[str]:
-    """Reset children ``indices``: a RUNNING one is halted, others set IDLE in place."""
+INLINE = 4  # at most this many resets are written out per branch; more loop in a helper
+
+
+def _reset_lines(indent: str, first: int, count: int, inline: int = INLINE) -> list[str]:
+    """Reset children ``first`` to ``count - 1``: a RUNNING one is halted, the
+    others set IDLE in place (as ``reset_all``/``_reset`` do when nobody
+    listens); by a loop in :func:`reset_from` if there are more than ``inline``."""
+    if count - first > inline:
+        return [f"{indent}RESET_FROM(self.children, {first})"]
     lines = []
-    for i in indices:
+    for i in range(first, count):
         lines.append(f"{indent}if c{i}._status is RUNNING:")
         lines.append(f"{indent}    c{i}.halt_sync()")
-        if skip_idle:  # reset_all: an IDLE child is left alone
-            lines.append(f"{indent}elif c{i}._status is not IDLE:")
-        else:
-            lines.append(f"{indent}else:")
+        lines.append(f"{indent}else:")
         lines.append(f"{indent}    c{i}._status = IDLE")
     return lines
+
+
+def reset_from(children: list[TreeNode], first: int) -> None:
+    """The loop behind :func:`_reset_lines` for many children."""
+    for child in children[first:] if first else children:
+        if child._status is RUNNING:
+            child.halt_sync()
+        else:
+            child._status = IDLE
 
 
 @cache
 def _code(reactive: bool, count: int) -> types.CodeType:
     """The unrolled tick for ``count`` children, as a code object."""
-    every = range(count)
     guard = "self._conditions is not None or CTX.listeners"
     if not reactive:
         guard = "self._current or " + guard
     lines = ["def tick_sync(self):", f"    if {guard}:", "        return WALK(self)"]
-    for i in every:
+    for i in range(count):
         lines.append(f"    status = c{i}.tick_sync()")
         lines.append("    if status is not NEXT:")
         lines.append("        if status is RUNNING:")
-        if reactive:
+        if reactive:  # the children before it returned NEXT; a later one may be RUNNING
             lines.extend(f"            c{j}._status = IDLE" for j in range(i))
-            lines.extend(_reset_lines("            ", range(i + 1, count), True))
+            lines.extend(_reset_lines("            ", i + 1, count))
         elif i:
             lines.append(f"            self._current = {i}")
         lines.append("            self._status = RUNNING")
         lines.append("            return RUNNING")
         lines.append("        if status is not STOP:")
         lines.append(f"            return TAIL(self, c{i}, status)")
-        lines.extend(_reset_lines("        ", every, reactive))
+        lines.extend(_reset_lines("        ", 0, count))
         lines.append("        self._status = STOP")
         lines.append("        return STOP")
-    lines.extend(_reset_lines("    ", every, False))
+    lines.extend(_reset_lines("    ", 0, count, count))  # (once per tick: written out)
     lines.append("    self._status = NEXT")
     lines.append("    return NEXT")
     source = "\n".join(lines) + "\n"
@@ -109,6 +122,7 @@ def unroll(node: Any) -> bool:
         STOP=cls.STOP,
         RUNNING=RUNNING,
         IDLE=IDLE,
+        RESET_FROM=reset_from,
         __builtins__={},
     )
     # a copy of the code per node: its own inline caches, each site seeing one type
