@@ -18,8 +18,9 @@ returning ``NEXT``. Anything else is handed to the class's general ``_walk``
 or ``_tail``, as the shared short path does, so the observable behaviour is
 the same (the conformance suite runs both).
 
-The code for a (kind, number of children) is compiled once and bound per
-instance with :class:`types.FunctionType` over a fresh globals dict.
+The code for a (kind, number of children) is compiled once; each node gets a
+copy of that code object (its own inline caches) bound with
+:class:`types.FunctionType` over a fresh globals dict holding its children.
 """
 
 from __future__ import annotations
@@ -31,9 +32,7 @@ from typing import Any
 from aiobt.core.node import TreeNode
 from aiobt.core.status import IDLE, RUNNING
 
-MAX_CHILDREN = 12  # beyond this the shared loop is used (the code would grow as n**2)
-
-
+MAX_CHILDREN = 12  # beyond this the shared loop is used (the code grows with the children)
 INLINE = 4  # at most this many resets are written out per branch; more loop in a helper
 
 
