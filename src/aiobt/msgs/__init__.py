@@ -1,10 +1,14 @@
 """Wire messages: pydantic v2 models, JSON on the wire (see DESIGN.md §4).
 
 Decode untrusted payloads with :func:`decode` (or ``Model.from_json``): it raises
-:class:`MessageError`, whose ``field`` names the first bad field.
+:class:`MessageError`, whose ``field`` names the first bad field. Per-message
+paths use :func:`wire_validator` (what ``decode`` and ``decoder`` use): the
+model's ``validate_json`` with the short-form adapters and the quaternion check
+off pydantic's path, same results and errors.
 """
 
 from aiobt.msgs._base import MessageError, Msg, decode, decoder, validate
+from aiobt.msgs._wire import wire_validator
 from aiobt.msgs.action import ActionDef, ActionResult, Empty, GoalState, GoalStatus
 from aiobt.msgs.actions import (
     AssistedTeleop,
@@ -151,5 +155,6 @@ __all__ = [
     "quaternion_to_string",
     "quaternion_to_yaw",
     "validate",
+    "wire_validator",
     "yaw_to_quaternion",
 ]

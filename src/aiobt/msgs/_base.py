@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any, Self, TypeVar, cast
+from typing import Any, Self, TypeVar
 
 from pydantic import BaseModel, ConfigDict, ValidationError
+
+from aiobt.msgs._wire import wire_validator
 
 M = TypeVar("M", bound=BaseModel)
 
@@ -60,19 +62,19 @@ class MessageError(ValueError):
 def decode(model: type[M], payload: bytes | bytearray | str, *, key: str = "") -> M:
     """Validate a JSON payload as ``model``; :class:`MessageError` names key and field."""
     try:
-        return model.model_validate_json(payload)
+        return wire_validator(model)(payload)
     except ValidationError as exc:
         raise MessageError.from_validation(model, exc, key) from None
 
 
 def decoder(model: type[M], *, key: str = "") -> Callable[[bytes], M]:
-    """:func:`decode` bound to one model and key, for per-message paths (subscriptions):
-    the pydantic validator is looked up once, not on every message."""
-    validate_json = model.__pydantic_validator__.validate_json
+    """:func:`decode` bound to one model and key, for per-message paths (actions):
+    the validator is looked up once, not on every message."""
+    validate_json = wire_validator(model)
 
     def decode_one(payload: bytes) -> M:
         try:
-            return cast(M, validate_json(payload))
+            return validate_json(payload)
         except ValidationError as exc:
             raise MessageError.from_validation(model, exc, key) from None
 

@@ -13,6 +13,7 @@ from typing import Any, Self
 from pydantic import Field, model_validator
 
 from aiobt.msgs._base import Msg
+from aiobt.msgs._wire import identity_on_canonical, in_place_check
 
 _QUATERNION_NORM_TOLERANCE = 0.01
 
@@ -59,6 +60,7 @@ class Quaternion(Msg):
     w: float = 1.0
 
     @model_validator(mode="after")
+    @in_place_check  # wire_validator may run it after pydantic (see aiobt.msgs._wire)
     def _unit_length(self) -> Self:
         norm = math.sqrt(self.x**2 + self.y**2 + self.z**2 + self.w**2)
         if abs(norm - 1.0) > _QUATERNION_NORM_TOLERANCE:
@@ -106,6 +108,7 @@ class PoseStamped(Msg):
 
     @model_validator(mode="before")
     @classmethod
+    @identity_on_canonical  # a long form has no "x" (extra fields are refused)
     def _short_form(cls, data: Any) -> Any:
         if isinstance(data, dict) and "x" in data and "pose" not in data:
             short = _ShortPose.model_validate(data)

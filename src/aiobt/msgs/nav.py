@@ -12,6 +12,7 @@ import numpy.typing as npt
 from pydantic import Field, PrivateAttr, ValidationInfo, field_validator, model_validator
 
 from aiobt.msgs._base import Msg
+from aiobt.msgs._wire import identity_on_canonical
 from aiobt.msgs.geometry import Header, Point, Pose, PoseStamped, Twist
 
 MAX_MAP_CELLS = 100_000_000
@@ -201,6 +202,7 @@ class Goals(Msg):
 
     @model_validator(mode="before")
     @classmethod
+    @identity_on_canonical  # a long form is an object, not a list
     def _bare_list(cls, data: Any) -> Any:
         return {"goals": data} if isinstance(data, list) else data
 

@@ -12,7 +12,7 @@ import zenoh
 import zenoh.ext
 from pydantic import ValidationError
 
-from aiobt.msgs import MessageError, Msg
+from aiobt.msgs import MessageError, Msg, wire_validator
 from aiobt.transport import _z
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 
@@ -106,7 +106,7 @@ class Subscription(Generic[M]):
         self.dropped_invalid = 0
         self._bridge = bridge
         self._callback = callback
-        self._validate_json = model.__pydantic_validator__.validate_json
+        self._validate_json = wire_validator(model)
         self._max_payload = bridge.max_payload
         # a bounded deque (oldest dropped) and the waiting readers' futures: leaner than
         # an asyncio.Queue on this per-message path
