@@ -18,17 +18,19 @@ from aiobt.nodes.control.unrolled import reroll, unroll
 
 
 def _short_path(proceed: Status, stop: Status) -> Any:
-    """The common tick of Sequence and Fallback, kept as short as it can be.
+    """The common tick of the four composites, kept as short as it can be.
 
     It applies when the walk starts from the first child (not resuming a
     RUNNING one), nobody listens to status changes and no pre/post conditions
     are attached. It handles the walks that end on a child returning RUNNING
-    or ``stop`` after children that all returned ``proceed``, or with every
-    child returning ``proceed``; anything else goes to the class's general
-    ``_walk`` or its ``_tail``. The frame is small on purpose (few locals and
-    cells; helpers are methods): deep trees recurse through it once per
-    level, and CPython 3.11 allocates a new stack chunk per tick when they
-    outgrow one (``tests/unit/nodes/test_frame_size.py`` keeps it small).
+    (the class's ``_on_running``) or ``stop`` after children that all returned
+    ``proceed``, or with every child returning ``proceed``; anything else goes
+    to the class's general ``_walk`` or its ``_tail``. The frame is small on
+    purpose (few locals and cells; helpers are methods): deep trees recurse
+    through it once per level, and CPython 3.11 allocates a new stack chunk
+    per tick when they outgrow one (``tests/unit/nodes/test_frame_size.py``).
+    Trees that are built use :mod:`unrolled` ticks for composites of up to 12
+    children; this one serves larger ones.
     """
 
     def fast(self: Any) -> Status:
@@ -44,59 +46,11 @@ def _short_path(proceed: Status, stop: Status) -> Any:
         if status is not proceed and status is not stop:
             # (out of the loop: the iterator's stack slot is free again)
             if status is RUNNING:
-                self._current = self.children.index(child)  # resume there
+                self._on_running(child)
                 self._status = RUNNING
                 return RUNNING
             return self._tail(child, status)  # type: ignore[no-any-return]
-        for child in self.children:
-            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
-                child.halt_sync()
-            else:
-                child._status = IDLE
-        self._status = status
-        return status
-
-    return fast
-
-
-def _reactive_short_path(proceed: Status, stop: Status) -> Any:
-    """:func:`_short_path` for the reactive pair (every tick starts at the first
-    child; a RUNNING child resets the others)."""
-
-    def fast(self: Any) -> Status:
-        if self._conditions is not None or self._ctx.listeners:
-            return self._walk()  # type: ignore[no-any-return]
-        status: Status
-        children = self.children
-        for child in children:
-            status = child.tick_sync()
-            if status is not proceed:
-                if status is RUNNING:
-                    # reset the others in order (BT.CPP's haltChild): those before
-                    # it returned ``proceed``; a later one may still be RUNNING
-                    after = False
-                    for other in children:
-                        if after:
-                            if other._status is RUNNING:
-                                other.halt_sync()
-                            else:
-                                other._status = IDLE
-                        elif other is child:
-                            after = True
-                        else:
-                            other._status = IDLE
-                    self._status = RUNNING
-                    return RUNNING
-                if status is stop:
-                    break
-                return self._tail(child, status)  # type: ignore[no-any-return]
-        else:
-            status = proceed
-        for child in children:
-            if child._status is RUNNING:  # a skipped control node keeps RUNNING (BT.CPP)
-                child.halt_sync()
-            else:
-                child._status = IDLE
+        _reset(self.children, True)
         self._status = status
         return status
 
@@ -269,6 +223,10 @@ class OrderedComposite(WalkedComposite):
         self._current = self._skipped = 0
         reset_all(self.children)
 
+    def _on_running(self, child: TreeNode) -> None:
+        """(The short path) ``child`` is RUNNING: resume there next tick."""
+        self._current = self.children.index(child)
+
 
 def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
     """The tick of a reactive composite, specialised like :func:`_ordered_walk`."""
@@ -315,7 +273,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
     if not write:
         return walk
 
-    fast = _reactive_short_path(proceed, stop)
+    fast = _short_path(proceed, stop)
 
     def tail(self: ReactiveComposite, child: TreeNode, status: Status) -> Status:
         """The fast walk met a child that did not return NEXT: finish the walk."""
@@ -375,6 +333,22 @@ class ReactiveComposite(WalkedComposite):
     @classmethod
     def _make_tick(cls, write: bool) -> Any:
         return _reactive_walk(cls.NEXT, cls.STOP, write)
+
+    def _on_running(self, child: TreeNode) -> None:
+        """(The short path) ``child`` is RUNNING: reset every other child, in
+        order (BT.CPP's haltChild); those before it returned NEXT, a later one
+        may be RUNNING."""
+        after = False
+        for other in self.children:
+            if after:
+                if other._status is RUNNING:
+                    other.halt_sync()
+                else:
+                    other._status = IDLE
+            elif other is child:
+                after = True
+            else:
+                other._status = IDLE
 
 
 def _reset(children: list[TreeNode], quiet: bool) -> None:
