@@ -14,7 +14,7 @@ from aiobt.core.composite import ControlNode, reset_all, reset_node
 from aiobt.core.errors import LogicError
 from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SKIPPED, SUCCESS, Status
-from aiobt.nodes.control.unrolled import reroll, unroll
+from aiobt.nodes.control.unrolled import reroll, reset_from, unroll
 
 
 def _short_path(proceed: Status, stop: Status) -> Any:
@@ -50,7 +50,7 @@ def _short_path(proceed: Status, stop: Status) -> Any:
                 self._status = RUNNING
                 return RUNNING
             return self._tail(child, status)  # type: ignore[no-any-return]
-        _reset(self.children, True)
+        reset_from(self.children, 0)
         self._status = status
         return status
 

@@ -52,7 +52,8 @@ def _reset_lines(indent: str, first: int, count: int, inline: int = INLINE) -> l
 
 
 def reset_from(children: list[TreeNode], first: int) -> None:
-    """The loop behind :func:`_reset_lines` for many children."""
+    """Reset ``children[first:]`` when nobody listens: halt a RUNNING one, set
+    the others IDLE in place (the loop behind :func:`_reset_lines`)."""
     for child in children[first:] if first else children:
         if child._status is RUNNING:
             child.halt_sync()
