@@ -40,7 +40,7 @@ from pydantic_core import CoreConfig, SchemaValidator
 M = TypeVar("M", bound=BaseModel)
 F = TypeVar("F", bound=Callable[..., Any])
 Payload = bytes | bytearray | str
-Visit = Callable[[Any], None]
+Visit = tuple[Callable[[Any], Any], Callable[[Any], object]]  # (get, check)
 
 _ADAPTERS: set[Callable[..., Any]] = set()
 _CHECKS: set[Callable[..., Any]] = set()
@@ -91,8 +91,8 @@ def _build(model: type[BaseModel]) -> Callable[[Payload], Any]:
     def validate_json(payload: Payload) -> Any:
         try:
             message = fast(payload)
-            for visit in visits:
-                visit(message)
+            for get, check in visits:
+                check(get(message))
             return message
         except (ValueError, AssertionError):  # ValidationError is a ValueError
             return full(payload)  # a short form, or bad: the model decides and reports
@@ -238,27 +238,27 @@ def _holds_python(node: Any) -> bool:
 
 
 def _compile(path: tuple[object, ...], check: Callable[..., Any]) -> Visit:
-    """A function calling ``check`` on every instance at ``path`` below a message."""
+    """``(get, check)``: ``check(get(message))`` checks every instance at ``path`` below a
+    message (one attribute chain is read in C, lists and optionals by closures)."""
     split = next((i for i, step in enumerate(path) if not isinstance(step, str)), len(path))
     names = cast(tuple[str, ...], path[:split])
     get: Callable[[Any], Any] = attrgetter(".".join(names)) if names else _same
     if split == len(path):
-        return lambda obj: check(get(obj))
-    below = _compile(path[split + 1 :], check)
+        return get, check
+    below_get, below_check = _compile(path[split + 1 :], check)
     if path[split] is _EACH:
 
-        def each(obj: Any) -> None:
-            for item in get(obj):
-                below(item)
+        def each(items: Any) -> None:
+            for item in items:
+                below_check(below_get(item))
 
-        return each
+        return get, each
 
-    def optional(obj: Any) -> None:
-        value = get(obj)
+    def optional(value: Any) -> None:
         if value is not None:
-            below(value)
+            below_check(below_get(value))
 
-    return optional
+    return get, optional
 
 
 def _same(obj: Any) -> Any:
