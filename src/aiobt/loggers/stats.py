@@ -59,12 +59,17 @@ class NodeStatistics:
 
 
 _ACTIVE: dict[int, NodeStatistics] = {}  # id(node) -> its statistics, while instrumented
-_COUNTED: dict[type[TreeNode], type[TreeNode]] = {}
 
 
 def _counted(cls: type[TreeNode]) -> type[TreeNode]:
-    """A subclass of ``cls`` whose ``tick_sync`` also counts (cached per class)."""
-    found = _COUNTED.get(cls)
+    """A subclass of ``cls`` whose ``tick_sync`` also counts (made once per class).
+
+    It is kept on ``cls`` itself, not in a module-level cache: classes made per
+    node (unrolled composites) then go away with their tree.
+    """
+    if cls.__dict__.get("_stats_counting", False):
+        return cls
+    found: type[TreeNode] | None = cls.__dict__.get("_stats_counted")
     if found is not None:
         return found
     original_tick_sync = cls.tick_sync
@@ -76,11 +81,14 @@ def _counted(cls: type[TreeNode]) -> type[TreeNode]:
             stats.count(status)
         return status
 
-    namespace: dict[str, Any] = {"__slots__": (), "__module__": cls.__module__}
-    namespace["tick_sync"] = tick_sync
+    namespace: dict[str, Any] = {
+        "__slots__": (),
+        "__module__": cls.__module__,
+        "_stats_counting": True,
+        "tick_sync": tick_sync,
+    }
     counted = type(cls.__name__, (cls,), namespace)
-    _COUNTED[cls] = counted
-    _COUNTED[counted] = counted
+    type.__setattr__(cls, "_stats_counted", counted)
     return counted
 
 

@@ -134,3 +134,17 @@ async def test_unrolled_and_shared_ticks_leave_the_same_states(
     monkeypatch.setattr(unrolled, "MAX_CHILDREN", 0)  # nothing is unrolled
     shared_states = await _states(seed)
     assert unrolled_states == shared_states
+
+
+async def test_a_dropped_tree_is_freed_with_its_node_classes_after_statistics() -> None:
+    import gc
+    import weakref
+
+    tree = _tree("<Sequence><AlwaysSuccess/><Fallback><AlwaysFailure/></Fallback></Sequence>")
+    stats = TreeStatistics(tree)
+    assert await tree.tick_exactly_once() is FAILURE
+    stats.close()
+    node_class = weakref.ref(type(tree.root))  # (nodes have no weakref slot; their class
+    del tree, stats  # lives as long as they do)
+    gc.collect()
+    assert node_class() is None
