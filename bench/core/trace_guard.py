@@ -2,7 +2,11 @@
 status traces of many random trees of built-in nodes.
 
 Run: ``.venv/bin/python -m bench.core.trace_guard record FILE`` before a change,
-``... check FILE`` after it. Each tree mixes every built-in control node and
+``... check FILE`` after it. ``--quiet`` attaches no listener (the quiet short
+paths run) and records every node's status after each tick instead of the
+transitions; ``--no-unroll`` keeps composites on the shared tick
+(``aiobt.nodes.control.unrolled``), so ``record --quiet --no-unroll`` then
+``check --quiet`` compares the unrolled ticks with the shared ones. Each tree mixes every built-in control node and
 decorator with scripted leaves of every leaf base (condition, sync action,
 stateful action, async action that finishes at once or after loop turns),
 and random pre/post conditions attached as Python callables. The trace holds,
@@ -29,6 +33,7 @@ from aiobt import (
 from aiobt.core.conditions import NodeConditions
 from aiobt.core.errors import TreeLoadError
 from aiobt.core.node import TreeNode
+from aiobt.nodes.control import unrolled
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 LOG: list[str] = []
@@ -140,7 +145,7 @@ def attach_conditions(tree: Any, rng: random.Random) -> None:
         node.attach_conditions(NodeConditions(**kwargs))
 
 
-async def run_one(seed: int) -> list[Any]:
+async def run_one(seed: int, quiet: bool = False) -> list[Any]:
     rng = random.Random(seed)
     SCRIPTS.clear()
     CURSOR.clear()
@@ -156,7 +161,8 @@ async def run_one(seed: int) -> list[Any]:
         return [f"load error: {exc}"]
     if seed % 2:
         attach_conditions(tree, rng)
-    tree.add_status_listener(lambda t, n, p, s: LOG.append(f"{n.name}:{p.name}>{s.name}"))
+    if not quiet:
+        tree.add_status_listener(lambda t, n, p, s: LOG.append(f"{n.name}:{p.name}>{s.name}"))
     trace: list[Any] = []
     for tick in range(12):
         LOG.clear()
@@ -166,6 +172,8 @@ async def run_one(seed: int) -> list[Any]:
             status = f"error {type(exc).__name__}: {exc}"
         for _ in range(2):
             await asyncio.sleep(0)
+        if quiet:
+            LOG.extend(f"{n.name}={n.status.name}" for n in tree.nodes())
         trace.append([status, list(LOG)])
         if tick == 9:
             LOG.clear()
@@ -174,14 +182,18 @@ async def run_one(seed: int) -> list[Any]:
     return trace
 
 
-async def run_all(count: int) -> dict[str, Any]:
-    return {str(seed): await run_one(seed) for seed in range(count)}
+async def run_all(count: int, quiet: bool) -> dict[str, Any]:
+    return {str(seed): await run_one(seed, quiet) for seed in range(count)}
 
 
 def main() -> None:
-    mode, path = sys.argv[1], sys.argv[2]
-    count = int(sys.argv[3]) if len(sys.argv) > 3 else 1500
-    traces = asyncio.run(run_all(count))
+    flags = {arg for arg in sys.argv[1:] if arg.startswith("--")}
+    args = [arg for arg in sys.argv[1:] if not arg.startswith("--")]
+    mode, path = args[0], args[1]
+    count = int(args[2]) if len(args) > 2 else 1500
+    if "--no-unroll" in flags:
+        unrolled.MAX_CHILDREN = 0
+    traces = asyncio.run(run_all(count, "--quiet" in flags))
     if mode == "record":
         with open(path, "w") as out:
             json.dump(traces, out)
