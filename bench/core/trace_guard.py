@@ -2,16 +2,18 @@
 status traces of many random trees of built-in nodes.
 
 Run: ``.venv/bin/python -m bench.core.trace_guard record FILE`` before a change,
-``... check FILE`` after it. ``--quiet`` attaches no listener (the quiet short
-paths run) and records every node's status after each tick instead of the
-transitions; ``--no-unroll`` keeps composites on the shared tick
-(``aiobt.nodes.control.unrolled``), so ``record --quiet --no-unroll`` then
-``check --quiet`` compares the unrolled ticks with the shared ones. Each tree mixes every built-in control node and
+``... check FILE`` after it. Each tree mixes every built-in control node and
 decorator with scripted leaves of every leaf base (condition, sync action,
 stateful action, async action that finishes at once or after loop turns),
 and random pre/post conditions attached as Python callables. The trace holds,
 per tick, the root status, every status transition seen by a listener, every
 leaf hook call and condition call, and any error raised.
+
+``--quiet`` attaches no listener (the quiet short paths run) and records every
+node's status after each tick instead of the transitions; ``--no-unroll``
+keeps composites on the shared tick (``aiobt.nodes.control.unrolled``), so
+``record --quiet --no-unroll`` then ``check --quiet`` compares the unrolled
+ticks with the shared ones.
 """
 
 from __future__ import annotations
