@@ -4,11 +4,12 @@ Rows run along the field's longest boundary edge, ``row_spacing`` apart,
 starting half a spacing inside the headland. Each row is cut by the field
 (outer boundary minus cut-outs, even-odd rule) and shortened by the headland
 width at both ends. Row pieces are grouped into boustrophedon cells (a cut-out
-splits a row: a new cell starts), each cell is covered back and forth with
-straight turns, and cells follow one another nearest-first, joined by a corner
-along an already covered row, so the route does not cross a cut-out. Limit:
-when no single covered row links two cells (e.g. the arms of a U), the link
-is a straight leg that may leave the field.
+splits a row: a new cell starts). Each cell is covered back and forth, turning
+at a corner on the longer of two rows (not across a notch). Cells follow one
+another nearest-first, joined along covered rows (a corner along one row, or a
+chain of rows stepping where they overlap, e.g. between the arms of a U), so
+the route stays in the field and off the cut-outs. Limit: parts of a field
+whose rows share no such chain are joined by a straight leg.
 """
 
 from __future__ import annotations
@@ -163,6 +164,8 @@ def _ordered_swaths(
         for k, (y, x0, x1) in enumerate(cell if up else reversed(cell)):
             forward = east == (k % 2 == 0)
             swaths.append(((x0, y), (x1, y)) if forward else ((x1, y), (x0, y)))
+            if k:  # the turn: a corner on the longer of the two rows, not a diagonal
+                route.extend(_transfer(route[-1], swaths[-1][0], spans))
             route.extend(swaths[-1])
     return swaths, route
 
@@ -170,12 +173,69 @@ def _ordered_swaths(
 def _transfer(
     here: Point2D, there: Point2D, spans: dict[float, list[tuple[float, float]]]
 ) -> list[Point2D]:
-    """A corner between cells: along ``here``'s or ``there``'s row where one piece spans it."""
+    """The corners of a route between cells that stays on covered rows.
+
+    A single corner when one piece of ``here``'s or ``there``'s row spans both;
+    otherwise (e.g. from one arm of a U to the other) a route along row pieces,
+    stepping between pieces of neighbouring rows where they overlap, with the
+    fewest row changes (:func:`_through_rows`).
+    """
     low, high = sorted((here[0], there[0]))
     for y in (here[1], there[1]):
         if any(x0 - 1e-9 <= low and high <= x1 + 1e-9 for x0, x1 in spans.get(y, [])):
-            return [(there[0], y) if y == here[1] else (here[0], y)]
-    return []
+            corner = (there[0], y) if y == here[1] else (here[0], y)
+            return [] if corner in (here, there) else [corner]
+    return _through_rows(here, there, spans)
+
+
+def _through_rows(
+    here: Point2D, there: Point2D, spans: dict[float, list[tuple[float, float]]]
+) -> list[Point2D]:
+    """Breadth-first over row pieces: a piece links to the pieces of the next row up
+    or down (one row spacing away) that overlap it, stepping across inside the
+    overlap. Empty if ``here`` and ``there`` share no such chain (a straight leg)."""
+    ys = sorted(spans)
+    step = min((b - a for a, b in itertools.pairwise(ys)), default=math.inf) * 1.5
+
+    def piece_at(point: Point2D) -> tuple[int, int] | None:
+        for row, y in enumerate(ys):
+            if abs(y - point[1]) < 1e-9:
+                for k, (x0, x1) in enumerate(spans[y]):
+                    if x0 - 1e-9 <= point[0] <= x1 + 1e-9:
+                        return row, k
+        return None
+
+    start, goal = piece_at(here), piece_at(there)
+    if start is None or goal is None:
+        return []
+    came: dict[tuple[int, int], tuple[int, int] | None] = {start: None}
+    frontier = [start]
+    while frontier and goal not in came:
+        reached = []
+        for row, k in frontier:
+            x0, x1 = spans[ys[row]][k]
+            for other in (row - 1, row + 1):
+                if not 0 <= other < len(ys) or abs(ys[other] - ys[row]) > step:
+                    continue
+                for j, (a, b) in enumerate(spans[ys[other]]):
+                    if (other, j) not in came and max(x0, a) <= min(x1, b):
+                        came[other, j] = (row, k)
+                        reached.append((other, j))
+        frontier = reached
+    if goal not in came:
+        return []
+    chain = [goal]
+    while (previous := came[chain[-1]]) is not None:
+        chain.append(previous)
+    chain.reverse()
+    corners: list[Point2D] = []
+    x = here[0]
+    for (row, k), (other, j) in itertools.pairwise(chain):
+        (x0, x1), (a, b) = spans[ys[row]][k], spans[ys[other]][j]
+        x = min(max(x, max(x0, a)), min(x1, b))  # into the overlap
+        corners += [(x, ys[row]), (x, ys[other])]
+    corners.append((there[0], ys[goal[0]]))
+    return [p for p in corners if math.dist(p, here) > 1e-9 and math.dist(p, there) > 1e-9]
 
 
 def _entry(cell: list[Row], up: bool, east: bool) -> Point2D:

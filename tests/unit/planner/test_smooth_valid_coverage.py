@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION, points_cost
 from aiobt_services.planner.coverage import CoverageError, CoverageParams, plan_coverage
@@ -122,3 +124,63 @@ def test_bad_fields_get_their_error(polygons: list[list[tuple[float, float]]], r
     with pytest.raises(CoverageError) as err:
         plan_coverage(polygons, CoverageParams(0.5, 0.5))
     assert err.value.reason == reason
+
+
+@pytest.mark.parametrize("turn", [0.0, 0.7])
+def test_coverage_of_a_u_shaped_field_stays_in_the_field(turn: float) -> None:
+    # rows run along the bottom edge; the arms' rows are split by the U's gap, so
+    # the arms are separate cells: going from one arm to the other must run
+    # through the field (along covered rows), not across the gap
+    c, s = math.cos(turn), math.sin(turn)
+    u = [(0.0, 0.0), (10.0, 0.0), (10.0, 6.0), (7.0, 6.0), (7.0, 2.0), (3.0, 2.0), (3.0, 6.0),
+         (0.0, 6.0)]  # fmt: skip
+    field = [(x * c - y * s, x * s + y * c) for x, y in u]
+    coverage = plan_coverage([field], CoverageParams(row_spacing=0.5, headland_width=0.5))
+    assert all(inside(field, x, y) for x, y, _ in coverage.path)
+    steps = np.hypot(*np.diff(np.array([p[:2] for p in coverage.path]), axis=0).T)
+    assert steps.max() <= 0.05 + 1e-9
+    arm_rows = {round(a[1] * c - a[0] * s, 6) for a, _ in coverage.swaths}  # local y
+    assert len(coverage.swaths) == 3 + 2 * 7  # 3 full rows, 7 rows split in two
+    assert len(arm_rows) == 10
+
+
+def _notched_field(steps: list[tuple[float, float]], width: float, across: bool) -> list[Point]:
+    """A rectilinear field: a straight base ``width`` long and a stepped far side,
+    ``steps`` being (run, depth) pairs along it: a U or a comb opening up, or with
+    ``across`` a spine at x = 0 and the steps as the right side (an E, an S-like
+    comb opening sideways). Rows run along the longest edge, whichever it is."""
+    far: list[Point] = []
+    position = 0.0
+    for run, depth in steps:
+        far += [(position, depth), (position + run, depth)]
+        position += run
+    if not across:  # base along x, the steps above it
+        return [(0.0, 0.0), (width, 0.0), *[(x * width / position, d) for x, d in reversed(far)]]
+    # base along x, a spine at x = 0, the steps as the right side's profile
+    height = 0.8 * width
+    profile = [(width * d / max(d for _, d in steps), y * height / position) for y, d in far]
+    return [(0.0, 0.0), *[(x, y) for x, y in profile], (0.0, height)]
+
+
+Point = tuple[float, float]
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    steps=st.lists(st.tuples(st.floats(1.5, 4.0), st.floats(2.0, 6.0)), min_size=2, max_size=5),
+    across=st.booleans(),
+    turn=st.floats(0.0, 2 * math.pi),
+    spacing=st.sampled_from([0.3, 0.5, 0.8]),
+)
+def test_coverage_routes_stay_in_notched_fields(
+    steps: list[tuple[float, float]], across: bool, turn: float, spacing: float
+) -> None:
+    width = 1.2 * max(sum(run for run, _ in steps), max(d for _, d in steps), 8.0)
+    field = _notched_field(steps, width, across)
+    c, s = math.cos(turn), math.sin(turn)
+    field = [(x * c - y * s, x * s + y * c) for x, y in field]
+    try:
+        coverage = plan_coverage([field], CoverageParams(row_spacing=spacing, headland_width=0.3))
+    except CoverageError:
+        return  # a field too small for a swath
+    assert all(inside(field, x, y) for x, y, _ in coverage.path)
