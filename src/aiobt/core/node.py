@@ -123,13 +123,18 @@ def own_copy(function: Callable[..., Any]) -> Any:
     by many classes keeps missing its caches (each call site sees many types).
     A class (or a node) given its own copy gets caches that see it alone.
     """
-    return types.FunctionType(
+    copy = types.FunctionType(
         function.__code__.replace(),
         function.__globals__,
         function.__name__,
         function.__defaults__,
         function.__closure__,
     )
+    copy.__kwdefaults__ = function.__kwdefaults__
+    copy.__qualname__ = function.__qualname__
+    copy.__doc__ = function.__doc__
+    copy.__dict__.update(function.__dict__)  # e.g. __wrapped__ of a decorated tick
+    return copy
 
 
 class TreeNode:

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from aiobt.core.leaves import ConditionNode, SyncActionNode
 from aiobt.core.node import TreeContext
 from aiobt.core.status import Status
@@ -46,3 +48,22 @@ async def test_a_class_gets_its_own_tick_code_when_a_tree_uses_it() -> None:
     assert Checks.calls == 1
     _build()
     assert Checks.__dict__["tick_sync"] is own  # copied once per class
+
+
+def test_a_copy_keeps_what_the_function_carries() -> None:
+    import functools
+
+    from aiobt.core.node import own_copy
+
+    def tick(self: object, *, factor: int = 2) -> int:
+        """Doc."""
+        return factor
+
+    wrapped: Any = functools.wraps(tick)(lambda self, *, factor=3: factor)
+    functions: list[Any] = [tick, wrapped]
+    for function in functions:
+        copy = own_copy(function)
+        assert copy.__code__ is not function.__code__
+        assert copy(None) == function(None)
+        assert (copy.__qualname__, copy.__doc__) == (function.__qualname__, function.__doc__)
+        assert copy.__dict__ == function.__dict__
