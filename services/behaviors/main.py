@@ -9,13 +9,17 @@ Serves the actions ``spin``, ``backup``, ``drive_on_heading``, ``wait`` and
 from __future__ import annotations
 
 import argparse
-import asyncio
 import logging
 
-from aiobt.transport import BusSettings, add_bus_arguments, open_bus
-from aiobt_services._cli import positive, run_service, stop_on_signals, unless_stopped
-from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
-from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
+from aiobt.core.clock import Clock
+from aiobt.transport import Bus, add_bus_arguments
+from aiobt_services._cli import positive, run_service
+from aiobt_services.controller.robot_io import (
+    add_clock_arguments,
+    add_local_costmap_arguments,
+    local_costmap_from,
+    serve_on_clock,
+)
 
 from .base import Safety
 from .service import BehaviorOptions, BehaviorService
@@ -41,45 +45,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=0.5,
         help="stale odometry, s (default: %(default)s)",
     )
-    add("--robot-radius", type=positive, default=0.22, help="m (default: %(default)s)")
-    add(
-        "--costmap-size",
-        type=positive,
-        default=5.0,
-        help="local window side, m (default: %(default)s)",
-    )
+    add_local_costmap_arguments(group)
 
 
 async def serve(args: argparse.Namespace) -> None:
-    stop = stop_on_signals()
-    async with open_bus(BusSettings.from_args(args)) as bus:
-        stopper = asyncio.create_task(stop.wait())
-        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
-        if made is None:
-            return
-        clock, _ = made
-        costmap = LocalCostmap(
-            LocalCostmapParams(
-                size=args.costmap_size,
-                robot_radius=args.robot_radius,
-                inflation_radius=max(0.55, args.robot_radius),
-            )
+    def start(bus: Bus, clock: Clock) -> None:
+        safety = Safety(
+            simulate_ahead_time=args.simulate_ahead_time, pose_timeout=args.pose_timeout
         )
         options = BehaviorOptions(
-            cycle_period=1.0 / args.rate,
-            clock_timeout=args.clock_timeout,
-            safety=Safety(
-                simulate_ahead_time=args.simulate_ahead_time, pose_timeout=args.pose_timeout
-            ),
+            cycle_period=1.0 / args.rate, clock_timeout=args.clock_timeout, safety=safety
         )
-        BehaviorService(bus, clock, costmap, options).start()
-        bus.declare_token("nodes/behaviors")
-        log.info(
-            "behaviors up on namespace '%s' (%s time)",
-            bus.namespace,
-            "sim" if args.sim_time else "wall",
-        )
-        await stopper
+        BehaviorService(bus, clock, local_costmap_from(args), options).start()
+
+    await serve_on_clock(args, "behaviors", start)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -11,22 +11,16 @@ publishes ``{ns}/cmd_vel`` and ``{ns}/tracking_feedback``; reads
 from __future__ import annotations
 
 import argparse
-import asyncio
 import logging
 from dataclasses import replace
 
-from aiobt.transport import BusSettings, add_bus_arguments, open_bus
-from aiobt_services._cli import (
-    non_negative,
-    positive,
-    run_service,
-    stop_on_signals,
-    unless_stopped,
-)
+from aiobt.core.clock import Clock
+from aiobt.transport import Bus, add_bus_arguments
+from aiobt_services._cli import non_negative, positive, run_service
 
 from .dwb import DWBController, DWBParams
-from .local_costmap import LocalCostmap, LocalCostmapParams
-from .robot_io import add_clock_arguments, make_clock
+from .robot_io import add_clock_arguments, add_local_costmap_arguments, serve_on_clock
+from .robot_io import local_costmap_from as costmap_from
 from .rpp import RegulatedPurePursuit, RPPParams
 from .service import ControllerService, ServiceOptions
 from .session import ControllerConfig
@@ -65,14 +59,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=0.0,
         help="CONTROLLER_TIMED_OUT after this long, s; 0: no limit (default: %(default)s)",
     )
-    add("--robot-radius", type=positive, default=0.22, help="m (default: %(default)s)")
-    add("--inflation-radius", type=positive, default=0.55, help="m (default: %(default)s)")
-    add(
-        "--costmap-size",
-        type=positive,
-        default=5.0,
-        help="local window side, m (default: %(default)s)",
-    )
+    add_local_costmap_arguments(group)
 
 
 def config_from(args: argparse.Namespace) -> ControllerConfig:
@@ -89,36 +76,12 @@ def config_from(args: argparse.Namespace) -> ControllerConfig:
     return config
 
 
-def costmap_from(args: argparse.Namespace) -> LocalCostmap:
-    return LocalCostmap(
-        LocalCostmapParams(
-            size=args.costmap_size,
-            robot_radius=args.robot_radius,
-            inflation_radius=max(args.inflation_radius, args.robot_radius),
-        )
-    )
-
-
 async def serve(args: argparse.Namespace) -> None:
-    stop = stop_on_signals()
-    async with open_bus(BusSettings.from_args(args)) as bus:
-        stopper = asyncio.create_task(stop.wait())
-        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
-        if made is None:
-            return
-        clock, _ = made
-        service = ControllerService(
-            bus, clock, config_from(args), costmap_from(args), ServiceOptions(args.clock_timeout)
-        )
-        service.start()
-        bus.declare_token("nodes/controller")
-        log.info(
-            "controller up on namespace '%s' at %g Hz (%s time)",
-            bus.namespace,
-            args.rate,
-            "sim" if args.sim_time else "wall",
-        )
-        await stopper
+    def start(bus: Bus, clock: Clock) -> None:
+        options = ServiceOptions(args.clock_timeout)
+        ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
+
+    await serve_on_clock(args, "controller", start, f" at {args.rate:g} Hz")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -11,13 +11,15 @@ import argparse
 import asyncio
 import logging
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 from aiobt.core.clock import Clock, ManualClock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
+from aiobt_services._cli import positive, stop_on_signals, unless_stopped
 
 from .geometry import STOP, Pose2D, Velocity
-from .local_costmap import LocalCostmap
+from .local_costmap import LocalCostmap, LocalCostmapParams
 from .session import RobotState
 
 if TYPE_CHECKING:
@@ -81,6 +83,49 @@ def add_clock_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="SECONDS",
         help="wall seconds without clock progress before a goal fails (default: %(default)s)",
     )
+
+
+def add_local_costmap_arguments(group: argparse._ArgumentGroup) -> None:
+    """The local costmap's options (controller and behaviors)."""
+    add = group.add_argument
+    add("--robot-radius", type=positive, default=0.22, help="m (default: %(default)s)")
+    add("--inflation-radius", type=positive, default=0.55, help="m (default: %(default)s)")
+    add(
+        "--costmap-size",
+        type=positive,
+        default=5.0,
+        help="local window side, m (default: %(default)s)",
+    )
+
+
+def local_costmap_from(args: argparse.Namespace) -> LocalCostmap:
+    return LocalCostmap(
+        LocalCostmapParams(
+            size=args.costmap_size,
+            robot_radius=args.robot_radius,
+            inflation_radius=max(args.inflation_radius, args.robot_radius),
+        )
+    )
+
+
+async def serve_on_clock(
+    args: argparse.Namespace, name: str, start: Callable[[Bus, Clock], None], detail: str = ""
+) -> None:
+    """Open the bus, wait for the clock (``--sim-time``), ``start(bus, clock)``, announce
+    ``nodes/{name}``, then run until SIGINT/SIGTERM."""
+    from aiobt.transport import BusSettings, open_bus
+
+    stop = stop_on_signals()
+    async with open_bus(BusSettings.from_args(args)) as bus:
+        stopper = asyncio.create_task(stop.wait())
+        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
+        if made is None:
+            return
+        start(bus, made[0])
+        bus.declare_token(f"nodes/{name}")
+        time = "sim" if args.sim_time else "wall"
+        log.info("%s up on namespace '%s'%s (%s time)", name, bus.namespace, detail, time)
+        await stopper
 
 
 async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower | None]:
