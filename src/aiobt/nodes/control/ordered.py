@@ -140,7 +140,7 @@ def _ordered_walk(proceed: Status, stop: Status, yields: bool, write: bool) -> A
             self._status = RUNNING
             return RUNNING
         if status is stop:
-            _reset(children, True)
+            reset_from(children, 0)
             self._status = stop
             return stop
         self._status = RUNNING  # what BT.CPP's node shows during its tick
@@ -283,15 +283,8 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
         while True:
             if status is proceed:
                 all_skipped = False
-            elif status is RUNNING:  # reset every other child, in order (BT.CPP's haltChild)
-                # (those before it returned NEXT or were reset when skipped: none runs)
-                running = children[index]
-                for other in children:
-                    if other is running:
-                        break
-                    other._status = IDLE
-                if index + 1 < len(children):
-                    reset_all(children[index + 1 :])
+            elif status is RUNNING:
+                _reset_around(children, index)
                 self._status = RUNNING
                 return RUNNING
             elif status is stop:
@@ -307,7 +300,7 @@ def _reactive_walk(proceed: Status, stop: Status, write: bool) -> Any:
             if index == len(children):
                 break
             status = children[index].tick_sync()
-        _reset(children, True)
+        reset_from(children, 0)
         if all_skipped:
             self._status = RUNNING  # BT.CPP: a SKIPPED result leaves the node RUNNING
             return SKIPPED
@@ -335,20 +328,17 @@ class ReactiveComposite(WalkedComposite):
         return _reactive_walk(cls.NEXT, cls.STOP, write)
 
     def _on_running(self, child: TreeNode) -> None:
-        """(The short path) ``child`` is RUNNING: reset every other child, in
-        order (BT.CPP's haltChild); those before it returned NEXT, a later one
-        may be RUNNING."""
-        after = False
-        for other in self.children:
-            if after:
-                if other._status is RUNNING:
-                    other.halt_sync()
-                else:
-                    other._status = IDLE
-            elif other is child:
-                after = True
-            else:
-                other._status = IDLE
+        """(The short path) ``child`` is RUNNING: reset every other child."""
+        _reset_around(self.children, self.children.index(child))
+
+
+def _reset_around(children: list[TreeNode], index: int) -> None:
+    """The child at ``index`` is RUNNING and nobody listens: reset every other
+    child, in order (BT.CPP's haltChild). Those before it returned NEXT or were
+    reset when skipped, so none runs; a later one may."""
+    for child in children[:index]:
+        child._status = IDLE
+    reset_from(children, index + 1)
 
 
 def _reset(children: list[TreeNode], quiet: bool) -> None:
@@ -357,11 +347,12 @@ def _reset(children: list[TreeNode], quiet: bool) -> None:
     A child is RUNNING here only if it was skipped after setting itself
     RUNNING (a control node keeps that status, as in BT.CPP): it is halted.
     """
+    if quiet:
+        reset_from(children, 0)
+        return
     for child in children:
         status = child._status
         if status is RUNNING:
             child.halt_sync()
-        elif quiet:
-            child._status = IDLE
         elif status is not IDLE:
             child._set_status(IDLE)

@@ -9,8 +9,8 @@ swapped for a subclass of its own class (same name) holding that tick, so
 every caller still dispatches through ``child.tick_sync()`` and class-level
 wrappers (statistics, benchmark counters) keep working.
 
-The unrolled tick is the class's short path (``_short_path`` /
-``_reactive_short_path`` in :mod:`ordered`) written out: it applies when the
+The unrolled tick is the class's short path (``_short_path`` in
+:mod:`ordered`) written out: it applies when the
 walk starts at the first child, nobody listens to status changes and no
 pre/post conditions are attached, and ends on a child returning RUNNING or
 ``STOP`` after children that all returned ``NEXT``, or with every child
