@@ -19,13 +19,18 @@ from aiobt.transport import Bus, add_bus_arguments
 from aiobt_services._cli import non_negative, positive, run_service
 
 from .dwb import DWBController, DWBParams
-from .robot_io import add_clock_arguments, add_local_costmap_arguments, serve_on_clock
-from .robot_io import local_costmap_from as costmap_from
+from .robot_io import (
+    add_clock_arguments,
+    add_local_costmap_arguments,
+    local_costmap_from,
+    serve_on_clock,
+)
 from .rpp import RegulatedPurePursuit, RPPParams
 from .service import ControllerService, ServiceOptions
 from .session import ControllerConfig
 
 log = logging.getLogger("aiobt_services.controller.main")
+costmap_from = local_costmap_from  # the local costmap these options describe
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
