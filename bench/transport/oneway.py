@@ -10,7 +10,8 @@ This process measures arrival in its event loop
 (raw subscribers hop into the loop like any asyncio program; arrival is taken
 before the payload is parsed) and, for reference, arrival in the raw
 subscriber's Zenoh thread and after the raw subscriber's ``json.loads``.
-Ratios are against raw -> raw.
+Ratios are against raw -> raw. ``--repeat K`` runs K times and summarises the
+ratios (median, range, how many runs met the issue's 1.2x target).
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from aiobt.msgs import PoseStamped
 from aiobt.testing.bus import running_router, spawn_service
 from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt.transport.bridge import callback
+from bench.transport.summary import load, summarize
 
 NS = "oneway"
 
@@ -75,7 +77,8 @@ def listen(bus: Bus) -> dict[str, list[float]]:
     return latency
 
 
-async def run(endpoint: str, count: int, rotate: bool = False) -> str:
+async def run(endpoint: str, count: int, rotate: bool = False) -> dict[str, list[float]]:
+    """One run: the latencies of every stream."""
     settings = BusSettings(connect=(endpoint,), namespace=NS, connect_timeout=10.0)
     async with open_bus(settings) as bus:
         latency = listen(bus)
@@ -97,6 +100,10 @@ async def run(endpoint: str, count: int, rotate: bool = False) -> str:
         finally:
             peer.cleanup()
         await asyncio.sleep(0.2)
+    return latency
+
+
+def report(latency: dict[str, list[float]]) -> str:
     base = statistics.median(latency["raw_raw"])
     lines = [
         "| publisher -> subscriber | n | median µs | p90 µs | vs raw -> raw |",
@@ -111,6 +118,14 @@ async def run(endpoint: str, count: int, rotate: bool = False) -> str:
     return "\n".join(lines)
 
 
+def ratios(latency: dict[str, list[float]]) -> dict[str, float]:
+    base = statistics.median(latency["raw_raw"])
+    return {
+        name: statistics.median(latency[name]) / base
+        for name in ("raw_typed", "typed_typed", "raw_raw + json.loads (reference)")
+    }
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--count", type=int, default=8000, help="messages, all streams")
@@ -119,9 +134,22 @@ def main() -> None:
         action="store_true",
         help="shuffle the round-robin order every cycle (no stream always follows the same)",
     )
+    parser.add_argument(
+        "--repeat", type=int, default=1, help="measure this many times (a new peer each run)"
+    )
     args = parser.parse_args()
     with running_router() as (_, endpoint):
-        print(asyncio.run(run(endpoint, args.count, args.rotate)))
+        first = asyncio.run(run(endpoint, args.count, args.rotate))
+        print(report(first))
+        if args.repeat > 1:
+            runs = {name: [value] for name, value in ratios(first).items()}
+            loads = [load()]
+            for _ in range(args.repeat - 1):
+                again = ratios(asyncio.run(run(endpoint, args.count, args.rotate)))
+                for name, value in again.items():
+                    runs[name].append(value)
+                loads.append(load())
+            print(f"\n{summarize(runs, {'raw_typed': 1.2, 'typed_typed': 1.2}, loads)}")
 
 
 if __name__ == "__main__":
