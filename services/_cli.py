@@ -8,13 +8,14 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import logging
 import math
 import signal
-from collections.abc import Callable, Coroutine
+from collections.abc import AsyncIterator, Callable, Coroutine
 from typing import Any, TypeVar
 
-from aiobt.transport import BusConfigError, BusUnavailable
+from aiobt.transport import Bus, BusConfigError, BusSettings, BusUnavailable, open_bus
 
 T = TypeVar("T")
 
@@ -71,6 +72,21 @@ async def unless_stopped(work: Coroutine[Any, Any, T], stopper: asyncio.Task[Any
         task.cancel()
         return None
     return task.result()
+
+
+@contextlib.asynccontextmanager
+async def open_bus_unless_stopped(
+    settings: BusSettings, stop: asyncio.Event
+) -> AsyncIterator[Bus | None]:
+    """The service's bus, or None if ``stop`` (SIGINT/SIGTERM) comes while it is still
+    opening: a service waiting for its router stops when asked to."""
+    async with contextlib.AsyncExitStack() as stack:
+        stopper = asyncio.ensure_future(stop.wait())
+        try:
+            bus = await unless_stopped(stack.enter_async_context(open_bus(settings)), stopper)
+        finally:
+            stopper.cancel()
+        yield bus
 
 
 def run_service(main: Coroutine[Any, Any, None], log: logging.Logger, name: str) -> int:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 
 from aiobt.core.clock import Clock, ManualClock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
-from aiobt_services._cli import positive, stop_on_signals, unless_stopped
+from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
 
 from .geometry import STOP, Pose2D, Velocity
 from .local_costmap import LocalCostmap, LocalCostmapParams
@@ -113,10 +113,12 @@ async def serve_on_clock(
 ) -> None:
     """Open the bus, wait for the clock (``--sim-time``), ``start(bus, clock)``, announce
     ``nodes/{name}``, then run until SIGINT/SIGTERM."""
-    from aiobt.transport import BusSettings, open_bus
+    from aiobt.transport import BusSettings
 
     stop = stop_on_signals()
-    async with open_bus(BusSettings.from_args(args)) as bus:
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
         stopper = asyncio.create_task(stop.wait())
         made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
         if made is None:

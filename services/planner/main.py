@@ -13,8 +13,14 @@ from __future__ import annotations
 import argparse
 import logging
 
-from aiobt.transport import BusSettings, add_bus_arguments, open_bus
-from aiobt_services._cli import non_negative, positive, run_service, stop_on_signals
+from aiobt.transport import BusSettings, add_bus_arguments
+from aiobt_services._cli import (
+    non_negative,
+    open_bus_unless_stopped,
+    positive,
+    run_service,
+    stop_on_signals,
+)
 from aiobt_services.costmap import InflationParams, ObstacleParams
 
 from .actions import ActionOptions, PlannerActions
@@ -85,7 +91,9 @@ def build(args: argparse.Namespace) -> tuple[GlobalCostmap, PlannerActions]:
 async def serve(args: argparse.Namespace) -> None:
     stop = stop_on_signals()
     world, actions = build(args)
-    async with open_bus(BusSettings.from_args(args)) as bus:
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
         PlannerService(bus, world, actions).start()
         log.info("planner up on namespace '%s'", bus.namespace)
         await stop.wait()

@@ -28,8 +28,8 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
-from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
-from aiobt_services._cli import run_service, stop_on_signals
+from aiobt.transport import Bus, BusSettings, add_bus_arguments
+from aiobt_services._cli import open_bus_unless_stopped, run_service, stop_on_signals
 
 from . import convert, messages
 from .mapfile import MapError, load_map
@@ -94,7 +94,9 @@ def _serve_steps(bus: Bus, runner: SimRunner) -> None:
 
 async def serve(args: argparse.Namespace, sim: Simulation) -> None:
     stop = stop_on_signals()
-    async with open_bus(BusSettings.from_args(args)) as bus:
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
         runner = SimRunner(

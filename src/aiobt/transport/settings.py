@@ -72,14 +72,21 @@ class BusSettings:
     def zenoh_config(self) -> zenoh.Config:
         """The Zenoh config: the file if any, then these settings on top."""
         config = self._base_config()
-        mode = self.mode or (None if self.effective_config_file else "client")
+        # what the file leaves unset reads as null: our defaults fill it, not Zenoh's
+        # (Zenoh would make a peer that scouts by multicast, and a client whose
+        # credentials the router refuses would then run unconnected, as a peer)
+        mode = self.mode or ("client" if _unset(config, "mode") else None)
         _insert(config, "mode", mode)
-        connect = self.connect or ((DEFAULT_ROUTER,) if mode == "client" else ())
+        mode = mode or json.loads(config.get_json("mode"))
+        if _unset(config, "connect/endpoints"):
+            connect = self.connect or ((DEFAULT_ROUTER,) if mode == "client" else ())
+        else:
+            connect = self.connect
         _insert(config, "connect/endpoints", list(connect) or None)
         _insert(config, "listen/endpoints", list(self.listen) or None)
         _insert(config, "transport/link/tx/lease", self.lease_ms)
         _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
-        if not self.effective_config_file:
+        if _unset(config, "scouting/multicast/enabled"):
             _insert(config, "scouting/multicast/enabled", False)
         for key, value in self.extra.items():
             _insert(config, key, value)
@@ -95,6 +102,11 @@ class BusSettings:
             return zenoh.Config.from_file(path)
         except zenoh.ZError as exc:
             raise BusConfigError(f"Zenoh config file {path}: {exc}") from None
+
+
+def _unset(config: zenoh.Config, key: str) -> bool:
+    """Whether ``key`` is null or empty in ``config`` (a config file did not set it)."""
+    return json.loads(config.get_json(key)) in (None, [], {})
 
 
 def _insert(config: zenoh.Config, key: str, value: object) -> None:

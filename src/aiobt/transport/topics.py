@@ -51,10 +51,14 @@ class Publisher(Generic[M]):
         return True
 
     async def wait_for_subscribers(self, timeout: float) -> bool:  # noqa: ASYNC109
-        """Wait until a subscriber matches, so that a first message is not lost."""
-        async with asyncio.timeout(timeout):
-            while not self.matched:  # noqa: ASYNC110 - zenoh's matching listener is a thread
-                await asyncio.sleep(0.01)
+        """Wait until a subscriber matches, so that a first message is not lost; False if
+        none did within ``timeout`` seconds (as ``ActionClient.wait_for_server``)."""
+        try:
+            async with asyncio.timeout(timeout):
+                while not self.matched:  # noqa: ASYNC110 - zenoh's matching listener is a thread
+                    await asyncio.sleep(0.01)
+        except TimeoutError:
+            return False
         return True
 
     def close(self) -> None:

@@ -86,7 +86,7 @@ async def test_drive_into_wall_stops_and_bumps(
     pose = bus.subscribe("pose", PoseStamped)
     await start_robot(spawn, bus, bus_settings, "--speed", "4")
     cmd = bus.publisher("cmd_vel", Twist)
-    await cmd.wait_for_subscribers(5.0)
+    assert await cmd.wait_for_subscribers(5.0)
     forward = Twist(linear=Vector3(x=0.8))
 
     async def drive() -> BumperEvent:
@@ -164,7 +164,7 @@ async def test_stepped_mode_moves_only_on_request(
     assert latest is not None
     assert latest.clock == pytest.approx(1.0)
     cmd = bus.publisher("cmd_vel", Twist)
-    await cmd.wait_for_subscribers(5.0)
+    assert await cmd.wait_for_subscribers(5.0)
     cmd.put(Twist(linear=Vector3(x=0.5)))
     await asyncio.sleep(0.3)
     await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0)
@@ -183,7 +183,7 @@ async def test_stepped_mode_moves_only_on_request(
     assert moved is not None
     assert (moved.x, moved.y, moved.yaw) == pytest.approx((-1.0, -1.0, 0.5), abs=1e-3)
     initial = bus.publisher("initialpose", PoseStamped)
-    await initial.wait_for_subscribers(5.0)
+    assert await initial.wait_for_subscribers(5.0)
     initial.put(PoseStamped.from_xy_yaw(1.0, 1.0))
     await asyncio.sleep(0.3)
     await bus.call("step", StepRequest(seconds=0.1), StepReply)

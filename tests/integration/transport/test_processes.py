@@ -17,7 +17,13 @@ from pathlib import Path
 import pytest
 
 from aiobt.msgs import GoalState, PoseStamped, Twist, Wait
-from aiobt.testing.bus import ServiceProcess, running_router, spawn_service, start_router
+from aiobt.testing.bus import (
+    ServiceProcess,
+    free_endpoint,
+    running_router,
+    spawn_service,
+    start_router,
+)
 from aiobt.transport import (
     ActionClient,
     Bus,
@@ -113,7 +119,9 @@ async def test_goal_from_the_zenoh_command_line(bus: Bus, router_endpoint: str) 
     assert goal.yaw == pytest.approx(0.5)
 
 
-def test_user_password_auth(tmp_path: Path) -> None:
+def test_user_password_auth(tmp_path: Path, spawn: Spawn) -> None:
+    """The documented setup: credentials in a config file, no other flag (mode, scouting
+    and the router endpoint come from aiobt's defaults, not Zenoh's peer defaults)."""
     (tmp_path / "users.txt").write_text("robot:s3cret\n")
     users = {"dictionary_file": str(tmp_path / "users.txt")}
     (tmp_path / "router.json5").write_text(json.dumps({"transport": {"auth": {"usrpwd": users}}}))
@@ -124,20 +132,47 @@ def test_user_password_auth(tmp_path: Path) -> None:
         path.write_text(json.dumps({"transport": {"auth": {"usrpwd": usrpwd}}}))
         return str(path)
 
-    async def can_talk(endpoint: str, config: str | None) -> bool:
-        settings = BusSettings(
-            connect=(endpoint,), config_file=config, connect_timeout=1.0, mode="client"
-        )
+    async def outcome(endpoint: str, config: str | None) -> str:
+        settings = BusSettings(connect=(endpoint,), config_file=config, connect_timeout=1.0)
         try:
             async with open_bus(settings) as bus:
-                return bus.session.info.routers_zid() != []
+                return "talks" if bus.session.info.routers_zid() else "open but unconnected"
         except BusUnavailable:
-            return False
+            return "refused"
 
     with running_router(extra_args=["--config", str(tmp_path / "router.json5")]) as (_, ep):
-        assert asyncio.run(can_talk(ep, client_config("robot", "s3cret")))
-        assert not asyncio.run(can_talk(ep, client_config("robot", "wrong")))
-        assert not asyncio.run(can_talk(ep, None))
+        assert asyncio.run(outcome(ep, client_config("robot", "s3cret"))) == "talks"
+        assert asyncio.run(outcome(ep, client_config("robot", "wrong"))) == "refused"
+        assert asyncio.run(outcome(ep, None)) == "refused"
+        # a service process with a wrong password gives up and says why (exit code 1)
+        service = spawn(
+            [
+                "-m",
+                "aiobt.cli.main",
+                "planner",
+                "--connect",
+                ep,
+                "--config",
+                client_config("robot", "wrong"),
+                "--connect-timeout",
+                "1",
+            ]
+        )
+        service.popen.wait(timeout=30)
+        assert service.popen.returncode == 1, service.output()
+        assert "cannot open the Zenoh session" in service.output()
+        assert "planner up" not in service.output()
+
+
+def test_a_service_waiting_for_its_router_stops_on_sigterm(spawn: Spawn) -> None:
+    endpoint = free_endpoint()  # nobody listens there
+    service = spawn(["-m", "aiobt.cli.main", "planner", "--connect", endpoint])
+    assert service.wait_for_output("Zenoh not reachable", timeout=30.0), service.output()
+    started = time.monotonic()
+    os.kill(service.pid, signal.SIGTERM)
+    service.popen.wait(timeout=10)
+    assert service.popen.returncode == 0, service.output()
+    assert time.monotonic() - started < 3.0
 
 
 def test_process_with_open_entities_exits_cleanly(router_endpoint: str) -> None:
@@ -195,12 +230,12 @@ async def test_sessions_reconnect_after_a_router_restart() -> None:
         async with open_bus(settings) as talker, open_bus(settings) as listener:
             sub = listener.subscribe("cmd_vel", Twist)
             pub = talker.publisher("cmd_vel", Twist)
-            await pub.wait_for_subscribers(5.0)
+            assert await pub.wait_for_subscribers(5.0)
             pub.put(Twist.planar(1.0, 0.0))
             assert (await sub.next(timeout=5.0)).linear.x == 1.0
             router.kill()
             router, _ = start_router(endpoint)
-            await pub.wait_for_subscribers(10.0)
+            assert await pub.wait_for_subscribers(10.0)
             pub.put(Twist.planar(2.0, 0.0))
             assert (await sub.next(timeout=5.0)).linear.x == 2.0
     finally:

@@ -60,6 +60,43 @@ def test_config_file_from_zenoh_config_env_and_flags_on_top(
     assert json.loads(overridden.get_json("connect/endpoints")) == ["tcp/127.0.0.1:9"]
 
 
+def test_what_a_config_file_leaves_unset_gets_our_defaults_not_zenohs(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("ZENOH_CONFIG", raising=False)
+
+    def config_of(text: str, *argv: str) -> dict[str, object]:
+        path = tmp_path / "zenoh.json5"
+        path.write_text(text)
+        config = parse("--config", str(path), *argv).zenoh_config()
+        keys = ("mode", "connect/endpoints", "scouting/multicast/enabled")
+        return {key: json.loads(config.get_json(key)) for key in keys}
+
+    # only credentials (the documented client.json5): a client of the default router,
+    # no multicast; Zenoh alone would make a scouting peer that runs unconnected
+    credentials = '{transport: {auth: {usrpwd: {user: "robot", password: "s3cret"}}}}'
+    assert config_of(credentials) == {
+        "mode": "client",
+        "connect/endpoints": ["tcp/127.0.0.1:7447"],
+        "scouting/multicast/enabled": False,
+    }
+    # what the file sets is kept, and flags still go on top
+    chosen = (
+        '{mode: "peer", connect: {endpoints: ["tcp/127.0.0.1:9"]},'
+        " scouting: {multicast: {enabled: true}}}"
+    )
+    assert config_of(chosen) == {
+        "mode": "peer",
+        "connect/endpoints": ["tcp/127.0.0.1:9"],
+        "scouting/multicast/enabled": True,
+    }
+    assert config_of('{connect: {endpoints: ["tcp/127.0.0.1:9"]}}')["connect/endpoints"] == [
+        "tcp/127.0.0.1:9"
+    ]
+    flagged = config_of(chosen, "--mode", "client", "--connect", "tcp/127.0.0.1:8")
+    assert (flagged["mode"], flagged["connect/endpoints"]) == ("client", ["tcp/127.0.0.1:8"])
+
+
 def test_bad_settings_name_the_flag_or_file(tmp_path: Path) -> None:
     with pytest.raises(BusConfigError, match="--namespace"):
         BusSettings(namespace="robot/*")

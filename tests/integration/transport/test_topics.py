@@ -18,12 +18,20 @@ async def test_publish_subscribe_between_two_sessions(bus: Bus, bus_settings: Bu
     sub = bus.subscribe("cmd_vel", Twist)
     async with open_bus(bus_settings) as other:
         pub = other.publisher("cmd_vel", Twist)
-        await pub.wait_for_subscribers(5.0)
+        assert await pub.wait_for_subscribers(5.0)
         for i in range(5):
             pub.put(Twist.planar(0.1 * i, -0.1 * i))
         received = [await sub.next(timeout=5.0) for _ in range(5)]
     assert [t.linear.x for t in received] == pytest.approx([0.0, 0.1, 0.2, 0.3, 0.4])
     assert sub.latest == received[-1]
+
+
+async def test_waiting_for_subscribers_says_whether_one_came(bus_settings: BusSettings) -> None:
+    async with open_bus(bus_settings) as bus:
+        lonely = bus.publisher("nobody_listens", Twist)
+        assert await lonely.wait_for_subscribers(0.2) is False
+        bus.subscribe("nobody_listens", Twist)
+        assert await lonely.wait_for_subscribers(5.0) is True
 
 
 async def test_callback_runs_in_the_event_loop(bus: Bus, bus_settings: BusSettings) -> None:
@@ -36,7 +44,7 @@ async def test_callback_runs_in_the_event_loop(bus: Bus, bus_settings: BusSettin
     bus.subscribe("cmd_vel", Twist, callback=on_twist)
     async with open_bus(bus_settings) as other:
         pub = other.publisher("cmd_vel", Twist)
-        await pub.wait_for_subscribers(5.0)
+        assert await pub.wait_for_subscribers(5.0)
         pub.put(Twist.planar(0.5, 0.0))
         twist, in_loop = await asyncio.wait_for(got.get(), 5.0)
     assert twist.linear.x == 0.5
@@ -101,7 +109,7 @@ async def test_sim_clock_follower_drives_a_manual_clock(
     task = asyncio.create_task(sleeper())
     async with open_bus(bus_settings) as sim:
         pub = sim.publisher("clock", Clock)
-        await pub.wait_for_subscribers(5.0)
+        assert await pub.wait_for_subscribers(5.0)
         pub.put(Clock(clock=1.0))
         assert await follower.wait_started(5.0) == 1.0
         assert not woke.is_set()
