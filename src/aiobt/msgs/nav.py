@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import reprlib
 import threading
 import zlib
 from enum import IntEnum
@@ -16,6 +17,7 @@ from aiobt.msgs._wire import identity_on_canonical
 from aiobt.msgs.geometry import Header, Point, Pose, PoseStamped, Twist
 
 MAX_MAP_CELLS = 100_000_000
+_CELL_TYPES = frozenset({int, float})  # exactly: bool (an int subclass) is not a cell
 
 
 class Odometry(Msg):
@@ -103,6 +105,25 @@ def _decode_cells(data: bytes, meta: MapMetaData) -> npt.NDArray[np.int8]:
     return array
 
 
+def _list_cells(value: list[Any]) -> npt.NDArray[np.int8]:
+    """The cells of ``data`` given as a plain list: whole numbers in [-1, 100] (``100.0``
+    too); a ``ValueError`` names the first bad cell. Vectorised but the type scan."""
+    if not _CELL_TYPES.issuperset(map(type, value)):  # strings, None, bools, nested lists
+        index = next(i for i, cell in enumerate(value) if type(cell) not in _CELL_TYPES)
+        raise ValueError(f"cell {index} = {reprlib.repr(value[index])} is not an integer")
+    cells = np.asarray(value)  # int64, float64, or object for integers beyond 64 bits
+    if cells.dtype.kind == "f":
+        _refuse(cells != np.trunc(cells), value, "is not a whole number")  # NaN too
+    _refuse((cells < -1) | (cells > 100), value, "not in [-1, 100]")
+    return cells.astype(np.int8)
+
+
+def _refuse(bad: npt.NDArray[np.bool_], value: list[Any], reason: str) -> None:
+    if bad.any():
+        index = int(np.argmax(bad))
+        raise ValueError(f"cell {index} = {reprlib.repr(value[index])} {reason}")
+
+
 # the cells the ``data`` validator just decoded in this thread, with the data and
 # metadata they came from, for model_post_init (which runs right after it)
 _just_decoded = threading.local()
@@ -112,8 +133,8 @@ class OccupancyGrid(Msg):
     """A grid of int8 cells (-1 unknown, 0 free .. 100 occupied), row-major from the origin.
 
     On the wire ``data`` is the zlib-compressed cells, base64 in JSON; a plain list
-    of ints is accepted too. Inside, :attr:`array` is a read-only numpy view of
-    shape ``(height, width)``.
+    of whole numbers in [-1, 100] is accepted too. Inside, :attr:`array` is a
+    read-only numpy view of shape ``(height, width)``.
     """
 
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
@@ -125,10 +146,7 @@ class OccupancyGrid(Msg):
     @classmethod
     def _compress_list(cls, value: Any) -> Any:
         if isinstance(value, list):
-            cells = np.asarray(value)
-            if cells.size and (cells.min() < -128 or cells.max() > 127):
-                raise ValueError("cell values must be in [-1, 100]")
-            return zlib.compress(cells.astype(np.int8).tobytes())
+            return zlib.compress(_list_cells(value).tobytes())
         return value
 
     @field_validator("data")
