@@ -16,6 +16,9 @@ from aiobt.msgs._base import Msg
 from aiobt.msgs._wire import identity_on_canonical, in_place_check
 
 _QUATERNION_NORM_TOLERANCE = 0.01
+# a norm this close to 1 is float rounding of an already normalised quaternion:
+# dividing again would nudge it by an ulp on every decode (no exact round trips)
+_NORMALISED = 1e-12
 
 
 def yaw_to_quaternion(yaw: float) -> tuple[float, float, float, float]:
@@ -65,7 +68,7 @@ class Quaternion(Msg):
         norm = math.sqrt(self.x**2 + self.y**2 + self.z**2 + self.w**2)
         if abs(norm - 1.0) > _QUATERNION_NORM_TOLERANCE:
             raise ValueError(f"quaternion must have unit length, got norm {norm:.6g}")
-        if norm != 1.0:
+        if abs(norm - 1.0) > _NORMALISED:
             self.__dict__.update(x=self.x / norm, y=self.y / norm, z=self.z / norm, w=self.w / norm)
         return self
 
@@ -102,15 +105,27 @@ class _ShortPose(Msg):
     stamp: float = Field(default=0.0, ge=0.0)
 
 
+_SHORT_KEYS = frozenset(_ShortPose.model_fields)
+
+
+def _is_short_form(data: dict[Any, Any]) -> bool:
+    """A dict with ``x`` and no ``pose``, or any short-form key and neither ``header`` nor
+    ``pose``: the long form refuses all of these keys, so only short-form errors change
+    (they name a missing ``x``/``y`` instead of an "extra" key)."""
+    if "pose" in data:
+        return False
+    return "x" in data or ("header" not in data and not _SHORT_KEYS.isdisjoint(data))
+
+
 class PoseStamped(Msg):
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
     pose: Pose = Field(default_factory=Pose)
 
     @model_validator(mode="before")
     @classmethod
-    @identity_on_canonical  # a long form has no "x" (extra fields are refused)
+    @identity_on_canonical  # a long form has no short-form key (extra fields are refused)
     def _short_form(cls, data: Any) -> Any:
-        if isinstance(data, dict) and "x" in data and "pose" not in data:
+        if isinstance(data, dict) and _is_short_form(data):
             short = _ShortPose.model_validate(data)
             return {
                 "header": {"stamp": short.stamp, "frame_id": short.frame_id},

@@ -106,6 +106,61 @@ def test_bad_goals_are_refused_naming_the_field(payload: bytes, field: str) -> N
     assert f"'{field}'" in str(caught.value)
 
 
+@pytest.mark.parametrize(
+    ("payload", "field", "reason"),
+    [
+        (b'{"y": 2, "yaw": 0.5}', "x", "Field required"),
+        (b'{"yaw": 0.5}', "x", "Field required (and 1 more error(s))"),
+        (b'{"y": 2}', "x", "Field required"),
+        (b'{"x": 1, "yaw": 0.5}', "y", "Field required"),
+        (b'{"y": 2, "frame_id": "odom"}', "x", "Field required"),
+        (b'{"frame_id": "odom", "stamp": 1}', "x", "Field required (and 1 more error(s))"),
+    ],
+)
+def test_a_short_goal_missing_a_coordinate_names_it(
+    payload: bytes, field: str, reason: str
+) -> None:
+    with pytest.raises(MessageError) as caught:
+        decode(PoseStamped, payload, key="robot/goal_pose")
+    assert (caught.value.field, caught.value.reason) == (field, reason)
+    with pytest.raises(MessageError) as caught:  # inside a list of goals: the index too
+        decode(msgs.Goals, b"[" + payload + b"]", key="robot/goals")
+    assert caught.value.field == f"goals.0.{field}"
+
+
+@pytest.mark.parametrize(
+    ("payload", "field", "reason"),
+    [  # long forms (a "header" or "pose" key) keep pydantic's own errors
+        (b'{"pose": {}, "y": 2}', "y", "Extra inputs are not permitted"),
+        (b'{"header": {}, "yaw": 1}', "yaw", "Extra inputs are not permitted"),
+        (b'{"header": {"frame_id": 1}}', "header.frame_id", "Input should be a valid string"),
+        (b'{"pose": {"position": {"x": "a"}}}', "pose.position.x", None),
+        (
+            b'{"x": 1, "y": 2, "pose": {}}',
+            "x",
+            "Extra inputs are not permitted (and 1 more error(s))",
+        ),
+    ],
+)
+def test_long_form_errors_are_pydantics_own(payload: bytes, field: str, reason: str | None) -> None:
+    with pytest.raises(MessageError) as caught:
+        decode(PoseStamped, payload)
+    assert caught.value.field == field
+    if reason is not None:
+        assert caught.value.reason == reason
+
+
+def test_quaternions_read_back_equal_through_json() -> None:
+    """Normalising is done once: a normalised quaternion is not nudged again on decode."""
+    rng = np.random.default_rng(7)
+    for values in rng.uniform(-1.0, 1.0, size=(500, 4)):
+        values *= rng.uniform(0.995, 1.005) / np.linalg.norm(values)
+        q = msgs.Quaternion(x=values[0], y=values[1], z=values[2], w=values[3])
+        assert msgs.Quaternion.from_json(q.to_json()) == q
+        pose = msgs.Pose(orientation=q)
+        assert msgs.Pose.from_json(pose.to_json()) == pose
+
+
 def test_near_unit_quaternion_is_normalised() -> None:
     q = msgs.Quaternion(z=0.707, w=0.707)
     assert math.hypot(q.z, q.w) == pytest.approx(1.0)
