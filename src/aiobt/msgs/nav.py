@@ -1,4 +1,8 @@
-"""Navigation messages: odometry, scans, maps, paths, goals, battery."""
+"""Navigation messages: odometry, scans, maps, paths, goals, battery.
+
+Path and Goals read and write Nav2's ``;``-separated port strings
+(``from_bt_string``/``to_bt_string``, see :mod:`aiobt.msgs.strings`).
+"""
 
 from __future__ import annotations
 
@@ -6,7 +10,7 @@ import reprlib
 import threading
 import zlib
 from enum import IntEnum
-from typing import Any, Self
+from typing import Any, ClassVar, Self
 
 import numpy as np
 import numpy.typing as npt
@@ -202,8 +206,23 @@ class OccupancyGrid(Msg):
 
 
 class Path(Msg):
+    __bt_type_name__: ClassVar[str] = "nav_msgs::msg::Path"
+
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
     poses: list[PoseStamped] = Field(default_factory=list)
+
+    @classmethod
+    def from_bt_string(cls, text: str) -> Path:
+        """Nav2's ``stamp_ns;frame_id`` then 9 fields per pose; a
+        :class:`~aiobt.msgs.MessageError` names a bad field."""
+        from aiobt.msgs.strings import path_from_string  # strings imports this module
+
+        return path_from_string(text)
+
+    def to_bt_string(self) -> str:
+        from aiobt.msgs.strings import path_to_string
+
+        return path_to_string(self)
 
     def xy_array(self) -> npt.NDArray[np.float64]:
         """``(n, 2)`` array of the positions."""
@@ -215,8 +234,23 @@ class Path(Msg):
 class Goals(Msg):
     """A list of goal poses (``nav_msgs/Goals``); a bare JSON list is accepted too."""
 
+    __bt_type_name__: ClassVar[str] = "nav_msgs::msg::Goals"
+
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
     goals: list[PoseStamped] = Field(default_factory=list)
+
+    @classmethod
+    def from_bt_string(cls, text: str) -> Goals:
+        """Nav2's ``stamp_ns;frame_id`` then 9 fields per pose (or the poses alone); a
+        :class:`~aiobt.msgs.MessageError` names a bad field."""
+        from aiobt.msgs.strings import goals_from_string
+
+        return goals_from_string(text)
+
+    def to_bt_string(self) -> str:
+        from aiobt.msgs.strings import goals_to_string
+
+        return goals_to_string(self)
 
     @model_validator(mode="before")
     @classmethod

@@ -5,16 +5,23 @@ So these types work as BT port literals in XML:
 - Point ``x;y;z``; Quaternion ``x;y;z;w``
 - PoseStamped ``stamp_ns;frame_id;x;y;z;qx;qy;qz;qw`` (Nav2's 9 fields); also
   accepted: ``x;y;z;qx;qy;qz;qw`` and ``x;y;yaw`` in frame ``map``
-- Goals (``PoseStampedArray``): a multiple of 9 fields
+- Goals (``nav_msgs::msg::Goals``): ``stamp_ns;frame_id`` followed by 9 fields
+  per pose; also accepted: 9 fields per pose alone (Nav2's PoseStampedArray and
+  ``std::vector<PoseStamped>``), in the default header
 - Path ``stamp_ns;frame_id`` followed by 9 fields per pose
 
-Stamps are integer nanoseconds in the string, float seconds in the models.
+Stamps are integer nanoseconds in the string, float seconds in the models:
+written exactly (the nearest nanosecond) and read with one rounding, so a stamp
+of whole nanoseconds reads back equal. A ``frame_id`` holding ``;`` or
+surrounding blanks cannot be read back, so writing one is a :class:`MessageError`
+(a ``ValueError``) naming the field.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from fractions import Fraction
 
 from pydantic import ValidationError
 
@@ -23,6 +30,7 @@ from aiobt.msgs.geometry import Header, Point, PoseStamped, Quaternion
 from aiobt.msgs.nav import Goals, Path
 
 _POSE_FIELDS = 9
+_NS_PER_S = 1_000_000_000
 
 
 def _split(text: str) -> list[str]:
@@ -48,7 +56,10 @@ def _stamp(part: str, what: str) -> float:
         raise MessageError(what, "header.stamp", f"'{part}' is not integer nanoseconds") from None
     if nanoseconds < 0:  # here, not in Header's validation: a Path's header is built directly
         raise MessageError(what, "header.stamp", f"'{part}' is negative")
-    return nanoseconds * 1e-9
+    try:
+        return nanoseconds / _NS_PER_S  # one rounding (``* 1e-9`` gives 0.30000000000000004)
+    except OverflowError:
+        raise MessageError(what, "header.stamp", f"'{part[:20]}...' is too large") from None
 
 
 def point_from_string(text: str) -> Point:
@@ -106,9 +117,16 @@ def pose_stamped_from_string(text: str) -> PoseStamped:
 
 def goals_from_string(text: str) -> Goals:
     parts = _split(text)
-    if len(parts) % _POSE_FIELDS:
-        raise MessageError("Goals", "<string>", f"expected 9 fields per pose, got {len(parts)}")
-    return Goals(goals=_poses(parts, "Goals"))
+    if len(parts) % _POSE_FIELDS == 0:
+        return Goals(goals=_poses(parts, "Goals"))
+    if len(parts) % _POSE_FIELDS != 2:
+        raise MessageError(
+            "Goals",
+            "<string>",
+            f"expected 'stamp;frame' then 9 fields per pose, or 9 fields per pose, "
+            f"got {len(parts)}",
+        )
+    return Goals(header=_header(parts, "Goals"), goals=_poses(parts[2:], "Goals"))
 
 
 def path_from_string(text: str) -> Path:
@@ -117,8 +135,11 @@ def path_from_string(text: str) -> Path:
         raise MessageError(
             "Path", "<string>", f"expected 'stamp;frame' then 9 fields per pose, got {len(parts)}"
         )
-    header = Header(stamp=_stamp(parts[0], "Path"), frame_id=parts[1])
-    return Path(header=header, poses=_poses(parts[2:], "Path"))
+    return Path(header=_header(parts, "Path"), poses=_poses(parts[2:], "Path"))
+
+
+def _header(parts: Sequence[str], what: str) -> Header:
+    return Header(stamp=_stamp(parts[0], what), frame_id=parts[1])
 
 
 def _poses(parts: Sequence[str], what: str) -> list[PoseStamped]:
@@ -133,6 +154,20 @@ def _num(value: float) -> str:
     return repr(float(value))
 
 
+def _header_text(header: Header, what: str, field: str = "header") -> str:
+    """``stamp_ns;frame_id``, or a MessageError naming a frame_id that cannot be read back."""
+    frame = header.frame_id
+    if ";" in frame or frame != frame.strip():
+        raise MessageError(
+            what,
+            f"{field}.frame_id",
+            f"{frame!r} cannot be written in a ';'-separated string "
+            "(it holds ';' or surrounding blanks)",
+        )
+    nanoseconds = round(Fraction(header.stamp) * _NS_PER_S)  # exact: no float rounding
+    return f"{nanoseconds};{frame}"
+
+
 def point_to_string(point: Point) -> str:
     return ";".join(_num(v) for v in (point.x, point.y, point.z))
 
@@ -142,15 +177,23 @@ def quaternion_to_string(q: Quaternion) -> str:
 
 
 def pose_stamped_to_string(pose: PoseStamped) -> str:
-    stamp = str(round(pose.header.stamp * 1e9))
+    return _pose_text(pose, "PoseStamped")
+
+
+def _pose_text(pose: PoseStamped, what: str, field: str = "header") -> str:
     body = f"{point_to_string(pose.pose.position)};{quaternion_to_string(pose.pose.orientation)}"
-    return f"{stamp};{pose.header.frame_id};{body}"
+    return f"{_header_text(pose.header, what, field)};{body}"
 
 
 def goals_to_string(goals: Goals) -> str:
-    return ";".join(pose_stamped_to_string(p) for p in goals.goals)
+    """Nav2's ``nav_msgs::msg::Goals`` form: the header, then 9 fields per pose."""
+    return _poses_text(goals.header, goals.goals, "Goals", "goals")
 
 
 def path_to_string(path: Path) -> str:
-    head = f"{round(path.header.stamp * 1e9)};{path.header.frame_id}"
-    return ";".join([head, *(pose_stamped_to_string(p) for p in path.poses)])
+    return _poses_text(path.header, path.poses, "Path", "poses")
+
+
+def _poses_text(header: Header, poses: Sequence[PoseStamped], what: str, field: str) -> str:
+    texts = (_pose_text(p, what, f"{field}.{i}.header") for i, p in enumerate(poses))
+    return ";".join([_header_text(header, what), *texts])

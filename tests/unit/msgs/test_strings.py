@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import aiobt.msgs as msgs
 from aiobt.msgs import MessageError, PoseStamped
@@ -87,3 +91,117 @@ def test_a_negative_stamp_is_a_message_error_naming_the_stamp() -> None:
     with pytest.raises(MessageError) as caught:
         msgs.pose_stamped_from_string("-5;map;1;2;0;0;0;0;1")
     assert (caught.value.model, caught.value.field) == ("PoseStamped", "header.stamp")
+
+
+@pytest.mark.parametrize(
+    ("text", "frame", "stamp", "count"),
+    [
+        ("0;odom", "odom", 0.0, 0),
+        ("2500000000;odom;0;map;1;2;0;0;0;0;1", "odom", 2.5, 1),  # Nav2's nav_msgs::msg::Goals
+        ("0;map;1;2;0;0;0;0;1;0;map;3;4;0;0;0;0;1", "map", 0.0, 2),  # a vector of poses
+    ],
+)
+def test_goals_read_nav2_goals_with_a_header_and_bare_pose_vectors(
+    text: str, frame: str, stamp: float, count: int
+) -> None:
+    goals = msgs.goals_from_string(text)
+    assert (goals.header.frame_id, goals.header.stamp, len(goals.goals)) == (frame, stamp, count)
+
+
+def test_goals_keep_their_header_through_the_string() -> None:
+    poses = [PoseStamped.from_xy_yaw(1, 2, 0.5, frame_id="odom", stamp=0.25)]
+    goals = msgs.Goals(header=msgs.Header(stamp=1.5, frame_id="odom"), goals=poses)
+    text = msgs.goals_to_string(goals)
+    assert text.startswith("1500000000;odom;250000000;odom;")
+    assert msgs.goals_from_string(text) == goals
+
+
+@pytest.mark.parametrize("frame", ["map;odom", "odom ", " map", "a;"])
+def test_a_frame_id_the_string_cannot_carry_is_refused_naming_it(frame: str) -> None:
+    pose = PoseStamped.from_xy_yaw(1, 2, frame_id=frame)
+    with pytest.raises(ValueError, match="frame_id") as caught:
+        msgs.pose_stamped_to_string(pose)
+    assert isinstance(caught.value, MessageError)
+    assert (caught.value.model, caught.value.field) == ("PoseStamped", "header.frame_id")
+    header = msgs.Header(frame_id=frame)
+    with pytest.raises(MessageError) as caught:
+        msgs.path_to_string(msgs.Path(header=header))
+    assert (caught.value.model, caught.value.field) == ("Path", "header.frame_id")
+    with pytest.raises(MessageError) as caught:  # a pose inside: its index is named
+        msgs.path_to_string(msgs.Path(poses=[PoseStamped.from_xy_yaw(0, 0), pose]))
+    assert (caught.value.model, caught.value.field) == ("Path", "poses.1.header.frame_id")
+    with pytest.raises(MessageError) as caught:
+        msgs.goals_to_string(msgs.Goals(goals=[pose]))
+    assert (caught.value.model, caught.value.field) == ("Goals", "goals.0.header.frame_id")
+
+
+@pytest.mark.parametrize("stamp", [0.3, 0.1, 7.1, 1.000000001, 12345.678901234, 1.7e9 + 0.25])
+def test_stamps_of_whole_nanoseconds_read_back_exactly(stamp: float) -> None:
+    pose = PoseStamped.from_xy_yaw(1, 2, 0.5, stamp=stamp)
+    nanoseconds = msgs.pose_stamped_to_string(pose).split(";")[0]
+    assert nanoseconds == f"{stamp:.9f}".replace(".", "").lstrip("0")
+    assert msgs.pose_stamped_from_string(msgs.pose_stamped_to_string(pose)) == pose
+    path = msgs.Path(header=msgs.Header(stamp=stamp, frame_id="map"), poses=[pose])
+    assert msgs.path_from_string(msgs.path_to_string(path)) == path
+
+
+# stamps a float holds to the nanosecond (< 2**23 s), and any stamp above that
+STAMPS = st.one_of(
+    st.integers(0, 8 * 10**15).map(lambda ns: ns / 1e9),
+    st.floats(2.0**23, 4e9),
+)
+
+
+@given(
+    stamp=STAMPS,
+    xyz=st.tuples(*[st.floats(-1e6, 1e6, allow_nan=False)] * 3),
+    quaternion=st.tuples(*[st.floats(-1.0, 1.0)] * 4).filter(
+        lambda q: math.sqrt(sum(v * v for v in q)) > 0.5
+    ),
+)
+@settings(max_examples=200, deadline=None)
+def test_any_pose_reads_back_equal(
+    stamp: float, xyz: tuple[float, float, float], quaternion: tuple[float, ...]
+) -> None:
+    norm = math.sqrt(sum(v * v for v in quaternion))
+    qx, qy, qz, qw = (v / norm for v in quaternion)
+    pose = PoseStamped.model_validate(
+        {
+            "header": {"stamp": stamp, "frame_id": "odom"},
+            "pose": {
+                "position": dict(zip("xyz", xyz, strict=True)),
+                "orientation": {"x": qx, "y": qy, "z": qz, "w": qw},
+            },
+        }
+    )
+    text = msgs.pose_stamped_to_string(pose)
+    assert msgs.pose_stamped_from_string(text) == pose
+    assert PoseStamped.from_bt_string(pose.to_bt_string()) == pose
+
+
+def test_a_stamp_too_large_for_a_float_is_a_message_error() -> None:
+    with pytest.raises(MessageError) as caught:
+        msgs.pose_stamped_from_string("9" * 400 + ";map;1;2;0;0;0;0;1")
+    assert caught.value.field == "header.stamp"
+    with pytest.raises(MessageError) as caught:
+        msgs.path_from_string("9" * 400 + ";map")
+    assert caught.value.field == "header.stamp"
+
+
+@pytest.mark.parametrize(
+    ("model", "text"),
+    [
+        (msgs.Point, "1.5;-2.0;3.0"),
+        (msgs.Quaternion, "0.0;0.0;0.6;0.8"),
+        (PoseStamped, "1500000000;odom;1.0;2.0;0.0;0.0;0.0;0.6;0.8"),
+        (msgs.Path, "0;map;1;map;1.0;2.0;0.0;0.0;0.0;0.0;1.0"),
+        (msgs.Goals, "5;map;1;map;1.0;2.0;0.0;0.0;0.0;0.0;1.0"),
+    ],
+)
+def test_the_models_read_and_write_their_bt_strings(model: type[msgs.Msg], text: str) -> None:
+    value = model.from_bt_string(text)  # type: ignore[attr-defined]
+    assert isinstance(value, model)
+    assert value.to_bt_string() == text  # type: ignore[attr-defined]
+    with pytest.raises(MessageError) as caught:
+        model.from_bt_string("1;nan;" + text)  # type: ignore[attr-defined]
+    assert caught.value.model == model.__name__
