@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import asyncio
 from collections.abc import AsyncIterator
+from typing import Any
 
 import pytest
 import zenoh
 
+from aiobt.core.clock import ManualClock, SystemClock
 from aiobt.msgs import (
     ComputePathToPose,
     FollowPath,
@@ -19,8 +21,10 @@ from aiobt.msgs import (
     decode,
 )
 from aiobt.transport import (
+    ActionServer,
     Bus,
     BusSettings,
+    Execute,
     GoalHandle,
     GoalRejected,
     ServerUnavailable,
@@ -43,6 +47,12 @@ async def client_bus(bus_settings: BusSettings) -> AsyncIterator[Bus]:
 def serve_wait(bus: Bus, **kwargs: object) -> list[str]:
     """A wait server on ``bus``; returns a log of what happened to its executions."""
     events: list[str] = []
+    bus.action_server("wait", Wait, serve_wait_execute(events), **kwargs)  # type: ignore[arg-type]
+    return events
+
+
+def serve_wait_execute(events: list[str]) -> Execute[Wait.Goal, Wait.Result, Wait.Feedback]:
+    """A wait execute logging its start and end into ``events``."""
 
     async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
         events.append(f"start {handle.goal_id}")
@@ -54,8 +64,7 @@ def serve_wait(bus: Bus, **kwargs: object) -> list[str]:
         finally:
             events.append(f"end {handle.goal_id}")
 
-    bus.action_server("wait", Wait, execute, **kwargs)  # type: ignore[arg-type]
-    return events
+    return execute
 
 
 async def test_goal_with_feedback_and_result(bus: Bus, client_bus: Bus) -> None:
@@ -242,6 +251,87 @@ async def test_status_is_published_for_observers(bus: Bus, client_bus: Bus) -> N
         GoalState.SUCCEEDED,
     ]
     assert {s.goal_id for s in statuses} == {goal.goal_id}
+
+
+async def observe_statuses(
+    bus: Bus, server: ActionServer[Any, Any, Any], seen: list[GoalStatus]
+) -> zenoh.Subscriber[None]:
+    """Subscribe to ``server``'s statuses (into ``seen``) and wait until it sees the watcher."""
+    observer = bus.session.declare_subscriber(
+        f"{server.keys.base}/status/*",
+        lambda s: seen.append(decode(GoalStatus, s.payload.to_bytes())),
+    )
+    async with asyncio.timeout(5.0):
+        while not server._observed("status"):  # noqa: ASYNC110 - set in Zenoh's thread
+            await asyncio.sleep(0.01)
+    return observer
+
+
+async def wait_for_statuses(seen: list[GoalStatus], goal_id: str, count: int) -> list[GoalStatus]:
+    async with asyncio.timeout(5.0):
+        while len(mine := [s for s in seen if s.goal_id == goal_id]) < count:  # noqa: ASYNC110
+            await asyncio.sleep(0.01)
+    return mine
+
+
+async def test_statuses_are_stamped_with_the_time_of_each_change(bus: Bus, client_bus: Bus) -> None:
+    server = bus.action_server("wait", Wait, serve_wait_execute([]))
+    seen: list[GoalStatus] = []
+    observer = await observe_statuses(client_bus, server, seen)
+    try:
+        client = client_bus.action_client("wait", Wait)
+        before = SystemClock().now()  # the server's default clock
+        done = await client.send_goal(Wait.Goal(time=0.05), server_timeout=5.0)
+        await done.result(timeout=5.0)
+        canceled = await client.send_goal(Wait.Goal(time=30.0), server_timeout=5.0)
+        async for _ in canceled.feedback():
+            break
+        await canceled.cancel(timeout=5.0)
+        after = SystemClock().now()
+        done_statuses = await wait_for_statuses(seen, done.goal_id, 3)
+        canceled_statuses = await wait_for_statuses(seen, canceled.goal_id, 4)
+    finally:
+        observer.undeclare()  # type: ignore[no-untyped-call]
+    assert [s.status for s in canceled_statuses] == [
+        GoalState.ACCEPTED,
+        GoalState.EXECUTING,
+        GoalState.CANCELING,
+        GoalState.CANCELED,
+    ]
+    for statuses in (done_statuses, canceled_statuses):
+        stamps = [s.stamp for s in statuses]
+        assert all(before <= stamp <= after for stamp in stamps), (before, stamps, after)
+        assert stamps == sorted(stamps)
+    assert done_statuses[-1].stamp <= canceled_statuses[0].stamp
+
+
+async def test_statuses_are_stamped_by_the_injected_clock(bus: Bus, client_bus: Bus) -> None:
+    clock = ManualClock(start=100.0)
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        clock.advance(goal.time)  # EXECUTING went out before execute began
+        return Wait.Result(total_elapsed_time=goal.time)
+
+    server = ActionServer(
+        bus.session, bus.bridge, bus.keys.action("wait"), Wait, execute, clock=clock
+    )
+    try:
+        seen: list[GoalStatus] = []
+        observer = await observe_statuses(client_bus, server, seen)
+        try:
+            client = client_bus.action_client("wait", Wait)
+            goal = await client.send_goal(Wait.Goal(time=2.5), server_timeout=5.0)
+            await goal.result(timeout=5.0)
+            statuses = await wait_for_statuses(seen, goal.goal_id, 3)
+        finally:
+            observer.undeclare()  # type: ignore[no-untyped-call]
+    finally:
+        await server.aclose()
+    assert [(s.status, s.stamp) for s in statuses] == [
+        (GoalState.ACCEPTED, 100.0),
+        (GoalState.EXECUTING, 100.0),
+        (GoalState.SUCCEEDED, 102.5),
+    ]
 
 
 async def test_feedback_and_result_are_published_for_observers(bus: Bus, client_bus: Bus) -> None:

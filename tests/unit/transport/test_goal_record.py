@@ -6,7 +6,7 @@ from typing import Any
 
 from aiobt.msgs import GoalState
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import GoalRecord
+from aiobt.transport.actions.goals import GoalRecord, WaitingGoals
 
 
 class FakeQuery:
@@ -26,9 +26,9 @@ class FakeQuery:
         self.dropped += 1
 
 
-def record() -> tuple[GoalRecord, FakeQuery]:
+def record(goal_id: str = "g1") -> tuple[GoalRecord, FakeQuery]:
     query = FakeQuery()
-    return GoalRecord("g1", query), query  # type: ignore[arg-type]
+    return GoalRecord(goal_id, query), query  # type: ignore[arg-type]
 
 
 RESULT = p.result_tag(GoalState.SUCCEEDED)
@@ -75,3 +75,29 @@ def test_result_tags_round_trip() -> None:
         assert p.parse_result_tag(p.result_tag(state)) is state
     assert p.parse_result_tag(p.ACCEPTED) is None
     assert p.parse_result_tag(b"result:banana") is None
+
+
+def test_waiting_goals_are_taken_by_id_or_all_in_order() -> None:
+    waiting = WaitingGoals()
+    first, second, third = (record(goal_id)[0] for goal_id in ("a", "b", "c"))
+    for goal in (first, second, third):
+        waiting.add(goal)
+    assert waiting.take("b") == [second]
+    assert waiting.take("b") == []  # canceled once: a second cancel names nothing
+    assert waiting.get("b") is None
+    assert waiting.take("unknown") == []
+    assert waiting.get("c") is third
+    assert waiting.take("") == [first, third]
+    assert waiting.take("") == []
+
+
+def test_a_goal_leaving_the_queue_removes_only_itself() -> None:
+    waiting = WaitingGoals()
+    goal, _ = record("a")
+    again, _ = record("a")  # another record under the same id (not the waiting one)
+    waiting.add(goal)
+    waiting.discard(again)
+    assert waiting.get("a") is goal
+    waiting.discard(goal)
+    waiting.discard(goal)
+    assert waiting.take("") == []

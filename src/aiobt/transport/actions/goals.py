@@ -1,4 +1,4 @@
-"""Server-side goals: the handle ``execute`` gets, one record per accepted goal, results."""
+"""Server-side goals: the handle ``execute`` gets, goal records (running or waiting), results."""
 
 from __future__ import annotations
 
@@ -65,6 +65,34 @@ class GoalRecord:
             waiter.reply(waiter.key_expr, payload, encoding=JSON, attachment=tag)
             _z.drop(waiter)
         self.waiters.clear()
+
+
+class WaitingGoals:
+    """Accepted goals waiting, in order, for the running goal to stop: cancelable."""
+
+    __slots__ = ("_records",)
+
+    def __init__(self) -> None:
+        self._records: dict[str, GoalRecord] = {}
+
+    def add(self, record: GoalRecord) -> None:
+        self._records[record.goal_id] = record
+
+    def discard(self, record: GoalRecord) -> None:
+        if self._records.get(record.goal_id) is record:
+            del self._records[record.goal_id]
+
+    def get(self, goal_id: str) -> GoalRecord | None:
+        return self._records.get(goal_id)
+
+    def take(self, goal_id: str) -> list[GoalRecord]:
+        """Remove and return the waiting goal ``goal_id``, or all of them for ``""``."""
+        if not goal_id:
+            taken = list(self._records.values())
+            self._records.clear()
+            return taken
+        record = self._records.pop(goal_id, None)
+        return [record] if record is not None else []
 
 
 class ResultStore:

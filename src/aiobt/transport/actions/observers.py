@@ -3,7 +3,8 @@
 Wildcard publishers on ``status/*``, ``feedback/*`` and ``result/*`` that are
 never put to: their matching status says whether a subscriber exists. Matching
 listeners keep one flag per kind current, so unobserved goals cost no puts and
-asking costs a dict lookup (not a call into Zenoh per goal).
+asking costs a dict lookup (not a call into Zenoh per goal). Statuses are
+stamped with the time of the change on the server's (robot) clock.
 """
 
 from __future__ import annotations
@@ -12,8 +13,10 @@ from typing import Any, Literal
 
 import zenoh
 
+from aiobt.core.clock import Clock
+from aiobt.msgs import GoalState, GoalStatus
 from aiobt.transport import _z
-from aiobt.transport.bridge import callback
+from aiobt.transport.bridge import JSON, callback
 from aiobt.transport.keys import ActionKeys
 
 Kind = Literal["status", "feedback", "result"]
@@ -22,9 +25,12 @@ Kind = Literal["status", "feedback", "result"]
 class Observers:
     """``observers("status")``: whether a subscriber matches that kind of key right now."""
 
-    __slots__ = ("_entities", "_flags", "_publishers")
+    __slots__ = ("_clock", "_entities", "_flags", "_keys", "_publishers", "_session")
 
-    def __init__(self, session: zenoh.Session, keys: ActionKeys) -> None:
+    def __init__(self, session: zenoh.Session, keys: ActionKeys, clock: Clock) -> None:
+        self._session = session
+        self._keys = keys
+        self._clock = clock
         keys_by_kind: dict[Kind, str] = {
             "status": keys.any_status,
             "feedback": keys.any_feedback,
@@ -51,6 +57,14 @@ class Observers:
 
     def __call__(self, kind: Kind) -> bool:
         return self._flags[kind]
+
+    def put_status(self, goal_id: str, state: GoalState, reason: str = "") -> None:
+        """Put the goal's new status, stamped now, if anybody watches statuses."""
+        if not self._flags["status"]:
+            return
+        stamp = max(0.0, self._clock.now())
+        status = GoalStatus(goal_id=goal_id, status=state, stamp=stamp, reason=reason)
+        self._session.put(self._keys.status(goal_id), status.to_json(), encoding=JSON)
 
     def close(self) -> None:
         for entity in reversed(self._entities):

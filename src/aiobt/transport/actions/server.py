@@ -15,11 +15,11 @@ from typing import Any, Generic, TypeVar
 
 import zenoh
 
+from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import (
     ActionDef,
     ActionResult,
     GoalState,
-    GoalStatus,
     MessageError,
     Msg,
     decode,
@@ -27,7 +27,13 @@ from aiobt.msgs import (
 )
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import GoalHandle, GoalRecord, RecentIds, ResultStore
+from aiobt.transport.actions.goals import (
+    GoalHandle,
+    GoalRecord,
+    RecentIds,
+    ResultStore,
+    WaitingGoals,
+)
 from aiobt.transport.actions.observers import Observers
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
@@ -53,6 +59,10 @@ class ActionServer(Generic[G, R, F]):
       up to 5 s) and the old goal ends ABORTED "preempted by goal ...".
       ``"replace"``: the running execute continues with the newer goal
       (``handle.take_new_goal()``); the old goal ends ABORTED the same way.
+      A goal being canceled is not preempted (it ends CANCELED): newer goals wait.
+    - A canceled goal that waits to run ends CANCELED at once and never runs;
+      the goals after it keep their order. Cancel-all: running and waiting ones.
+    - ``clock`` (robot time; default the system's) stamps GoalStatus messages.
     - ``accept(goal) -> reason | None`` (in the loop) may reject a goal with a
       reason; without it goals are checked in the Zenoh thread (faster).
     - A starting goal is acknowledged after execute's first step (up to its
@@ -70,6 +80,7 @@ class ActionServer(Generic[G, R, F]):
         *,
         preemption: p.Preemption = "abort",
         accept: Callable[[G], str | None] | None = None,
+        clock: Clock | None = None,
     ) -> None:
         if preemption not in ("abort", "replace"):
             raise ValueError(f"preemption must be 'abort' or 'replace', got {preemption!r}")
@@ -87,6 +98,7 @@ class ActionServer(Generic[G, R, F]):
         self._task: asyncio.Task[None] | None = None
         self._handle: GoalHandle[G, R, F] | None = None
         self._lock = asyncio.Lock()
+        self._waiting = WaitingGoals()
         self._results = ResultStore()
         self._recent_ids = RecentIds()
         self._tasks: set[asyncio.Task[None]] = set()
@@ -95,7 +107,7 @@ class ActionServer(Generic[G, R, F]):
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
             session.declare_queryable(keys.any_result, callback(self._from_zenoh(self._on_result))),
         ]
-        self._observed = Observers(session, keys)  # unobserved goals cost no extra puts
+        self._observed = Observers(session, keys, clock or SystemClock())  # unobserved: no puts
         self._token = session.liveliness().declare_token(keys.alive)
 
     def _from_zenoh(self, handle: Callable[[zenoh.Query], None]) -> Callable[[zenoh.Query], None]:
@@ -149,9 +161,10 @@ class ActionServer(Generic[G, R, F]):
         return goal_id, goal
 
     def _begin(self, record: GoalRecord, goal: G) -> None:
-        self._publish_status(record.goal_id, GoalState.ACCEPTED)
+        self._observed.put_status(record.goal_id, GoalState.ACCEPTED)
         if self._lock.locked() or (self._running() and not self._replaceable()):
             record.acknowledge()
+            self._waiting.add(record)  # until it takes over it may be canceled
             self._spawn(self._take_over_in_order, record, goal)  # must wait for the old goal
         elif self._replaceable():
             record.acknowledge()
@@ -163,19 +176,39 @@ class ActionServer(Generic[G, R, F]):
         return self._task is not None and not self._task.done()
 
     def _replaceable(self) -> bool:
-        return self.preemption == "replace" and self._running() and self._active is not None
+        """A running execute that can take a newer goal over (not one being canceled)."""
+        return (
+            self.preemption == "replace"
+            and self._running()
+            and self._active is not None
+            and not self._active.cancel_requested
+        )
 
     async def _take_over_in_order(self, record: GoalRecord, goal: G) -> None:
-        async with self._lock:
-            if self._replaceable():
-                self._replace(record, goal)
-                return
-            if self._task is not None and self._running():
-                if self._active is not None:
-                    self._active.preempted_by = record.goal_id
-                self._task.cancel()
-                await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
-            self._start(record, goal)
+        try:
+            async with self._lock:
+                if record.done:
+                    return  # canceled while it waited for an earlier waiting goal
+                if self._replaceable():
+                    self._replace(record, goal)
+                    return
+                if self._task is not None and self._running():
+                    self._stop_running(record.goal_id)
+                    await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
+                if not record.done:  # else canceled while the old goal stopped
+                    self._start(record, goal)
+        finally:
+            self._waiting.discard(record)
+
+    def _stop_running(self, by: str) -> None:
+        """Preempt the running goal, unless it is being canceled already (it ends CANCELED)."""
+        assert self._task is not None
+        active = self._active
+        if active is not None and active.cancel_requested:
+            return  # its task is cancelled already: do not interrupt its cleanup
+        if active is not None:
+            active.preempted_by = by
+        self._task.cancel()
 
     def _replace(self, record: GoalRecord, goal: G) -> None:
         assert self._handle is not None
@@ -183,7 +216,7 @@ class ActionServer(Generic[G, R, F]):
         self._finish(self._active, GoalState.ABORTED, self._preempted(record.goal_id))
         self._active = record
         self._handle._switch(record, goal)
-        self._publish_status(record.goal_id, GoalState.EXECUTING)
+        self._observed.put_status(record.goal_id, GoalState.EXECUTING)
 
     def _start(self, record: GoalRecord, goal: G) -> None:
         self._active = record
@@ -207,7 +240,7 @@ class ActionServer(Generic[G, R, F]):
     # -- execution ---------------------------------------------------------------------------
 
     async def _run(self, handle: GoalHandle[G, R, F]) -> None:
-        self._publish_status(handle.goal_id, GoalState.EXECUTING)
+        self._observed.put_status(handle.goal_id, GoalState.EXECUTING)
         try:
             result = await self._execute(handle.goal, handle)
             if not isinstance(result, self._result_model):
@@ -245,7 +278,7 @@ class ActionServer(Generic[G, R, F]):
         tag = p.result_tag(state)
         self._results.store(record.goal_id, tag, payload)
         record.finish(tag, payload)
-        self._publish_status(record.goal_id, state, result.error_msg)
+        self._observed.put_status(record.goal_id, state, result.error_msg)
         if self._observed("result"):
             key = self.keys.result(record.goal_id)
             self._session.put(key, payload, encoding=JSON, attachment=tag)
@@ -262,13 +295,28 @@ class ActionServer(Generic[G, R, F]):
         canceling = []
         active = self._active
         if active and self._task and request.goal_id in ("", active.goal_id):
-            active.cancel_requested = True
             canceling.append(active.goal_id)
-            self._publish_status(active.goal_id, GoalState.CANCELING)
-            self._task.cancel()
+            self._cancel_active(active, self._task)
+        for record in self._waiting.take(request.goal_id):
+            canceling.append(record.goal_id)
+            self._cancel_waiting(record)
         response = p.CancelResponse(goals_canceling=canceling)
         query.reply(query.key_expr, response.to_json(), encoding=JSON)
         _z.drop(query)
+
+    def _cancel_active(self, active: GoalRecord, task: asyncio.Task[None]) -> None:
+        if active.cancel_requested:
+            return  # asked again: its task is not cancelled twice (cleanup runs on)
+        active.cancel_requested = True
+        self._observed.put_status(active.goal_id, GoalState.CANCELING)
+        if not active.preempted_by:  # else its task is cancelled already; it ends ABORTED
+            task.cancel()
+
+    def _cancel_waiting(self, record: GoalRecord) -> None:
+        """End a goal that never started CANCELED; its take-over then skips it."""
+        record.cancel_requested = True
+        self._observed.put_status(record.goal_id, GoalState.CANCELING)
+        self._finish(record, GoalState.CANCELED, self._result_model(error_msg="canceled"))
 
     def _on_result(self, query: zenoh.Query) -> None:
         goal_id = str(query.key_expr).rsplit("/", 1)[-1]
@@ -278,6 +326,8 @@ class ActionServer(Generic[G, R, F]):
             _z.drop(query)
         elif self._active and self._active.goal_id == goal_id:
             self._active.waiters.append(query)  # answered when the goal finishes
+        elif (waiting := self._waiting.get(goal_id)) is not None:
+            waiting.waiters.append(query)
         else:
             query.reply_err(f"unknown goal id {goal_id}")
             _z.drop(query)
@@ -291,15 +341,12 @@ class ActionServer(Generic[G, R, F]):
         if self._observed("feedback"):
             self._session.put(self.keys.feedback(goal_id), payload, encoding=JSON)
 
-    def _publish_status(self, goal_id: str, state: GoalState, reason: str = "") -> None:
-        if not self._observed("status"):
-            return
-        status = GoalStatus(goal_id=goal_id, status=state, reason=reason)
-        self._session.put(self.keys.status(goal_id), status.to_json(), encoding=JSON)
-
     async def aclose(self) -> None:
-        """Withdraw the token, abort the running goal (its client is told), undeclare."""
+        """Withdraw the token, abort the running and waiting goals (clients are told), undeclare."""
         _z.undeclare(self._token)
+        shutting_down = self._result_model(error_msg="action server shutting down")
+        for record in self._waiting.take(""):  # first: they must not start once it stops
+            self._finish(record, GoalState.ABORTED, shutting_down)
         if self._task is not None and not self._task.done():
             self._task.cancel()
             await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
