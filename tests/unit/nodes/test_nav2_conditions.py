@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from aiobt.core.clock import ManualClock
-from aiobt.core.convert import convert
+from aiobt.core.convert import convert, type_name
 from aiobt.core.errors import NodeError, PortError
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
@@ -43,7 +43,9 @@ def test_ports_match_the_nav2_manifest() -> None:
         assert set(mine.ports) == set(theirs.ports), node_id
         for name, port in mine.ports.items():
             other = theirs.ports[name]
-            assert (port.type, port.direction) == (other.type, other.direction), (node_id, name)
+            # typed by class (PoseStamped, Path ...), exported under Nav2's names
+            ours_type, theirs_type = type_name(port.type), type_name(other.type)
+            assert (ours_type, port.direction) == (theirs_type, other.direction), (node_id, name)
             if other.has_default:
                 assert port.default == convert(other.default, other.type), (node_id, name)
             else:

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import pytest
+
+from aiobt.core.errors import BlackboardError
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
+from aiobt.msgs import Goals, PoseStamped
 from tests.unit.nodes.test_nav2_support import Script, build
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
@@ -66,11 +70,30 @@ async def test_goal_updated_compares_goal_and_goals_from_ports() -> None:
         '<Leaf name="Replan"/></IfThenElse>',
     )
     bb = tree.root_blackboard
-    bb.set("target", "a")
-    bb.set("targets", "x;y")
+    bb.set("target", PoseStamped.from_xy_yaw(1.0, 2.0, 0.0))
+    bb.set("targets", Goals(goals=[PoseStamped.from_xy_yaw(3.0, 4.0, 0.0)]))
     bb.set("goal", "ignored: the ports are set")
     assert await tree.tick_exactly_once() is F  # first tick: remembers
     bb.set("goal", "changed, but not what the ports read")
     assert await tree.tick_exactly_once() is F
-    bb.set("targets", "x;z")
+    bb.set("targets", Goals(goals=[PoseStamped.from_xy_yaw(3.0, 5.0, 0.0)]))
     assert await tree.tick_exactly_once() is S
+
+
+async def test_goal_ports_take_nav2_pose_strings() -> None:
+    script = Script()
+    # BT.CPP converts a string blackboard entry for a typed port; Nav2's text form works
+    tree = build(
+        script,
+        '<IfThenElse><GoalUpdated goal="{target}"/><Leaf name="Replan"/></IfThenElse>',
+    )
+    bb = tree.root_blackboard
+    bb.set("target", "1.0;2.0;0.5")
+    assert await tree.tick_exactly_once() is F  # first tick: remembers
+    bb.set("target", "1.0;2.0;0.5")
+    assert await tree.tick_exactly_once() is F  # the same pose again
+    bb.set("target", "1.5;2.0;0.5")
+    assert await tree.tick_exactly_once() is S
+    # the entry is typed by the port: bad text is refused when written, naming key and type
+    with pytest.raises(BlackboardError, match=r"\[target\].*PoseStamped.*fields"):
+        bb.set("target", "not a pose")

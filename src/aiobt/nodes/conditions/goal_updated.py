@@ -7,18 +7,19 @@ from typing import Any
 from aiobt.core.leaves import ConditionNode
 from aiobt.core.ports import input_port
 from aiobt.core.status import IDLE
+from aiobt.msgs import Goals, PoseStamped
 
 # goal/goals from the ports, else the blackboard entries of the same names (Nav2)
 GOAL_PORTS = (
     input_port(
         "goal",
-        "geometry_msgs::msg::PoseStamped",
+        PoseStamped,  # exported as geometry_msgs::msg::PoseStamped; Nav2's ';' text works
         description='Destination to check. Takes in a blackboard variable, "{goal}" '
         "if not specified.",
     ),
     input_port(
         "goals",
-        "nav_msgs::msg::Goals",
+        Goals,  # nav_msgs::msg::Goals
         description='Vector of goals to check. Takes in a blackboard variable, "{goals}" '
         "if not specified.",
     ),

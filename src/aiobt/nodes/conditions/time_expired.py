@@ -7,6 +7,7 @@ from typing import Any
 from aiobt.core.leaves import ConditionNode
 from aiobt.core.ports import input_port
 from aiobt.core.status import IDLE
+from aiobt.msgs import Path
 
 
 def _period(node: ConditionNode) -> float:
@@ -64,7 +65,7 @@ class PathExpiringTimer(ConditionNode):
         input_port("seconds", float, 1.0, "Time to check if expired."),
         input_port(
             "path",
-            "nav_msgs::msg::Path",
+            Path,  # nav_msgs::msg::Path
             description="Check if path has been updated to enable timer reset.",
         ),
     )
