@@ -130,7 +130,7 @@ class BehaviorService:
         async def execute(goal: Any, handle: GoalHandle[Any, Any, Any]) -> Any:
             return await self.execute(spec, make, goal, handle)
 
-        self.bus.action_server(action.name, action, execute)
+        self.bus.action_server(action.name, action, execute, clock=self.clock)
 
     def _on_teleop(self, twist: Twist) -> None:
         self._teleop = (Velocity(twist.linear.x, twist.angular.z), self.clock.now())

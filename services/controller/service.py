@@ -84,7 +84,9 @@ class ControllerService:
         self.tracker.attach(self.bus)
         self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
-        self.bus.action_server(FollowPath.name, FollowPath, self.execute, preemption="replace")
+        self.bus.action_server(
+            FollowPath.name, FollowPath, self.execute, preemption="replace", clock=self.clock
+        )
         self._serve_clearing()
 
     # -- follow_path ------------------------------------------------------------------------

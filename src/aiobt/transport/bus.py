@@ -10,6 +10,7 @@ from typing import Any, Literal, TypeVar
 
 import zenoh
 
+from aiobt.core.clock import Clock
 from aiobt.msgs import ActionDef, ActionResult, Msg
 from aiobt.transport import _z, services, topics
 from aiobt.transport.actions.client import ActionClient
@@ -141,8 +142,9 @@ class Bus:
         *,
         preemption: Literal["abort", "replace"] = "abort",
         accept: Callable[[G], str | None] | None = None,
+        clock: Clock | None = None,
     ) -> ActionServer[G, R, F]:
-        """Serve action ``name`` (see :class:`ActionServer`)."""
+        """Serve action ``name`` (see :class:`ActionServer`; ``clock`` stamps its statuses)."""
         server = ActionServer(
             self.session,
             self.bridge,
@@ -151,6 +153,7 @@ class Bus:
             execute,
             preemption=preemption,
             accept=accept,
+            clock=clock,
         )
         return self._track(server)
 

@@ -312,21 +312,16 @@ async def test_statuses_are_stamped_by_the_injected_clock(bus: Bus, client_bus: 
         clock.advance(goal.time)  # EXECUTING went out before execute began
         return Wait.Result(total_elapsed_time=goal.time)
 
-    server = ActionServer(
-        bus.session, bus.bridge, bus.keys.action("wait"), Wait, execute, clock=clock
-    )
+    server = bus.action_server("wait", Wait, execute, clock=clock)  # closed with the bus
+    seen: list[GoalStatus] = []
+    observer = await observe_statuses(client_bus, server, seen)
     try:
-        seen: list[GoalStatus] = []
-        observer = await observe_statuses(client_bus, server, seen)
-        try:
-            client = client_bus.action_client("wait", Wait)
-            goal = await client.send_goal(Wait.Goal(time=2.5), server_timeout=5.0)
-            await goal.result(timeout=5.0)
-            statuses = await wait_for_statuses(seen, goal.goal_id, 3)
-        finally:
-            observer.undeclare()  # type: ignore[no-untyped-call]
+        client = client_bus.action_client("wait", Wait)
+        goal = await client.send_goal(Wait.Goal(time=2.5), server_timeout=5.0)
+        await goal.result(timeout=5.0)
+        statuses = await wait_for_statuses(seen, goal.goal_id, 3)
     finally:
-        await server.aclose()
+        observer.undeclare()  # type: ignore[no-untyped-call]
     assert [(s.status, s.stamp) for s in statuses] == [
         (GoalState.ACCEPTED, 100.0),
         (GoalState.EXECUTING, 100.0),
