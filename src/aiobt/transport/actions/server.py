@@ -16,26 +16,13 @@ from typing import Any, Generic, TypeVar
 import zenoh
 
 from aiobt.core.clock import Clock, SystemClock
-from aiobt.msgs import (
-    ActionDef,
-    ActionResult,
-    GoalState,
-    MessageError,
-    Msg,
-    decode,
-    decoder,
-)
+from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import (
-    GoalHandle,
-    GoalRecord,
-    RecentIds,
-    ResultStore,
-    WaitingGoals,
-)
+from aiobt.transport.actions.goals import GoalHandle, GoalRecord, ResultStore, WaitingGoals
+from aiobt.transport.actions.intake import GoalIntake
 from aiobt.transport.actions.observers import Observers
-from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.bridge import JSON, LoopBridge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.services import query_payload
 
@@ -87,11 +74,9 @@ class ActionServer(Generic[G, R, F]):
         self.keys = keys
         self.action = action
         self.preemption = preemption
-        self._goal_model = action.goal_type()
-        self._decode_goal_payload = decoder(self._goal_model, key=keys.goal)
+        self._intake = GoalIntake(keys.goal, action.goal_type(), bridge, accept)
         self._result_model = action.result_type()
         self._execute = execute
-        self._accept = accept
         self._session = session
         self._bridge = bridge
         self._active: GoalRecord | None = None
@@ -100,7 +85,6 @@ class ActionServer(Generic[G, R, F]):
         self._lock = asyncio.Lock()
         self._waiting = WaitingGoals()
         self._results = ResultStore()
-        self._recent_ids = RecentIds()
         self._tasks: set[asyncio.Task[None]] = set()
         self._queryables = [
             session.declare_queryable(keys.goal, callback(self._on_goal_query)),
@@ -130,35 +114,17 @@ class ActionServer(Generic[G, R, F]):
     def _on_goal_query(self, query: zenoh.Query) -> None:
         """Zenoh thread. Without a user ``accept`` callback the goal is checked right
         here (a bad or duplicate goal is answered at once); the rest runs in the loop."""
-        if self._accept is not None:
-            self._bridge.call(self._intake, query)  # user code runs in the loop
+        if self._intake.accept is not None:
+            self._bridge.call(self._check_in_loop, query)  # user code runs in the loop
             return
-        checked = self._check_goal(query)
+        checked = self._intake.check(query)
         if checked is not None:
             self._bridge.call(self._begin, GoalRecord(checked[0], query), checked[1])
 
-    def _intake(self, query: zenoh.Query) -> None:
-        checked = self._check_goal(query)
+    def _check_in_loop(self, query: zenoh.Query) -> None:
+        checked = self._intake.check(query)
         if checked is not None:
             self._begin(GoalRecord(checked[0], query), checked[1])
-
-    def _check_goal(self, query: zenoh.Query) -> tuple[str, G] | None:
-        """The goal, or None once it has been answered with an error or a rejection."""
-        goal_id = query.parameters.get("id") or ""
-        try:
-            goal = self._decode_goal(goal_id, query)
-        except (MessageError, PayloadTooLarge, ValueError) as exc:
-            query.reply_err(f"bad goal: {exc}")
-            _z.drop(query)
-            return None
-        reason = self._accept(goal) if self._accept else None
-        if reason is None and not self._recent_ids.add(goal_id):
-            reason = f"duplicate goal id {goal_id}"
-        if reason is not None:
-            query.reply(query.key_expr, reason.encode(), attachment=p.REJECTED)
-            _z.drop(query)
-            return None
-        return goal_id, goal
 
     def _begin(self, record: GoalRecord, goal: G) -> None:
         self._observed.put_status(record.goal_id, GoalState.ACCEPTED)
@@ -226,13 +192,6 @@ class ActionServer(Generic[G, R, F]):
         # acknowledged after execute's first step: a goal done by then (a quick
         # one) is answered by its result alone, one reply and one client hop less
         loop.call_soon(record.acknowledge)
-
-    def _decode_goal(self, goal_id: str, query: zenoh.Query) -> G:
-        if not p.valid_goal_id(goal_id):
-            raise ValueError(f"goal id {goal_id!r} must be 1-64 of [A-Za-z0-9_.-]")
-        payload = query_payload(query)
-        self._bridge.check_size(self.keys.goal, payload)
-        return self._decode_goal_payload(payload)
 
     def _preempted(self, by: str) -> R:
         return self._result_model(error_msg=f"preempted by goal {by}")
