@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import json
 import logging
 import time
 
@@ -27,9 +28,11 @@ async def open_session(settings: BusSettings) -> zenoh.Session:
     asked to stop while it waits for its router) ends the wait at once.
 
     Each attempt runs in the loop's thread: Zenoh refuses at once when nothing
-    listens. (Opening from a worker thread kept the loop free during a slow
-    attempt but measurably slowed every later typed subscription, by about
-    0.02x-0.03x of a raw one-way trip in ``bench.transport.oneway``.)
+    listens or the credentials are wrong, and a hung far end is given up after
+    the link open timeout (``OPEN_TIMEOUT_MS``, 2 s, or less near the deadline).
+    (Opening from a worker thread kept the loop free during a slow attempt but
+    measurably slowed every later typed subscription, by about 0.02x-0.03x of a
+    raw one-way trip in ``bench.transport.oneway``.)
     """
     start = time.monotonic()
     deadline = None if settings.connect_timeout is None else start + settings.connect_timeout
@@ -37,6 +40,8 @@ async def open_session(settings: BusSettings) -> zenoh.Session:
     last_log = start
     while True:
         config = settings.zenoh_config()  # a Config is consumed by open()
+        if deadline is not None:  # a hung router's handshake must not outlast the deadline
+            _bound_open_timeout(config, deadline - time.monotonic())
         try:
             return zenoh.open(config)
         except zenoh.ZError as exc:
@@ -47,13 +52,22 @@ async def open_session(settings: BusSettings) -> zenoh.Session:
                     f"{now - start:.1f} s: {exc}"
                 ) from None
             if attempt == 0 or now - last_log > 5.0:
-                log.warning("Zenoh not reachable (%s), retrying: %s", _where(settings), exc)
+                log.warning(
+                    "cannot open the Zenoh session yet (%s), retrying: %s", _where(settings), exc
+                )
                 last_log = now
         delay = _RETRY_DELAYS[min(attempt, len(_RETRY_DELAYS) - 1)]
         if deadline is not None:  # the last attempt comes at the deadline, not after it
             delay = max(0.0, min(delay, deadline - time.monotonic()))
         attempt += 1
         await asyncio.sleep(delay)
+
+
+def _bound_open_timeout(config: zenoh.Config, seconds: float) -> None:
+    key = "transport/unicast/open_timeout"
+    bound = max(100, int(seconds * 1000))
+    if json.loads(config.get_json(key)) > bound:
+        config.insert_json5(key, json.dumps(bound))
 
 
 def _where(settings: BusSettings) -> str:

@@ -22,6 +22,9 @@ Mode = Literal["client", "peer", "router"]
 DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 DEFAULT_NAMESPACE = "robot"
 DEFAULT_MAX_PAYLOAD = 16 * 1024 * 1024
+OPEN_TIMEOUT_MS = 2000  # a link handshake (Zenoh's default, 10 s, unless a file sets one)
+_OPEN_TIMEOUT = "transport/unicast/open_timeout"
+_ZENOH_OPEN_TIMEOUT_MS = 10000
 
 
 class BusConfigError(ValueError):
@@ -70,24 +73,44 @@ class BusSettings:
         return self.config_file or os.environ.get("ZENOH_CONFIG") or None
 
     def zenoh_config(self) -> zenoh.Config:
-        """The Zenoh config: the file if any, then these settings on top."""
+        """The Zenoh config: the file if any, then these settings on top.
+
+        What the file leaves unset gets aiobt's defaults, not Zenoh's (which would
+        make a multicast-scouting peer, and run a service whose credentials the
+        router refuses unconnected instead of failing):
+        - mode ``client``; a client (not scouting) connects to ``DEFAULT_ROUTER``;
+        - multicast scouting off;
+        - a peer told where to connect fails to open when it cannot (as a client
+          does), so it is retried and ``--connect-timeout`` applies;
+        - a link handshake gives up after 2 s, not 10 s, so a hung router neither
+          holds the event loop nor overruns ``--connect-timeout`` for long.
+        """
         config = self._base_config()
-        # what the file leaves unset reads as null: our defaults fill it, not Zenoh's
-        # (Zenoh would make a peer that scouts by multicast, and a client whose
-        # credentials the router refuses would then run unconnected, as a peer)
         mode = self.mode or ("client" if _unset(config, "mode") else None)
         _insert(config, "mode", mode)
         mode = mode or json.loads(config.get_json("mode"))
-        if _unset(config, "connect/endpoints"):
-            connect = self.connect or ((DEFAULT_ROUTER,) if mode == "client" else ())
-        else:
-            connect = self.connect
-        _insert(config, "connect/endpoints", list(connect) or None)
-        _insert(config, "listen/endpoints", list(self.listen) or None)
-        _insert(config, "transport/link/tx/lease", self.lease_ms)
-        _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
         if _unset(config, "scouting/multicast/enabled"):
             _insert(config, "scouting/multicast/enabled", False)
+        scouting = json.loads(config.get_json("scouting/multicast/enabled")) is True
+        connect = self.connect
+        if (
+            not connect
+            and mode == "client"
+            and not scouting
+            and _unset(config, "connect/endpoints")
+        ):
+            connect = (DEFAULT_ROUTER,)
+        _insert(config, "connect/endpoints", list(connect) or None)
+        connects = not _unset(config, "connect/endpoints")
+        if mode == "peer" and connects and _unset(config, "connect/exit_on_failure"):
+            _insert(config, "connect/exit_on_failure", True)
+            if _unset(config, "connect/timeout_ms"):
+                _insert(config, "connect/timeout_ms", 0)  # one try per open: we retry
+        _insert(config, "listen/endpoints", list(self.listen) or None)
+        _insert(config, "transport/link/tx/lease", self.lease_ms)
+        if json.loads(config.get_json(_OPEN_TIMEOUT)) == _ZENOH_OPEN_TIMEOUT_MS:
+            _insert(config, _OPEN_TIMEOUT, OPEN_TIMEOUT_MS)
+        _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
         for key, value in self.extra.items():
             _insert(config, key, value)
         return config

@@ -11,7 +11,7 @@ import sys
 import textwrap
 import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 
 import pytest
@@ -33,6 +33,7 @@ from aiobt.transport import (
     GoalLost,
     open_bus,
 )
+from aiobt.transport.settings import Mode
 
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]
@@ -132,8 +133,10 @@ def test_user_password_auth(tmp_path: Path, spawn: Spawn) -> None:
         path.write_text(json.dumps({"transport": {"auth": {"usrpwd": usrpwd}}}))
         return str(path)
 
-    async def outcome(endpoint: str, config: str | None) -> str:
-        settings = BusSettings(connect=(endpoint,), config_file=config, connect_timeout=1.0)
+    async def outcome(endpoint: str, config: str | None, mode: Mode | None = None) -> str:
+        settings = BusSettings(
+            connect=(endpoint,), config_file=config, connect_timeout=1.0, mode=mode
+        )
         try:
             async with open_bus(settings) as bus:
                 return "talks" if bus.session.info.routers_zid() else "open but unconnected"
@@ -144,6 +147,9 @@ def test_user_password_auth(tmp_path: Path, spawn: Spawn) -> None:
         assert asyncio.run(outcome(ep, client_config("robot", "s3cret"))) == "talks"
         assert asyncio.run(outcome(ep, client_config("robot", "wrong"))) == "refused"
         assert asyncio.run(outcome(ep, None)) == "refused"
+        # a peer told to connect there is refused too, not left running on its own
+        assert asyncio.run(outcome(ep, client_config("robot", "s3cret"), "peer")) == "talks"
+        assert asyncio.run(outcome(ep, client_config("robot", "wrong"), "peer")) == "refused"
         # a service process with a wrong password gives up and says why (exit code 1)
         service = spawn(
             [
@@ -164,15 +170,49 @@ def test_user_password_auth(tmp_path: Path, spawn: Spawn) -> None:
         assert "planner up" not in service.output()
 
 
-def test_a_service_waiting_for_its_router_stops_on_sigterm(spawn: Spawn) -> None:
-    endpoint = free_endpoint()  # nobody listens there
+@pytest.fixture
+def hung_router() -> Iterator[str]:
+    """A router process that accepts TCP connections but never answers (SIGSTOP)."""
+    router, endpoint = start_router()
+    os.kill(router.pid, signal.SIGSTOP)
+    try:
+        yield endpoint
+    finally:
+        os.kill(router.pid, signal.SIGCONT)
+        router.cleanup()
+
+
+@pytest.mark.parametrize("far_end", ["nothing listening", "hung router"])
+def test_a_service_waiting_for_its_router_stops_on_sigterm(
+    spawn: Spawn, far_end: str, request: pytest.FixtureRequest
+) -> None:
+    endpoint = (
+        free_endpoint()
+        if far_end == "nothing listening"
+        else request.getfixturevalue("hung_router")
+    )
     service = spawn(["-m", "aiobt.cli.main", "planner", "--connect", endpoint])
-    assert service.wait_for_output("Zenoh not reachable", timeout=30.0), service.output()
+    assert service.wait_for_output("cannot open the Zenoh session yet", timeout=30.0), (
+        service.output()
+    )
     started = time.monotonic()
     os.kill(service.pid, signal.SIGTERM)
-    service.popen.wait(timeout=10)
+    service.popen.wait(timeout=15)
     assert service.popen.returncode == 0, service.output()
-    assert time.monotonic() - started < 3.0
+    # at worst one link handshake (2 s) is under way when the signal comes
+    assert time.monotonic() - started < 4.0
+
+
+def test_connect_timeout_holds_against_a_hung_router(spawn: Spawn, hung_router: str) -> None:
+    started = time.monotonic()
+    service = spawn(
+        ["-m", "aiobt.cli.main", "planner", "--connect", hung_router, "--connect-timeout", "3"]
+    )
+    service.popen.wait(timeout=30)
+    took = time.monotonic() - started
+    assert service.popen.returncode == 1, service.output()
+    assert "cannot open the Zenoh session" in service.output()
+    assert took < 6.0  # 3 s + start-up; Zenoh's own handshake timeout alone is 10 s
 
 
 def test_process_with_open_entities_exits_cleanly(router_endpoint: str) -> None:

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
+import zenoh
 
 from aiobt.cli import router
 from aiobt.testing.bus import free_endpoint
@@ -95,6 +96,34 @@ def test_what_a_config_file_leaves_unset_gets_our_defaults_not_zenohs(
     ]
     flagged = config_of(chosen, "--mode", "client", "--connect", "tcp/127.0.0.1:8")
     assert (flagged["mode"], flagged["connect/endpoints"]) == ("client", ["tcp/127.0.0.1:8"])
+
+
+def test_peers_told_where_to_connect_fail_when_they_cannot_and_handshakes_are_short(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.delenv("ZENOH_CONFIG", raising=False)
+
+    def get(config: zenoh.Config, key: str) -> object:
+        return json.loads(config.get_json(key))
+
+    peer = parse("--mode", "peer", "--connect", "tcp/127.0.0.1:9").zenoh_config()
+    assert (get(peer, "connect/exit_on_failure"), get(peer, "connect/timeout_ms")) == (True, 0)
+    lone_peer = parse("--mode", "peer").zenoh_config()  # nowhere to connect: may stand alone
+    assert get(lone_peer, "connect/exit_on_failure") is None
+    assert get(parse().zenoh_config(), "transport/unicast/open_timeout") == 2000
+    # a file's own choices stay
+    path = tmp_path / "zenoh.json5"
+    path.write_text(
+        '{mode: "peer", connect: {endpoints: ["tcp/127.0.0.1:9"], exit_on_failure: false},'
+        " transport: {unicast: {open_timeout: 5000}}}"
+    )
+    chosen = parse("--config", str(path)).zenoh_config()
+    assert get(chosen, "connect/exit_on_failure") is False
+    assert get(chosen, "transport/unicast/open_timeout") == 5000
+    # a client that scouts for its router gets no default endpoint
+    path.write_text("{scouting: {multicast: {enabled: true}}}")
+    scouting = parse("--config", str(path)).zenoh_config()
+    assert (get(scouting, "mode"), get(scouting, "connect/endpoints")) == ("client", [])
 
 
 def test_bad_settings_name_the_flag_or_file(tmp_path: Path) -> None:
