@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock, SystemClock
+from aiobt.core.convert import converter_for
 from aiobt.core.errors import LogicError, NodeError, PortError
 from aiobt.core.ports import NO_DEFAULT, PortInfo
 from aiobt.core.status import IDLE, SKIPPED, Status
@@ -310,15 +311,31 @@ class TreeNode:
         return value
 
     def get_input_or_blackboard(self, name: str, default: Any = NO_DEFAULT) -> Any:
-        """Nav2's fallback: the port if set, else the blackboard key of its name."""
+        """Nav2's fallback: the port if set, else the blackboard key of its name (text
+        there is converted to the port's type, as a typed port read converts it)."""
         if name in self.config.inputs:
             return self.get_input(name, default)
         entry = self.config.blackboard.entry(name)
         if entry is not None and entry.has_value:
-            return entry.value
+            return self._typed(name, entry.value)
         if default is not NO_DEFAULT:
             return default
         raise PortError(f"{self.path}: neither port [{name}] nor blackboard key [{name}] is set")
+
+    def _typed(self, name: str, value: Any) -> Any:
+        port = self.config.ports.get(name)
+        if not isinstance(value, str) or port is None or port.type in (None, str):
+            return value
+        converter = converter_for(port.type)
+        if converter is None:
+            return value
+        try:
+            return converter(value)
+        except (TypeError, ValueError) as exc:
+            raise PortError(
+                f"{self.path}: blackboard key [{name}] (for port [{name}]): "
+                f"cannot convert {value!r}: {exc}"
+            ) from exc
 
     def has_input(self, name: str) -> bool:
         return name in self.config.inputs

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from aiobt.core.errors import BlackboardError
+from aiobt.core.errors import BlackboardError, NodeError
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.msgs import Goals, PoseStamped
@@ -30,7 +30,8 @@ ALONE = """
 async def _results(tree: Tree, goals: list[str]) -> list[Status]:
     results = []
     for goal in goals:
-        tree.root_blackboard.set("goal", goal)
+        # goal "a" is the pose x=0 ("0;0;0" in Nav2's text), "b" x=1, ...
+        tree.root_blackboard.set("goal", f"{ord(goal) - ord('a')};0;0")
         results.append(await tree.tick_exactly_once())
     return results
 
@@ -97,3 +98,20 @@ async def test_goal_ports_take_nav2_pose_strings() -> None:
     # the entry is typed by the port: bad text is refused when written, naming key and type
     with pytest.raises(BlackboardError, match=r"\[target\].*PoseStamped.*fields"):
         bb.set("target", "not a pose")
+
+
+async def test_goal_text_on_the_blackboard_fallback_is_compared_as_a_pose() -> None:
+    script = Script()
+    tree = build(script, '<IfThenElse><GoalUpdated/><Leaf name="Replan"/></IfThenElse>')
+    bb = tree.root_blackboard
+    bb.set("goal", "1;2;0.5")
+    assert await tree.tick_exactly_once() is F  # first tick: remembers
+    bb.set("goal", "1.0;2.0;0.5")  # other text, the same pose
+    assert await tree.tick_exactly_once() is F
+    bb.set("goal", PoseStamped.from_bt_string("1;2;0.5"))  # the pose itself
+    assert await tree.tick_exactly_once() is F
+    bb.set("goal", "1.5;2.0;0.5")
+    assert await tree.tick_exactly_once() is S
+    bb.set("goal", "not a pose")
+    with pytest.raises(NodeError, match=r"blackboard key \[goal\].*fields"):
+        await tree.tick_exactly_once()
