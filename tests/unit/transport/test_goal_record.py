@@ -101,3 +101,20 @@ def test_a_goal_leaving_the_queue_removes_only_itself() -> None:
     waiting.discard(goal)
     waiting.discard(goal)
     assert waiting.take("") == []
+
+
+def test_a_rejected_goal_gets_the_reason_alone_and_nothing_after() -> None:
+    goal, query = record()
+    goal.reject("action server shutting down")
+    goal.acknowledge()
+    goal.finish(RESULT, b"{}")
+    assert query.sent == [(p.REJECTED, b"action server shutting down")]
+    assert query.dropped == 1
+
+
+def test_an_acknowledged_goal_is_not_rejected() -> None:
+    goal, query = record()
+    goal.acknowledge()
+    goal.reject("too late")
+    assert query.sent == [(p.ACCEPTED, b"")]
+    assert query.dropped == 0

@@ -11,7 +11,7 @@ import zenoh
 
 from aiobt.msgs import ActionResult, Msg
 from aiobt.transport import _z
-from aiobt.transport.actions.protocol import ACCEPTED
+from aiobt.transport.actions.protocol import ACCEPTED, REJECTED
 from aiobt.transport.bridge import JSON
 
 G = TypeVar("G", bound=Msg)
@@ -47,6 +47,13 @@ class GoalRecord:
         if not self.acknowledged and not self.done:
             self.acknowledged = True
             self.query.reply(self.query.key_expr, b"", attachment=ACCEPTED)
+
+    def reject(self, reason: str) -> None:
+        """Refuse the goal with ``reason`` (only before its acceptance went out)."""
+        if not self.acknowledged and not self.done:
+            self.done = True
+            self.query.reply(self.query.key_expr, reason.encode(), attachment=REJECTED)
+            _z.drop(self.query)
 
     def reply(self, payload: bytes, tag: bytes) -> None:
         """A reply on the goal's stream (feedback), after the acceptance."""

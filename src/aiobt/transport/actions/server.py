@@ -30,7 +30,8 @@ G = TypeVar("G", bound=Msg)
 R = TypeVar("R", bound=ActionResult)
 F = TypeVar("F", bound=Msg)
 log = logging.getLogger("aiobt.transport.actions")
-_STOP_TIMEOUT = 5.0
+_STOP_TIMEOUT = 5.0  # a cancelled execute still running after this is cancelled again
+_SHUTTING_DOWN = "action server shutting down"
 
 
 Execute = Callable[[G, GoalHandle[G, R, F]], Awaitable[R]]
@@ -41,14 +42,21 @@ class ActionServer(Generic[G, R, F]):
 
     - ``execute(goal, handle) -> Result`` runs as a task per goal; ``error_code``
       0 ends the goal SUCCEEDED, anything else ABORTED; an exception ends it
-      ABORTED with the action's UNKNOWN code. Cancel ends it CANCELED.
-    - ``preemption="abort"``: a newer goal cancels the running task (awaited,
-      up to 5 s) and the old goal ends ABORTED "preempted by goal ...".
+      ABORTED with the action's UNKNOWN code. Cancel ends it CANCELED, also when
+      execute catches the cancellation and returns a Result (which it carries).
+    - ``preemption="abort"``: a newer goal cancels the running task and the old
+      goal ends ABORTED "preempted by goal ..." (whatever execute returns). The
+      newer goal starts only once the old task has ended: two executes never run
+      at once. A task still running ``_STOP_TIMEOUT`` (5 s) after its cancellation
+      is cancelled again, with a warning, every ``_STOP_TIMEOUT``.
       ``"replace"``: the running execute continues with the newer goal
       (``handle.take_new_goal()``); the old goal ends ABORTED the same way.
       A goal being canceled is not preempted (it ends CANCELED): newer goals wait.
     - A canceled goal that waits to run ends CANCELED at once and never runs;
-      the goals after it keep their order. Cancel-all: running and waiting ones.
+      the goals after it keep their order. Cancel-all: running and waiting ones,
+      except a running goal already being preempted (its outcome is decided).
+    - :meth:`aclose` rejects new goals ("action server shutting down"), ends the
+      waiting and running goals ABORTED with that reason, then withdraws the token.
     - ``clock`` (robot time; default the system's) stamps GoalStatus messages.
     - ``accept(goal) -> reason | None`` (in the loop) may reject a goal with a
       reason; without it goals are checked in the Zenoh thread (faster).
@@ -86,6 +94,8 @@ class ActionServer(Generic[G, R, F]):
         self._waiting = WaitingGoals()
         self._results = ResultStore()
         self._tasks: set[asyncio.Task[None]] = set()
+        self._closing = False
+        self._closed = asyncio.Event()
         self._queryables = [
             session.declare_queryable(keys.goal, callback(self._on_goal_query)),
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
@@ -127,6 +137,9 @@ class ActionServer(Generic[G, R, F]):
             self._begin(GoalRecord(checked[0], query), checked[1])
 
     def _begin(self, record: GoalRecord, goal: G) -> None:
+        if self._closing:
+            record.reject(_SHUTTING_DOWN)
+            return
         self._observed.put_status(record.goal_id, GoalState.ACCEPTED)
         if self._lock.locked() or (self._running() and not self._replaceable()):
             record.acknowledge()
@@ -160,11 +173,25 @@ class ActionServer(Generic[G, R, F]):
                     return
                 if self._task is not None and self._running():
                     self._stop_running(record.goal_id)
-                    await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
+                    await self._stopped(self._task)
                 if not record.done:  # else canceled while the old goal stopped
                     self._start(record, goal)
         finally:
             self._waiting.discard(record)
+
+    async def _stopped(self, task: asyncio.Task[None]) -> None:
+        """Wait until the cancelled execute ``task`` has ended, cancelling it again (with a
+        warning) each ``_STOP_TIMEOUT``: the next goal never starts while it runs."""
+        goal_id = self._handle.goal_id if self._handle is not None else "?"
+        while not (await asyncio.wait({task}, timeout=_STOP_TIMEOUT))[0]:
+            log.warning(
+                "%s: goal %s still runs %.1f s after its cancellation; cancelling it again "
+                "(the next goal waits for it)",
+                self.keys.base,
+                goal_id,
+                _STOP_TIMEOUT,
+            )
+            task.cancel()
 
     def _stop_running(self, by: str) -> None:
         """Preempt the running goal, unless it is being canceled already (it ends CANCELED)."""
@@ -205,6 +232,8 @@ class ActionServer(Generic[G, R, F]):
             if not isinstance(result, self._result_model):
                 raise TypeError(f"execute returned {type(result).__name__}, not a Result")
             state = p.terminal_state(result)
+            if handle.record.preempted_by or handle.record.cancel_requested:
+                state, result = self._cancel_outcome(handle.record, result)  # caught, returned
         except asyncio.CancelledError:
             state, result = self._cancel_outcome(handle.record)
             self._finish_handle(handle, state, result)
@@ -218,12 +247,15 @@ class ActionServer(Generic[G, R, F]):
             result = self._result_model(error_code=code, error_msg=f"{type(exc).__name__}: {exc}")
         self._finish_handle(handle, state, result)
 
-    def _cancel_outcome(self, record: GoalRecord) -> tuple[GoalState, R]:
+    def _cancel_outcome(self, record: GoalRecord, returned: R | None = None) -> tuple[GoalState, R]:
+        """A stopped goal's end; ``returned``: the Result of an execute that caught it."""
         if record.preempted_by:
             return GoalState.ABORTED, self._preempted(record.preempted_by)
         if record.cancel_requested:
-            return GoalState.CANCELED, self._result_model(error_msg="canceled")
-        return GoalState.ABORTED, self._result_model(error_msg="action server shutting down")
+            if returned is None:
+                returned = self._result_model(error_msg="canceled")
+            return GoalState.CANCELED, returned
+        return GoalState.ABORTED, self._result_model(error_msg=_SHUTTING_DOWN)
 
     def _finish_handle(self, handle: GoalHandle[G, R, F], state: GoalState, result: R) -> None:
         self._finish(handle.record, state, result)
@@ -253,7 +285,8 @@ class ActionServer(Generic[G, R, F]):
             return
         canceling = []
         active = self._active
-        if active and self._task and request.goal_id in ("", active.goal_id):
+        preempted = active is not None and active.preempted_by  # decided: ends ABORTED
+        if active and self._task and not preempted and request.goal_id in ("", active.goal_id):
             canceling.append(active.goal_id)
             self._cancel_active(active, self._task)
         for record in self._waiting.take(request.goal_id):
@@ -268,8 +301,7 @@ class ActionServer(Generic[G, R, F]):
             return  # asked again: its task is not cancelled twice (cleanup runs on)
         active.cancel_requested = True
         self._observed.put_status(active.goal_id, GoalState.CANCELING)
-        if not active.preempted_by:  # else its task is cancelled already; it ends ABORTED
-            task.cancel()
+        task.cancel()
 
     def _cancel_waiting(self, record: GoalRecord) -> None:
         """End a goal that never started CANCELED; its take-over then skips it."""
@@ -301,16 +333,38 @@ class ActionServer(Generic[G, R, F]):
             self._session.put(self.keys.feedback(goal_id), payload, encoding=JSON)
 
     async def aclose(self) -> None:
-        """Withdraw the token, abort the running and waiting goals (clients are told), undeclare."""
-        _z.undeclare(self._token)
-        shutting_down = self._result_model(error_msg="action server shutting down")
+        """Refuse new goals, end the waiting and running goals ABORTED ("action server
+        shutting down"; clients get these results), then withdraw the token and undeclare.
+        Idempotent: a second call waits for the first to finish."""
+        if self._closing:
+            await self._closed.wait()
+            return
+        self._closing = True
+        try:
+            await self._abort_all()
+        finally:
+            self._closed.set()  # waiters resume after this, at the next await: none below
+            for task in list(self._tasks):
+                task.cancel()
+            _z.undeclare(self._token)
+            for entity in self._queryables:
+                _z.undeclare(entity)
+            self._observed.close()
+
+    async def _abort_all(self) -> None:
+        shutting_down = self._result_model(error_msg=_SHUTTING_DOWN)
         for record in self._waiting.take(""):  # first: they must not start once it stops
             self._finish(record, GoalState.ABORTED, shutting_down)
-        if self._task is not None and not self._task.done():
-            self._task.cancel()
-            await asyncio.wait({self._task}, timeout=_STOP_TIMEOUT)
-        for task in list(self._tasks):
-            task.cancel()
-        for entity in self._queryables:
-            _z.undeclare(entity)
-        self._observed.close()
+        task, active = self._task, self._active
+        if task is None or task.done():
+            return
+        if active is not None:
+            active.preempted_by = ""  # its preemptor never runs: it ends by the shutdown
+        for attempt in range(2):  # a task stopping already (cleanup) is not cut at once
+            if attempt or not task.cancelling():
+                task.cancel()
+            if (await asyncio.wait({task}, timeout=_STOP_TIMEOUT))[0]:
+                return
+        log.warning("%s: goal %s did not stop on shutdown", self.keys.base, self.active_goal_id)
+        if self._active is not None:
+            self._finish(self._active, GoalState.ABORTED, shutting_down)

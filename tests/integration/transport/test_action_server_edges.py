@@ -1,0 +1,234 @@
+"""Action server edges, via a real router: executes that do not stop when cancelled,
+executes that return a Result after a cancel or preemption, shutdown with goals live."""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import logging
+from collections.abc import AsyncIterator, Callable
+
+import pytest
+
+from aiobt.msgs import GoalState, Wait
+from aiobt.transport import Bus, BusSettings, GoalHandle, GoalRejected, open_bus
+from aiobt.transport.actions import server as server_module
+
+pytestmark = pytest.mark.integration
+WAIT = 5.0  # the bound of every wait in this module
+WaitHandle = GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
+
+
+@pytest.fixture
+async def client_bus(bus_settings: BusSettings) -> AsyncIterator[Bus]:
+    async with open_bus(bus_settings) as opened:
+        yield opened
+
+
+async def until(condition: Callable[[], object], timeout: float = WAIT) -> None:  # noqa: ASYNC109
+    """Poll ``condition`` (state that Zenoh's threads change), bounded by ``timeout``."""
+    async with asyncio.timeout(timeout):
+        while not condition():  # noqa: ASYNC110 - no event to wait on
+            await asyncio.sleep(0.01)
+
+
+class Stubborn:
+    """A Wait execute that swallows the first cancellation and ends soon after a second;
+    counts the executes alive at once."""
+
+    def __init__(self) -> None:
+        self.alive = 0
+        self.peak = 0
+        self.events: list[str] = []
+        self.cancels: dict[str, int] = {}
+
+    async def execute(self, goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        goal_id = handle.goal_id
+        self.alive += 1
+        self.peak = max(self.peak, self.alive)
+        self.events.append(f"start {goal_id}")
+        try:
+            while True:
+                try:
+                    await asyncio.sleep(goal.time)
+                    return Wait.Result(total_elapsed_time=goal.time)
+                except asyncio.CancelledError:
+                    self.cancels[goal_id] = self.cancels.get(goal_id, 0) + 1
+                    if self.cancels[goal_id] >= 2:
+                        await asyncio.sleep(0.05)  # stops the motors, then gives in
+                        raise
+        finally:
+            self.alive -= 1
+            self.events.append(f"end {goal_id}")
+
+
+@pytest.fixture
+def short_stop(monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture) -> None:
+    monkeypatch.setattr(server_module, "_STOP_TIMEOUT", 0.3)
+    caplog.set_level(logging.WARNING, logger="aiobt.transport.actions")
+
+
+def stop_warnings(caplog: pytest.LogCaptureFixture, goal_id: str) -> list[str]:
+    return [
+        r.getMessage()
+        for r in caplog.records
+        if r.levelno == logging.WARNING and goal_id in r.getMessage()
+    ]
+
+
+@pytest.mark.usefixtures("short_stop")
+async def test_a_preempting_goal_waits_until_the_stubborn_execute_has_ended(
+    bus: Bus, client_bus: Bus, caplog: pytest.LogCaptureFixture
+) -> None:
+    stubborn = Stubborn()
+    bus.action_server("wait", Wait, stubborn.execute)
+    client = client_bus.action_client("wait", Wait)
+    first = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
+    await until(lambda: stubborn.events)
+    second = await client.send_goal(Wait.Goal(time=0.05), server_timeout=WAIT)
+    await second.result(timeout=WAIT)
+    assert stubborn.peak == 1  # never two executes at once
+    first_result = await first.result(timeout=WAIT)
+    assert stubborn.events == [
+        f"start {first.goal_id}",
+        f"end {first.goal_id}",
+        f"start {second.goal_id}",
+        f"end {second.goal_id}",
+    ]
+    assert stubborn.cancels == {first.goal_id: 2}  # cancelled again after the stop timeout
+    assert first.status is GoalState.ABORTED
+    assert first_result.error_msg == f"preempted by goal {second.goal_id}"
+    assert second.status is GoalState.SUCCEEDED
+    assert stop_warnings(caplog, first.goal_id)
+
+
+@pytest.mark.usefixtures("short_stop")
+async def test_a_goal_waiting_for_a_stubborn_canceled_execute_runs_after_it_and_can_be_canceled(
+    bus: Bus, client_bus: Bus, caplog: pytest.LogCaptureFixture
+) -> None:
+    stubborn = Stubborn()
+    bus.action_server("wait", Wait, stubborn.execute)
+    client = client_bus.action_client("wait", Wait)
+    first = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
+    await until(lambda: stubborn.events)
+    assert await client.request_cancel(first.goal_id, timeout=WAIT) == [first.goal_id]
+    await until(lambda: stubborn.cancels.get(first.goal_id) == 1)
+    # a repeated cancel request does not cancel its task again (its cleanup runs on)
+    assert await client.request_cancel(first.goal_id, timeout=WAIT) == [first.goal_id]
+    second = await client.send_goal(Wait.Goal(time=0.05), server_timeout=WAIT)
+    third = await client.send_goal(Wait.Goal(time=0.05), server_timeout=WAIT)
+    await asyncio.sleep(0.1)
+    assert stubborn.cancels == {first.goal_id: 1}
+    third_result = await third.cancel(timeout=WAIT)  # waiting: canceled at once
+    assert third_result is not None
+    assert (third.status, third_result.error_msg) == (GoalState.CANCELED, "canceled")
+    assert not second.done
+    await second.result(timeout=WAIT)
+    assert stubborn.peak == 1
+    first_result = await first.result(timeout=WAIT)
+    assert stubborn.events == [
+        f"start {first.goal_id}",
+        f"end {first.goal_id}",
+        f"start {second.goal_id}",
+        f"end {second.goal_id}",
+    ]
+    assert (first.status, first_result.error_msg) == (GoalState.CANCELED, "canceled")
+    assert second.status is GoalState.SUCCEEDED
+    assert stop_warnings(caplog, first.goal_id)
+
+
+async def test_an_execute_returning_a_result_after_a_cancel_or_preemption(
+    bus: Bus, client_bus: Bus
+) -> None:
+    started: list[str] = []
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        started.append(handle.goal_id)
+        try:
+            await asyncio.sleep(goal.time)
+        except asyncio.CancelledError:
+            await asyncio.sleep(0.05)  # stop the base, then report
+            return Wait.Result(total_elapsed_time=0.25, error_msg="stopped early")
+        return Wait.Result(total_elapsed_time=goal.time)
+
+    bus.action_server("wait", Wait, execute)
+    client = client_bus.action_client("wait", Wait)
+    canceled = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
+    await until(lambda: started)
+    result = await canceled.cancel(timeout=WAIT)
+    assert canceled.status is GoalState.CANCELED  # carrying what execute returned
+    assert result == Wait.Result(total_elapsed_time=0.25, error_msg="stopped early")
+    assert await client.fetch_result(canceled.goal_id, timeout=WAIT) == (
+        GoalState.CANCELED,
+        result,
+    )
+    preempted = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
+    await until(lambda: len(started) == 2)
+    newer = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
+    preempted_result = await preempted.result(timeout=WAIT)
+    await newer.result(timeout=WAIT)
+    assert preempted.status is GoalState.ABORTED
+    assert preempted_result.error_msg == f"preempted by goal {newer.goal_id}"
+    assert newer.status is GoalState.SUCCEEDED
+
+
+async def test_closing_the_server_bus_aborts_the_running_and_waiting_goals(
+    bus_settings: BusSettings, client_bus: Bus
+) -> None:
+    started = asyncio.Event()
+    cleaning = asyncio.Event()
+    release = asyncio.Event()
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        started.set()
+        try:
+            await asyncio.sleep(goal.time)
+            return Wait.Result(total_elapsed_time=goal.time)
+        finally:
+            if goal.time > 1.0:
+                cleaning.set()
+                with contextlib.suppress(TimeoutError):
+                    await asyncio.wait_for(release.wait(), WAIT)
+
+    async with open_bus(bus_settings) as server_bus:
+        server = server_bus.action_server("wait", Wait, execute)
+        client = client_bus.action_client("wait", Wait)
+        running = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
+        await asyncio.wait_for(started.wait(), WAIT)
+        waiting = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
+        await asyncio.wait_for(cleaning.wait(), WAIT)  # running stops; waiting waits
+        closing = asyncio.create_task(server_bus.close())
+        try:
+            waiting_result = await waiting.result(timeout=WAIT)
+            with pytest.raises(GoalRejected, match="action server shutting down"):
+                await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
+            assert not running.done  # its cleanup is not cut short
+            release.set()
+            running_result = await running.result(timeout=WAIT)
+        finally:
+            release.set()
+            await asyncio.wait_for(closing, WAIT)
+        assert server.active_goal_id is None
+    for goal, result in ((running, running_result), (waiting, waiting_result)):
+        assert (goal.status, result.error_msg) == (
+            GoalState.ABORTED,
+            "action server shutting down",
+        )
+
+
+async def test_a_second_aclose_does_nothing(
+    bus_settings: BusSettings, client_bus: Bus, caplog: pytest.LogCaptureFixture
+) -> None:
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        return Wait.Result(total_elapsed_time=goal.time)
+
+    caplog.set_level(logging.DEBUG)
+    async with open_bus(bus_settings) as server_bus:
+        server = server_bus.action_server("wait", Wait, execute)
+        client = client_bus.action_client("wait", Wait)
+        goal = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
+        await goal.result(timeout=WAIT)
+        await asyncio.wait_for(server.aclose(), WAIT)
+        await asyncio.wait_for(server.aclose(), WAIT)
+    # ... and once more when the bus closed
+    assert [r for r in caplog.records if r.levelno >= logging.WARNING] == []
