@@ -7,12 +7,15 @@ import asyncio
 import contextlib
 import logging
 from collections.abc import AsyncIterator, Callable
+from typing import Any
 
 import pytest
 
 from aiobt.msgs import GoalState, Wait
 from aiobt.transport import Bus, BusSettings, GoalHandle, GoalRejected, open_bus
+from aiobt.transport.actions import protocol as p
 from aiobt.transport.actions import server as server_module
+from aiobt.transport.actions.goals import GoalRecord
 
 pytestmark = pytest.mark.integration
 WAIT = 5.0  # the bound of every wait in this module
@@ -232,3 +235,45 @@ async def test_a_second_aclose_does_nothing(
         await asyncio.wait_for(server.aclose(), WAIT)
     # ... and once more when the bus closed
     assert [r for r in caplog.records if r.levelno >= logging.WARNING] == []
+
+
+class FakeQuery:
+    """Records what the server replies to a query (goal stream or cancel)."""
+
+    key_expr = "fake"
+
+    def __init__(self, payload: bytes = b"") -> None:
+        self.sent: list[tuple[bytes, bytes]] = []  # (attachment, payload)
+        self.dropped = 0
+        self.payload = zenoh_like_payload(payload)
+
+    def reply(self, key_expr: str, payload: bytes, **kwargs: Any) -> None:
+        self.sent.append((kwargs.get("attachment") or b"", payload))
+
+    def drop(self) -> None:
+        self.dropped += 1
+
+
+def zenoh_like_payload(payload: bytes) -> Any:
+    return type("Payload", (), {"to_bytes": lambda self: payload})()
+
+
+async def test_a_goal_canceled_before_its_execute_took_a_step_still_ends(bus: Bus) -> None:
+    """The cancel reaches the loop before the new task's first step (the client sent
+    the goal and then its cancel, e.g. after ServerUnavailable): its body never runs."""
+    started: list[str] = []
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        started.append(handle.goal_id)
+        return Wait.Result(total_elapsed_time=goal.time)
+
+    server = bus.action_server("wait", Wait, execute)
+    goal_query, cancel_query = FakeQuery(), FakeQuery(b'{"goal_id": "g1"}')
+    # the loop-side entry points, in the order the bridge would run them in one tick
+    server._begin(GoalRecord("g1", goal_query), Wait.Goal(time=1.0))  # type: ignore[arg-type]
+    server._on_cancel(cancel_query)  # type: ignore[arg-type]
+    await until(lambda: goal_query.dropped)
+    assert cancel_query.sent[0][1] == b'{"goals_canceling":["g1"]}'
+    assert [tag for tag, _ in goal_query.sent] == [p.ACCEPTED, p.result_tag(GoalState.CANCELED)]
+    assert started == []
+    assert server.active_goal_id is None

@@ -201,6 +201,7 @@ class ActionServer(Generic[G, R, F]):
             return  # its task is cancelled already: do not interrupt its cleanup
         if active is not None:
             active.preempted_by = by
+            self._settle_when_done(active, self._task)
         self._task.cancel()
 
     def _replace(self, record: GoalRecord, goal: G) -> None:
@@ -301,7 +302,17 @@ class ActionServer(Generic[G, R, F]):
             return  # asked again: its task is not cancelled twice (cleanup runs on)
         active.cancel_requested = True
         self._observed.put_status(active.goal_id, GoalState.CANCELING)
+        self._settle_when_done(active, task)
         task.cancel()
+
+    def _settle_when_done(self, record: GoalRecord, task: asyncio.Task[None]) -> None:
+        """A task cancelled before its first step never runs ``_run``: its goal still ends."""
+        task.add_done_callback(lambda _: self._settle(record))
+
+    def _settle(self, record: GoalRecord) -> None:
+        self._finish(record, *self._cancel_outcome(record))  # no-op if ``_run`` ended it
+        if self._active is record:
+            self._active = None
 
     def _cancel_waiting(self, record: GoalRecord) -> None:
         """End a goal that never started CANCELED; its take-over then skips it."""
@@ -364,6 +375,8 @@ class ActionServer(Generic[G, R, F]):
             if attempt or not task.cancelling():
                 task.cancel()
             if (await asyncio.wait({task}, timeout=_STOP_TIMEOUT))[0]:
+                if active is not None:
+                    self._settle(active)  # in case it was cancelled before its first step
                 return
         log.warning("%s: goal %s did not stop on shutdown", self.keys.base, self.active_goal_id)
         if self._active is not None:
