@@ -15,18 +15,12 @@ from typing import Any
 import pytest
 
 from aiobt.msgs import FollowPath, GoalState, GoalStatus, Path, PoseStamped, Wait, decode
-from aiobt.transport import ActionServer, Bus, BusSettings, GoalHandle, open_bus
+from aiobt.transport import ActionServer, Bus, GoalHandle
+from tests.integration.transport.action_support import WAIT, one_after_another, until
 
 pytestmark = pytest.mark.integration
-WAIT = 5.0  # the bound of every wait in this module
 WaitHandle = GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
 FollowHandle = GoalHandle[FollowPath.Goal, FollowPath.Result, FollowPath.Feedback]
-
-
-@pytest.fixture
-async def client_bus(bus_settings: BusSettings) -> AsyncIterator[Bus]:
-    async with open_bus(bus_settings) as opened:
-        yield opened
 
 
 class SlowCleanup:
@@ -82,13 +76,6 @@ async def observed_status(
         yield lambda goal_id: [s for s in seen if s.goal_id == goal_id]
     finally:
         observer.undeclare()  # type: ignore[no-untyped-call]
-
-
-async def until(condition: Callable[[], object], timeout: float = WAIT) -> None:  # noqa: ASYNC109
-    """Poll ``condition`` (state that Zenoh's threads change), bounded by ``timeout``."""
-    async with asyncio.timeout(timeout):
-        while not condition():  # noqa: ASYNC110 - no event to wait on: set in Zenoh's thread
-            await asyncio.sleep(0.01)
 
 
 def states(statuses: list[GoalStatus]) -> list[GoalState]:
@@ -155,12 +142,7 @@ async def test_handle_cancel_of_a_waiting_goal_keeps_the_next_one_in_order(
     assert first.status is GoalState.ABORTED
     assert first_result.error_msg == f"preempted by goal {second.goal_id}"
     assert third.status is GoalState.SUCCEEDED
-    assert slow.events == [
-        f"start {first.goal_id}",
-        f"end {first.goal_id}",
-        f"start {third.goal_id}",
-        f"end {third.goal_id}",
-    ]
+    assert slow.events == one_after_another(first, third)
 
 
 async def test_cancel_all_leaves_out_a_goal_being_preempted(bus: Bus, client_bus: Bus) -> None:
@@ -193,12 +175,7 @@ async def test_cancel_all_leaves_out_a_goal_being_preempted(bus: Bus, client_bus
     fourth = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
     await fourth.result(timeout=WAIT)
     assert fourth.status is GoalState.SUCCEEDED
-    assert slow.events == [
-        f"start {first.goal_id}",
-        f"end {first.goal_id}",
-        f"start {fourth.goal_id}",
-        f"end {fourth.goal_id}",
-    ]
+    assert slow.events == one_after_another(first, fourth)
     assert await client.cancel_all(timeout=WAIT) == []
 
 
@@ -231,9 +208,4 @@ async def test_replace_a_goal_after_a_cancel_waits_for_the_cleanup_and_can_be_ca
     assert (first.status, first_result.error_msg) == (GoalState.CANCELED, "canceled")
     await third.result(timeout=WAIT)
     assert third.status is GoalState.SUCCEEDED
-    assert slow.events == [
-        f"start {first.goal_id}",
-        f"end {first.goal_id}",
-        f"start {third.goal_id}",
-        f"end {third.goal_id}",
-    ]
+    assert slow.events == one_after_another(first, third)

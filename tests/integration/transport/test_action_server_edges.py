@@ -6,7 +6,6 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import logging
-from collections.abc import AsyncIterator, Callable
 from typing import Any
 
 import pytest
@@ -16,23 +15,10 @@ from aiobt.transport import Bus, BusSettings, GoalHandle, GoalRejected, open_bus
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.actions import server as server_module
 from aiobt.transport.actions.goals import GoalRecord
+from tests.integration.transport.action_support import WAIT, one_after_another, until
 
 pytestmark = pytest.mark.integration
-WAIT = 5.0  # the bound of every wait in this module
 WaitHandle = GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
-
-
-@pytest.fixture
-async def client_bus(bus_settings: BusSettings) -> AsyncIterator[Bus]:
-    async with open_bus(bus_settings) as opened:
-        yield opened
-
-
-async def until(condition: Callable[[], object], timeout: float = WAIT) -> None:  # noqa: ASYNC109
-    """Poll ``condition`` (state that Zenoh's threads change), bounded by ``timeout``."""
-    async with asyncio.timeout(timeout):
-        while not condition():  # noqa: ASYNC110 - no event to wait on
-            await asyncio.sleep(0.01)
 
 
 class Stubborn:
@@ -92,12 +78,7 @@ async def test_a_preempting_goal_waits_until_the_stubborn_execute_has_ended(
     await second.result(timeout=WAIT)
     assert stubborn.peak == 1  # never two executes at once
     first_result = await first.result(timeout=WAIT)
-    assert stubborn.events == [
-        f"start {first.goal_id}",
-        f"end {first.goal_id}",
-        f"start {second.goal_id}",
-        f"end {second.goal_id}",
-    ]
+    assert stubborn.events == one_after_another(first, second)
     assert stubborn.cancels == {first.goal_id: 2}  # cancelled again after the stop timeout
     assert first.status is GoalState.ABORTED
     assert first_result.error_msg == f"preempted by goal {second.goal_id}"
@@ -129,12 +110,7 @@ async def test_a_goal_waiting_for_a_stubborn_canceled_execute_runs_after_it_and_
     await second.result(timeout=WAIT)
     assert stubborn.peak == 1
     first_result = await first.result(timeout=WAIT)
-    assert stubborn.events == [
-        f"start {first.goal_id}",
-        f"end {first.goal_id}",
-        f"start {second.goal_id}",
-        f"end {second.goal_id}",
-    ]
+    assert stubborn.events == one_after_another(first, second)
     assert (first.status, first_result.error_msg) == (GoalState.CANCELED, "canceled")
     assert second.status is GoalState.SUCCEEDED
     assert stop_warnings(caplog, first.goal_id)

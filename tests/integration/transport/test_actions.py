@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncIterator
 from typing import Any
 
 import pytest
@@ -36,12 +35,6 @@ WaitHandle = GoalHandle[Wait.Goal, Wait.Result, Wait.Feedback]
 PlanHandle = GoalHandle[
     ComputePathToPose.Goal, ComputePathToPose.Result, ComputePathToPose.Feedback
 ]
-
-
-@pytest.fixture
-async def client_bus(bus_settings: BusSettings) -> AsyncIterator[Bus]:
-    async with open_bus(bus_settings) as opened:
-        yield opened
 
 
 def serve_wait(bus: Bus, **kwargs: object) -> list[str]:
