@@ -195,6 +195,44 @@ async def test_closing_the_server_bus_aborts_the_running_and_waiting_goals(
         )
 
 
+async def test_a_shutdown_aborts_an_execute_that_catches_it_and_returns(
+    bus_settings: BusSettings, client_bus: Bus
+) -> None:
+    started = asyncio.Event()
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        started.set()
+        with contextlib.suppress(asyncio.CancelledError):
+            await asyncio.sleep(goal.time)
+        return Wait.Result(total_elapsed_time=0.0)  # error_code 0, "success"
+
+    async with open_bus(bus_settings) as server_bus:
+        server_bus.action_server("wait", Wait, execute)
+        client = client_bus.action_client("wait", Wait)
+        goal = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
+        await asyncio.wait_for(started.wait(), WAIT)
+    result = await goal.result(timeout=WAIT)
+    assert (goal.status, result.error_msg) == (GoalState.ABORTED, "action server shutting down")
+
+
+async def test_a_client_closing_mid_goal_says_so(bus: Bus, bus_settings: BusSettings) -> None:
+    started = asyncio.Event()
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        started.set()
+        await asyncio.sleep(goal.time)
+        return Wait.Result(total_elapsed_time=goal.time)
+
+    bus.action_server("wait", Wait, execute)
+    async with open_bus(bus_settings) as client_bus:
+        goal = await client_bus.action_client("wait", Wait).send_goal(
+            Wait.Goal(time=30.0), server_timeout=WAIT
+        )
+        await asyncio.wait_for(started.wait(), WAIT)
+    with pytest.raises(p.GoalLost, match="the client closed"):
+        await goal.result(timeout=WAIT)
+
+
 async def test_a_second_aclose_does_nothing(
     bus_settings: BusSettings, client_bus: Bus, caplog: pytest.LogCaptureFixture
 ) -> None:

@@ -175,9 +175,9 @@ class ActionClient(Generic[G, R, F]):
 
     def close(self) -> None:
         self._presence.remove_listener(self._on_presence)
-        _z.undeclare(self._querier)
-        for handle in list(self._goals.values()):
+        for handle in list(self._goals.values()):  # before their streams end with the querier
             handle.lost("the client closed")
+        _z.undeclare(self._querier)
         self._goals.clear()
 
 

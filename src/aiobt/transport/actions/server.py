@@ -42,8 +42,10 @@ class ActionServer(Generic[G, R, F]):
 
     - ``execute(goal, handle) -> Result`` runs as a task per goal; ``error_code``
       0 ends the goal SUCCEEDED, anything else ABORTED; an exception ends it
-      ABORTED with the action's UNKNOWN code. Cancel ends it CANCELED, also when
-      execute catches the cancellation and returns a Result (which it carries).
+      ABORTED with the action's UNKNOWN code (also one raised by the cleanup of a
+      canceled or preempted goal: the error is what the client learns). Cancel
+      ends it CANCELED, also when execute catches the cancellation and returns a
+      Result (which it carries); a shutdown ends it ABORTED even then.
     - ``preemption="abort"``: a newer goal cancels the running task and the old
       goal ends ABORTED "preempted by goal ..." (whatever execute returns). The
       newer goal starts only once the old task has ended: two executes never run
@@ -233,8 +235,9 @@ class ActionServer(Generic[G, R, F]):
             if not isinstance(result, self._result_model):
                 raise TypeError(f"execute returned {type(result).__name__}, not a Result")
             state = p.terminal_state(result)
-            if handle.record.preempted_by or handle.record.cancel_requested:
-                state, result = self._cancel_outcome(handle.record, result)  # caught, returned
+            record = handle.record
+            if record.preempted_by or record.cancel_requested or self._closing:
+                state, result = self._cancel_outcome(record, result)  # caught, returned
         except asyncio.CancelledError:
             state, result = self._cancel_outcome(handle.record)
             self._finish_handle(handle, state, result)
