@@ -14,7 +14,8 @@ from aiobt.core.clock import Clock
 from aiobt.msgs import ActionDef, ActionResult, Msg
 from aiobt.transport import _z, services, topics
 from aiobt.transport.actions.client import ActionClient
-from aiobt.transport.actions.server import ActionServer, Execute
+from aiobt.transport.actions.runner import Execute
+from aiobt.transport.actions.server import ActionServer
 from aiobt.transport.bridge import LoopBridge
 from aiobt.transport.keys import Keys
 from aiobt.transport.presence import Presence

@@ -13,7 +13,7 @@ import pytest
 from aiobt.msgs import GoalState, Wait
 from aiobt.transport import Bus, BusSettings, GoalHandle, GoalRejected, open_bus
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions import server as server_module
+from aiobt.transport.actions import runner as runner_module
 from aiobt.transport.actions.goals import GoalRecord
 from tests.integration.transport.action_support import WAIT, one_after_another, until
 
@@ -53,7 +53,7 @@ class Stubborn:
 
 @pytest.fixture
 def short_stop(monkeypatch: pytest.MonkeyPatch, caplog: pytest.LogCaptureFixture) -> None:
-    monkeypatch.setattr(server_module, "_STOP_TIMEOUT", 0.3)
+    monkeypatch.setattr(runner_module, "_STOP_TIMEOUT", 0.3)
     caplog.set_level(logging.WARNING, logger="aiobt.transport.actions")
 
 

@@ -9,7 +9,8 @@ from aiobt.transport.actions.protocol import (
     GoalRejected,
     ServerUnavailable,
 )
-from aiobt.transport.actions.server import ActionServer, Execute
+from aiobt.transport.actions.runner import Execute
+from aiobt.transport.actions.server import ActionServer
 
 __all__ = [
     "ActionClient",

@@ -9,9 +9,8 @@ goal over through :meth:`GoalHandle.take_new_goal` / :meth:`GoalHandle.wait_new_
 from __future__ import annotations
 
 import asyncio
-import logging
-from collections.abc import Awaitable, Callable, Coroutine
-from typing import Any, Generic, TypeVar
+from collections.abc import Callable
+from typing import Generic, TypeVar
 
 import zenoh
 
@@ -19,9 +18,10 @@ from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import GoalHandle, GoalRecord, ResultStore, WaitingGoals
+from aiobt.transport.actions.goals import GoalRecord, ResultStore
 from aiobt.transport.actions.intake import GoalIntake
 from aiobt.transport.actions.observers import Observers
+from aiobt.transport.actions.runner import Execute, GoalRunner
 from aiobt.transport.bridge import JSON, LoopBridge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.services import query_payload
@@ -29,12 +29,6 @@ from aiobt.transport.services import query_payload
 G = TypeVar("G", bound=Msg)
 R = TypeVar("R", bound=ActionResult)
 F = TypeVar("F", bound=Msg)
-log = logging.getLogger("aiobt.transport.actions")
-_STOP_TIMEOUT = 5.0  # a cancelled execute still running after this is cancelled again
-_SHUTTING_DOWN = "action server shutting down"
-
-
-Execute = Callable[[G, GoalHandle[G, R, F]], Awaitable[R]]
 
 
 class ActionServer(Generic[G, R, F]):
@@ -85,25 +79,25 @@ class ActionServer(Generic[G, R, F]):
         self.action = action
         self.preemption = preemption
         self._intake = GoalIntake(keys.goal, action.goal_type(), bridge, accept)
-        self._result_model = action.result_type()
-        self._execute = execute
         self._session = session
         self._bridge = bridge
-        self._active: GoalRecord | None = None
-        self._task: asyncio.Task[None] | None = None
-        self._handle: GoalHandle[G, R, F] | None = None
-        self._lock = asyncio.Lock()
-        self._waiting = WaitingGoals()
         self._results = ResultStore()
-        self._tasks: set[asyncio.Task[None]] = set()
-        self._closing = False
-        self._closed = asyncio.Event()
+        self._closed: asyncio.Event | None = None  # set once aclose() has finished
         self._queryables = [
             session.declare_queryable(keys.goal, callback(self._on_goal_query)),
             session.declare_queryable(keys.cancel, callback(self._from_zenoh(self._on_cancel))),
             session.declare_queryable(keys.any_result, callback(self._from_zenoh(self._on_result))),
         ]
         self._observed = Observers(session, keys, clock or SystemClock())  # unobserved: no puts
+        self._runner = GoalRunner(
+            keys.base,
+            action,
+            execute,
+            preemption,
+            self._observed,
+            self._finish,
+            self.publish_feedback,
+        )
         self._token = session.liveliness().declare_token(keys.alive)
 
     def _from_zenoh(self, handle: Callable[[zenoh.Query], None]) -> Callable[[zenoh.Query], None]:
@@ -112,14 +106,10 @@ class ActionServer(Generic[G, R, F]):
 
         return on_query
 
-    def _spawn(self, coroutine: Callable[..., Coroutine[Any, Any, None]], *args: Any) -> None:
-        task: asyncio.Task[None] = asyncio.get_running_loop().create_task(coroutine(*args))
-        self._tasks.add(task)
-        task.add_done_callback(self._tasks.discard)
-
     @property
     def active_goal_id(self) -> str | None:
-        return self._active.goal_id if self._active else None
+        active = self._runner.active
+        return active.goal_id if active else None
 
     # -- goal intake -------------------------------------------------------------------------
 
@@ -139,134 +129,10 @@ class ActionServer(Generic[G, R, F]):
             self._begin(GoalRecord(checked[0], query), checked[1])
 
     def _begin(self, record: GoalRecord, goal: G) -> None:
-        if self._closing:
-            record.reject(_SHUTTING_DOWN)
-            return
-        self._observed.put_status(record.goal_id, GoalState.ACCEPTED)
-        if self._lock.locked() or (self._running() and not self._replaceable()):
-            record.acknowledge()
-            self._waiting.add(record)  # until it takes over it may be canceled
-            self._spawn(self._take_over_in_order, record, goal)  # must wait for the old goal
-        elif self._replaceable():
-            record.acknowledge()
-            self._replace(record, goal)
-        else:
-            self._start(record, goal)
-
-    def _running(self) -> bool:
-        return self._task is not None and not self._task.done()
-
-    def _replaceable(self) -> bool:
-        """A running execute that can take a newer goal over (not one being canceled)."""
-        return (
-            self.preemption == "replace"
-            and self._running()
-            and self._active is not None
-            and not self._active.cancel_requested
-        )
-
-    async def _take_over_in_order(self, record: GoalRecord, goal: G) -> None:
-        try:
-            async with self._lock:
-                if record.done:
-                    return  # canceled while it waited for an earlier waiting goal
-                if self._replaceable():
-                    self._replace(record, goal)
-                    return
-                if self._task is not None and self._running():
-                    self._stop_running(record.goal_id)
-                    await self._stopped(self._task)
-                if not record.done:  # else canceled while the old goal stopped
-                    self._start(record, goal)
-        finally:
-            self._waiting.discard(record)
-
-    async def _stopped(self, task: asyncio.Task[None]) -> None:
-        """Wait until the cancelled execute ``task`` has ended, cancelling it again (with a
-        warning) each ``_STOP_TIMEOUT``: the next goal never starts while it runs."""
-        goal_id = self._handle.goal_id if self._handle is not None else "?"
-        while not (await asyncio.wait({task}, timeout=_STOP_TIMEOUT))[0]:
-            log.warning(
-                "%s: goal %s still runs %.1f s after its cancellation; cancelling it again "
-                "(the next goal waits for it)",
-                self.keys.base,
-                goal_id,
-                _STOP_TIMEOUT,
-            )
-            task.cancel()
-
-    def _stop_running(self, by: str) -> None:
-        """Preempt the running goal, unless it is being canceled already (it ends CANCELED)."""
-        assert self._task is not None
-        active = self._active
-        if active is not None and active.cancel_requested:
-            return  # its task is cancelled already: do not interrupt its cleanup
-        if active is not None:
-            active.preempted_by = by
-            self._settle_when_done(active, self._task)
-        self._task.cancel()
-
-    def _replace(self, record: GoalRecord, goal: G) -> None:
-        assert self._handle is not None
-        assert self._active is not None
-        self._finish(self._active, GoalState.ABORTED, self._preempted(record.goal_id))
-        self._active = record
-        self._handle._switch(record, goal)
-        self._observed.put_status(record.goal_id, GoalState.EXECUTING)
-
-    def _start(self, record: GoalRecord, goal: G) -> None:
-        self._active = record
-        self._handle = GoalHandle(self.publish_feedback, record, goal)
-        loop = asyncio.get_running_loop()
-        self._task = loop.create_task(self._run(self._handle))
-        # acknowledged after execute's first step: a goal done by then (a quick
-        # one) is answered by its result alone, one reply and one client hop less
-        loop.call_soon(record.acknowledge)
-
-    def _preempted(self, by: str) -> R:
-        return self._result_model(error_msg=f"preempted by goal {by}")
-
-    # -- execution ---------------------------------------------------------------------------
-
-    async def _run(self, handle: GoalHandle[G, R, F]) -> None:
-        self._observed.put_status(handle.goal_id, GoalState.EXECUTING)
-        try:
-            result = await self._execute(handle.goal, handle)
-            if not isinstance(result, self._result_model):
-                raise TypeError(f"execute returned {type(result).__name__}, not a Result")
-            state = p.terminal_state(result)
-            record = handle.record
-            if record.preempted_by or record.cancel_requested or self._closing:
-                state, result = self._cancel_outcome(record, result)  # caught, returned
-        except asyncio.CancelledError:
-            state, result = self._cancel_outcome(handle.record)
-            self._finish_handle(handle, state, result)
-            if not (handle.record.preempted_by or handle.record.cancel_requested):
-                raise  # the server itself is shutting down
-            return
-        except Exception as exc:
-            log.exception("%s: execute failed on goal %s", self.keys.base, handle.goal_id)
-            code = p.unknown_error_code(self.action.ErrorCode)
-            state = GoalState.ABORTED
-            result = self._result_model(error_code=code, error_msg=f"{type(exc).__name__}: {exc}")
-        self._finish_handle(handle, state, result)
-
-    def _cancel_outcome(self, record: GoalRecord, returned: R | None = None) -> tuple[GoalState, R]:
-        """A stopped goal's end; ``returned``: the Result of an execute that caught it."""
-        if record.preempted_by:
-            return GoalState.ABORTED, self._preempted(record.preempted_by)
-        if record.cancel_requested:
-            if returned is None:
-                returned = self._result_model(error_msg="canceled")
-            return GoalState.CANCELED, returned
-        return GoalState.ABORTED, self._result_model(error_msg=_SHUTTING_DOWN)
-
-    def _finish_handle(self, handle: GoalHandle[G, R, F], state: GoalState, result: R) -> None:
-        self._finish(handle.record, state, result)
-        if self._active is handle.record:
-            self._active = None
+        self._runner.begin(record, goal)
 
     def _finish(self, record: GoalRecord, state: GoalState, result: R) -> None:
+        """A goal's end: its stream's last reply, the result store, status and observers."""
         if record.done:
             return
         payload = result.to_json()
@@ -278,7 +144,7 @@ class ActionServer(Generic[G, R, F]):
             key = self.keys.result(record.goal_id)
             self._session.put(key, payload, encoding=JSON, attachment=tag)
 
-    # -- cancel, result query, observers -----------------------------------------------------
+    # -- cancel, result query, feedback ------------------------------------------------------
 
     def _on_cancel(self, query: zenoh.Query) -> None:
         try:
@@ -287,58 +153,27 @@ class ActionServer(Generic[G, R, F]):
             query.reply_err(f"bad cancel request: {exc}")
             _z.drop(query)
             return
-        canceling = []
-        active = self._active
-        preempted = active is not None and active.preempted_by  # decided: ends ABORTED
-        if active and self._task and not preempted and request.goal_id in ("", active.goal_id):
-            canceling.append(active.goal_id)
-            self._cancel_active(active, self._task)
-        for record in self._waiting.take(request.goal_id):
-            canceling.append(record.goal_id)
-            self._cancel_waiting(record)
-        response = p.CancelResponse(goals_canceling=canceling)
+        response = p.CancelResponse(goals_canceling=self._runner.cancel(request.goal_id))
         query.reply(query.key_expr, response.to_json(), encoding=JSON)
         _z.drop(query)
-
-    def _cancel_active(self, active: GoalRecord, task: asyncio.Task[None]) -> None:
-        if active.cancel_requested:
-            return  # asked again: its task is not cancelled twice (cleanup runs on)
-        active.cancel_requested = True
-        self._observed.put_status(active.goal_id, GoalState.CANCELING)
-        self._settle_when_done(active, task)
-        task.cancel()
-
-    def _settle_when_done(self, record: GoalRecord, task: asyncio.Task[None]) -> None:
-        """A task cancelled before its first step never runs ``_run``: its goal still ends."""
-        task.add_done_callback(lambda _: self._settle(record))
-
-    def _settle(self, record: GoalRecord) -> None:
-        self._finish(record, *self._cancel_outcome(record))  # no-op if ``_run`` ended it
-        if self._active is record:
-            self._active = None
-
-    def _cancel_waiting(self, record: GoalRecord) -> None:
-        """End a goal that never started CANCELED; its take-over then skips it."""
-        record.cancel_requested = True
-        self._observed.put_status(record.goal_id, GoalState.CANCELING)
-        self._finish(record, GoalState.CANCELED, self._result_model(error_msg="canceled"))
 
     def _on_result(self, query: zenoh.Query) -> None:
         goal_id = str(query.key_expr).rsplit("/", 1)[-1]
         stored = self._results.get(goal_id)
+        active = self._runner.active
         if stored is not None:
             query.reply(query.key_expr, stored[1], encoding=JSON, attachment=stored[0])
             _z.drop(query)
-        elif self._active and self._active.goal_id == goal_id:
-            self._active.waiters.append(query)  # answered when the goal finishes
-        elif (waiting := self._waiting.get(goal_id)) is not None:
+        elif active and active.goal_id == goal_id:
+            active.waiters.append(query)  # answered when the goal finishes
+        elif (waiting := self._runner.waiting.get(goal_id)) is not None:
             waiting.waiters.append(query)
         else:
             query.reply_err(f"unknown goal id {goal_id}")
             _z.drop(query)
 
     def publish_feedback(self, goal_id: str, feedback: F) -> None:
-        active = self._active
+        active = self._runner.active
         if active is None or active.goal_id != goal_id:
             return  # a preempted goal's late feedback
         payload = feedback.to_json()
@@ -350,37 +185,15 @@ class ActionServer(Generic[G, R, F]):
         """Refuse new goals, end the waiting and running goals ABORTED ("action server
         shutting down"; clients get these results), then withdraw the token and undeclare.
         Idempotent: a second call waits for the first to finish."""
-        if self._closing:
+        if self._closed is not None:
             await self._closed.wait()
             return
-        self._closing = True
+        self._closed = asyncio.Event()
         try:
-            await self._abort_all()
+            await self._runner.close()
         finally:
-            self._closed.set()  # waiters resume after this, at the next await: none below
-            for task in list(self._tasks):
-                task.cancel()
+            self._closed.set()
             _z.undeclare(self._token)
             for entity in self._queryables:
                 _z.undeclare(entity)
             self._observed.close()
-
-    async def _abort_all(self) -> None:
-        shutting_down = self._result_model(error_msg=_SHUTTING_DOWN)
-        for record in self._waiting.take(""):  # first: they must not start once it stops
-            self._finish(record, GoalState.ABORTED, shutting_down)
-        task, active = self._task, self._active
-        if task is None or task.done():
-            return
-        if active is not None:
-            active.preempted_by = ""  # its preemptor never runs: it ends by the shutdown
-        for attempt in range(2):  # a task stopping already (cleanup) is not cut at once
-            if attempt or not task.cancelling():
-                task.cancel()
-            if (await asyncio.wait({task}, timeout=_STOP_TIMEOUT))[0]:
-                if active is not None:
-                    self._settle(active)  # in case it was cancelled before its first step
-                return
-        log.warning("%s: goal %s did not stop on shutdown", self.keys.base, self.active_goal_id)
-        if self._active is not None:
-            self._finish(self._active, GoalState.ABORTED, shutting_down)
