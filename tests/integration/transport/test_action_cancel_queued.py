@@ -121,7 +121,7 @@ async def test_cancel_of_a_goal_waiting_for_the_preempted_one_to_stop(
     ]
 
 
-async def test_handle_cancel_of_a_waiting_goal_keeps_the_next_one_in_order(
+async def test_a_newer_goal_takes_the_one_waiting_slot_as_in_nav2(
     bus: Bus, client_bus: Bus
 ) -> None:
     slow = SlowCleanup()
@@ -129,20 +129,26 @@ async def test_handle_cancel_of_a_waiting_goal_keeps_the_next_one_in_order(
     client = client_bus.action_client("wait", Wait)
     first = await client.send_goal(Wait.Goal(time=30.0), server_timeout=WAIT)
     second = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
-    third = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)  # behind second
-    await asyncio.wait_for(slow.cleaning.wait(), WAIT)
-    result = await second.cancel(timeout=WAIT)
+    await asyncio.wait_for(slow.cleaning.wait(), WAIT)  # first stops; second waits
+    third = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
+    # Nav2's SimpleActionServer keeps one pending goal: the newer one replaces it
+    second_result = await second.result(timeout=WAIT)
+    assert (second.status, second_result.error_msg) == (
+        GoalState.ABORTED,
+        f"preempted by goal {third.goal_id}",
+    )
+    result = await third.cancel(timeout=WAIT)  # the waiting goal can still be canceled
     assert result is not None
-    assert (second.status, result.error_msg) == (GoalState.CANCELED, "canceled")
+    assert (third.status, result.error_msg) == (GoalState.CANCELED, "canceled")
     assert slow.events == [f"start {first.goal_id}"]  # first still cleans up
-    assert not third.done
     slow.release.set()
     first_result = await first.result(timeout=WAIT)
-    await third.result(timeout=WAIT)
     assert first.status is GoalState.ABORTED
     assert first_result.error_msg == f"preempted by goal {second.goal_id}"
-    assert third.status is GoalState.SUCCEEDED
-    assert slow.events == one_after_another(first, third)
+    fourth = await client.send_goal(Wait.Goal(time=0.0), server_timeout=WAIT)
+    await fourth.result(timeout=WAIT)
+    assert fourth.status is GoalState.SUCCEEDED
+    assert slow.events == one_after_another(first, fourth)
 
 
 async def test_cancel_all_leaves_out_a_goal_being_preempted(bus: Bus, client_bus: Bus) -> None:
@@ -157,10 +163,14 @@ async def test_cancel_all_leaves_out_a_goal_being_preempted(bus: Bus, client_bus
         # first is being preempted (its outcome is decided): neither call names it
         assert await client.request_cancel(first.goal_id, timeout=WAIT) == []
         canceling = await client.cancel_all(timeout=WAIT)
-        assert sorted(canceling) == sorted([second.goal_id, third.goal_id])
-        for waiting in (second, third):
-            result = await waiting.result(timeout=WAIT)
-            assert (waiting.status, result.error_msg) == (GoalState.CANCELED, "canceled")
+        assert canceling == [third.goal_id]  # second was replaced by third, not canceled
+        second_result = await second.result(timeout=WAIT)
+        assert (second.status, second_result.error_msg) == (
+            GoalState.ABORTED,
+            f"preempted by goal {third.goal_id}",
+        )
+        third_result = await third.result(timeout=WAIT)
+        assert (third.status, third_result.error_msg) == (GoalState.CANCELED, "canceled")
         assert slow.events == [f"start {first.goal_id}"]  # its cleanup is not interrupted
         slow.release.set()
         first_result = await first.result(timeout=WAIT)
@@ -185,7 +195,7 @@ def follow_goal(controller: str, done: bool = False) -> FollowPath.Goal:
     return FollowPath.Goal(path=path, controller_id=controller)
 
 
-async def test_replace_a_goal_after_a_cancel_waits_for_the_cleanup_and_can_be_canceled(
+async def test_replace_goals_sent_during_a_cancel_wait_for_the_cleanup_newest_first(
     bus: Bus, client_bus: Bus
 ) -> None:
     slow = SlowCleanup()
@@ -199,9 +209,11 @@ async def test_replace_a_goal_after_a_cancel_waits_for_the_cleanup_and_can_be_ca
     # the canceled execute is stopping: newer goals wait for it, not get handed to it
     second = await client.send_goal(follow_goal("B", done=True), server_timeout=WAIT)
     third = await client.send_goal(follow_goal("C", done=True), server_timeout=WAIT)
-    result = await second.cancel(timeout=WAIT)
-    assert result is not None
-    assert (second.status, result.error_msg) == (GoalState.CANCELED, "canceled")
+    result = await second.result(timeout=WAIT)  # replaced in the waiting slot
+    assert (second.status, result.error_msg) == (
+        GoalState.ABORTED,
+        f"preempted by goal {third.goal_id}",
+    )
     assert not third.done
     slow.release.set()
     first_result = await first.result(timeout=WAIT)

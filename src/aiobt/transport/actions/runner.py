@@ -66,6 +66,8 @@ class GoalRunner(Generic[G, R, F]):
         self._observed.put_status(record.goal_id, GoalState.ACCEPTED)
         if self._lock.locked() or (self._running() and not self._replaceable()):
             record.acknowledge()
+            for older in self.waiting.take(""):  # Nav2: one pending slot, the newest goal
+                self._finish(older, GoalState.ABORTED, self._preempted(record.goal_id))
             self.waiting.add(record)  # until it takes over it may be canceled
             self._spawn(self._take_over_in_order, record, goal)  # must wait for the old goal
         elif self._replaceable():

@@ -48,8 +48,10 @@ class ActionServer(Generic[G, R, F]):
       ``"replace"``: the running execute continues with the newer goal
       (``handle.take_new_goal()``); the old goal ends ABORTED the same way.
       A goal being canceled is not preempted (it ends CANCELED): newer goals wait.
-    - A canceled goal that waits to run ends CANCELED at once and never runs;
-      the goals after it keep their order. Cancel-all: running and waiting ones,
+    - One goal at most waits to run (Nav2's pending slot): a newer goal takes the
+      slot and the one it replaces ends ABORTED "preempted by goal ..." without
+      running. A canceled waiting goal ends CANCELED at once and never runs.
+      Cancel-all: the running and the waiting goal,
       except a running goal already being preempted (its outcome is decided).
     - :meth:`aclose` rejects new goals ("action server shutting down"), ends the
       waiting and running goals ABORTED with that reason, then withdraws the token.
