@@ -93,15 +93,10 @@ class BusSettings:
             _insert(config, "scouting/multicast/enabled", False)
         scouting = json.loads(config.get_json("scouting/multicast/enabled")) is True
         connect = self.connect
-        if (
-            not connect
-            and mode == "client"
-            and not scouting
-            and _unset(config, "connect/endpoints")
-        ):
+        if not connect and mode == "client" and not scouting and not _endpoints_for(config, mode):
             connect = (DEFAULT_ROUTER,)
         _insert(config, "connect/endpoints", list(connect) or None)
-        connects = not _unset(config, "connect/endpoints")
+        connects = bool(_endpoints_for(config, mode))
         if mode == "peer" and connects and _unset(config, "connect/exit_on_failure"):
             _insert(config, "connect/exit_on_failure", True)
             if _unset(config, "connect/timeout_ms"):
@@ -125,6 +120,12 @@ class BusSettings:
             return zenoh.Config.from_file(path)
         except zenoh.ZError as exc:
             raise BusConfigError(f"Zenoh config file {path}: {exc}") from None
+
+
+def _endpoints_for(config: zenoh.Config, mode: str) -> list[str]:
+    """``connect/endpoints`` for ``mode``: a list, or a per-mode dict ({router: [...]})."""
+    endpoints = json.loads(config.get_json("connect/endpoints")) or []
+    return list(endpoints.get(mode, [])) if isinstance(endpoints, dict) else list(endpoints)
 
 
 def _unset(config: zenoh.Config, key: str) -> bool:

@@ -120,6 +120,10 @@ def test_peers_told_where_to_connect_fail_when_they_cannot_and_handshakes_are_sh
     chosen = parse("--config", str(path)).zenoh_config()
     assert get(chosen, "connect/exit_on_failure") is False
     assert get(chosen, "transport/unicast/open_timeout") == 5000
+    # per-mode endpoints: a client the file gives none still gets the default router
+    path.write_text('{connect: {endpoints: {router: ["tcp/127.0.0.1:9"]}}}')
+    per_mode = parse("--config", str(path)).zenoh_config()
+    assert get(per_mode, "connect/endpoints") == ["tcp/127.0.0.1:7447"]
     # a client that scouts for its router gets no default endpoint
     path.write_text("{scouting: {multicast: {enabled: true}}}")
     scouting = parse("--config", str(path)).zenoh_config()
