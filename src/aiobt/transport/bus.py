@@ -30,6 +30,7 @@ G = TypeVar("G", bound=Msg)
 R = TypeVar("R", bound=ActionResult)
 F = TypeVar("F", bound=Msg)
 log = logging.getLogger("aiobt.transport")
+_RETRY_PAUSE = 0.02  # s between gets that no server answered (routing, a restart)
 
 
 class Bus:
@@ -115,14 +116,30 @@ class Bus:
         response: type[Resp],
         timeout: float = 2.0,  # noqa: ASYNC109
     ) -> Resp:
-        """Call ``{ns}/srv/{name}``: waits up to ``timeout`` for the server to be there."""
+        """Call ``{ns}/srv/{name}``: waits up to ``timeout`` for the server to be there.
+
+        A request that no server answered (not routed yet, or its server went away,
+        e.g. restarting) is sent again until ``timeout``: a request whose server died
+        while handling it may be handled twice."""
         key = self.keys.service(name)
         loop = asyncio.get_running_loop()
         deadline = loop.time() + timeout
-        if not await self.presence(key).wait(timeout):
-            raise services.ServiceUnavailable(f"{key}: no server within {timeout} s")
-        remaining = max(0.05, deadline - loop.time())
-        return await services.call(self.session, self.bridge, key, request, response, remaining)
+        while True:
+            if not await self.presence(key).wait(max(0.0, deadline - loop.time())):
+                raise services.ServiceUnavailable(f"{key}: no server within {timeout} s")
+            remaining = max(0.05, deadline - loop.time())
+            try:
+                return await services.call(
+                    self.session, self.bridge, key, request, response, remaining
+                )
+            except services.NoAnswer:
+                if deadline - loop.time() <= _RETRY_PAUSE:
+                    raise services.ServiceUnavailable(
+                        f"{key}: no service answered within {timeout} s"
+                    ) from None
+            except services.NoReply:
+                raise services.ServiceUnavailable(f"{key}: no reply within {timeout} s") from None
+            await asyncio.sleep(_RETRY_PAUSE)
 
     def presence(self, key: str) -> Presence:
         """Liveliness watcher on an absolute key (shared; closed with the bus)."""

@@ -18,6 +18,7 @@ Req = TypeVar("Req", bound=Msg)
 Resp = TypeVar("Resp", bound=Msg)
 Handler = Callable[[Req], Awaitable[Resp] | Resp]
 log = logging.getLogger("aiobt.transport.services")
+_CLOSE_TIMEOUT = 2.0  # s for cancelled handlers to send their "shutting down" replies
 
 
 class ServiceError(RuntimeError):
@@ -26,6 +27,14 @@ class ServiceError(RuntimeError):
 
 class ServiceUnavailable(ServiceError):
     """Nobody answered: no server, or it did not reply in time."""
+
+
+class NoAnswer(ServiceUnavailable):
+    """The get's reply stream ended empty: no server routed yet, or it went away."""
+
+
+class NoReply(ServiceUnavailable):
+    """A server had the request but did not reply in time."""
 
 
 def query_payload(query: zenoh.Query) -> bytes:
@@ -49,6 +58,7 @@ class ServiceServer(Generic[Req, Resp]):
         self._handler = handler
         self._bridge = bridge
         self._tasks: set[asyncio.Task[None]] = set()
+        self._closed = False
         self._queryable = session.declare_queryable(key, callback(self._on_query))
         self._token = session.liveliness().declare_token(key)
 
@@ -77,7 +87,7 @@ class ServiceServer(Generic[Req, Resp]):
         except Exception as exc:
             self._fail(query, exc)
         except BaseException:  # cancelled: the server is closing; never leave a query open
-            query.reply_err(f"{self.key}: the service is shutting down")
+            query.reply_err("the service is shutting down")
             _z.drop(query)
             raise
         else:
@@ -103,15 +113,31 @@ class ServiceServer(Generic[Req, Resp]):
                 query.reply_err(f"bad request: {exc}")
             else:
                 log.error("%s: service handler failed", self.key, exc_info=exc)
-                query.reply_err(f"{self.key}: handler failed: {type(exc).__name__}: {exc}")
+                query.reply_err(f"handler failed: {type(exc).__name__}: {exc}")
         finally:
             _z.drop(query)
 
     def close(self) -> None:
+        """Withdraw the service; calls still in a handler are cancelled (idempotent)."""
+        if self._closed:
+            return
+        self._closed = True
         _z.undeclare(self._token)
         _z.undeclare(self._queryable)
         for task in self._tasks:
             task.cancel()
+
+    async def aclose(self) -> None:
+        """Like :meth:`close`, but the calls still in a handler are answered with the
+        error "the service is shutting down" before the service is withdrawn."""
+        if self._closed:
+            return
+        tasks = list(self._tasks)
+        for task in tasks:
+            task.cancel()
+        if tasks:
+            await asyncio.wait(tasks, timeout=_CLOSE_TIMEOUT)
+        self.close()
 
 
 class _Call:
@@ -171,11 +197,11 @@ async def call(
     bridge.check_size(key, payload)
     reply = await first_reply(session, bridge, key, timeout, payload)
     if reply is None:
-        raise ServiceUnavailable(f"{key}: no service answered")
+        raise NoAnswer(f"{key}: no service answered")
     if reply.err is not None:
         message = reply.err.payload.to_string()
         if message.lower().startswith("timeout"):
-            raise ServiceUnavailable(f"{key}: no reply within {timeout} s")
+            raise NoReply(f"{key}: no reply within {timeout:.3g} s")
         raise ServiceError(f"{key}: {message}")
     assert reply.ok is not None
     data = reply.ok.payload.to_bytes()

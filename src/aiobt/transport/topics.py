@@ -35,6 +35,7 @@ class Publisher(Generic[M]):
         self.model = model
         self._pub = zpub
         self._bridge = bridge
+        self._closed = False
 
     def put(self, message: M) -> None:
         if not isinstance(message, self.model):
@@ -62,6 +63,10 @@ class Publisher(Generic[M]):
         return True
 
     def close(self) -> None:
+        """Undeclare the publisher (idempotent: the bus closes it again on exit)."""
+        if self._closed:
+            return
+        self._closed = True
         _z.undeclare(self._pub)
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import logging
 
 import pytest
 
@@ -67,8 +68,10 @@ async def test_handler_failure_is_an_error_reply_and_server_keeps_running(
     bus.serve("is_path_valid", IsPathValid.Request, IsPathValid.Response, flaky)
     async with open_bus(bus_settings) as client:
         request = IsPathValid.Request(path=Path())
-        with pytest.raises(ServiceError, match="costmap not ready"):
+        with pytest.raises(ServiceError) as failed:
             await client.call("is_path_valid", request, IsPathValid.Response, timeout=5.0)
+        key = client.keys.service("is_path_valid")
+        assert str(failed.value) == f"{key}: handler failed: RuntimeError: costmap not ready"
         response = await client.call("is_path_valid", request, IsPathValid.Response, timeout=5.0)
     assert response.is_valid
 
@@ -115,3 +118,71 @@ async def test_garbage_and_oversized_requests_get_error_replies(
             "is_path_valid", IsPathValid.Request(path=Path()), IsPathValid.Response, timeout=5.0
         )
     assert response.is_valid  # the server kept serving
+
+
+async def test_a_call_waits_through_a_server_that_is_announced_but_not_yet_routed(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    """A restarting server: its liveliness is seen before its queryable answers (or the
+    old server's token lingers). The call is sent again until the timeout."""
+    liveliness = bus.session.liveliness()
+    stale = [  # announced, nothing answers
+        liveliness.declare_token(bus.keys.service(name)) for name in ("is_path_valid", "stale")
+    ]
+    try:
+        async with open_bus(bus_settings) as client:
+            request = IsPathValid.Request(path=Path())
+            call = asyncio.create_task(
+                client.call("is_path_valid", request, IsPathValid.Response, timeout=5.0)
+            )
+            await asyncio.sleep(0.3)
+            assert not call.done()  # gets that nobody answered are sent again
+            bus.serve(
+                "is_path_valid",
+                IsPathValid.Request,
+                IsPathValid.Response,
+                lambda request: IsPathValid.Response(is_valid=True),
+            )
+            assert (await asyncio.wait_for(call, 5.0)).is_valid
+            with pytest.raises(ServiceUnavailable, match=r"no service answered within 0\.3 s"):
+                await client.call("stale", request, IsPathValid.Response, timeout=0.3)
+    finally:
+        for token in stale:
+            token.undeclare()  # type: ignore[no-untyped-call]
+
+
+async def test_a_closing_server_answers_calls_in_progress(bus_settings: BusSettings) -> None:
+    started = asyncio.Event()
+
+    async def slow(request: IsPathValid.Request) -> IsPathValid.Response:
+        started.set()
+        await asyncio.sleep(30.0)
+        return IsPathValid.Response(is_valid=True)
+
+    async with open_bus(bus_settings) as client:
+        async with open_bus(bus_settings) as server_bus:
+            server_bus.serve("slow", IsPathValid.Request, IsPathValid.Response, slow)
+            call = asyncio.create_task(
+                client.call("slow", IsPathValid.Request(path=Path()), IsPathValid.Response, 5.0)
+            )
+            await asyncio.wait_for(started.wait(), 5.0)
+        with pytest.raises(ServiceError, match="the service is shutting down") as failed:
+            await asyncio.wait_for(call, 5.0)
+        assert not isinstance(failed.value, ServiceUnavailable)
+
+
+async def test_closing_a_server_or_publisher_twice_logs_nothing(
+    bus_settings: BusSettings, caplog: pytest.LogCaptureFixture
+) -> None:
+    async with open_bus(bus_settings) as bus:
+        server = bus.serve(
+            "twice",
+            IsPathValid.Request,
+            IsPathValid.Response,
+            lambda request: IsPathValid.Response(is_valid=True),
+        )
+        publisher = bus.publisher("twice", PoseStamped)
+        server.close()
+        publisher.close()
+    # ... and once more each when the bus closed
+    assert [r.getMessage() for r in caplog.records if r.levelno >= logging.WARNING] == []
