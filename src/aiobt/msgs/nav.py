@@ -49,9 +49,14 @@ class LaserScan(Msg):
 
     @field_validator("angle_increment")
     @classmethod
-    def _nonzero_increment(cls, value: float) -> float:
+    def _nonzero_increment(cls, value: float, info: ValidationInfo) -> float:
         if value == 0.0:
             raise ValueError("angle_increment must not be 0")
+        sweep = info.data.get("angle_max", 0.0) - info.data.get("angle_min", 0.0)
+        if sweep * value < 0.0:  # a clockwise scan has angle_max < angle_min and a negative step
+            raise ValueError(
+                f"angle_increment {value:g} runs against angle_min -> angle_max ({sweep:+g} rad)"
+            )
         return value
 
     @field_validator("range_max")

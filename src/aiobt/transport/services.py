@@ -102,7 +102,7 @@ class ServiceServer(Generic[Req, Resp]):
             self._fail(query, exc)
             return
         try:
-            query.reply(query.key_expr, payload, encoding=JSON)
+            query.reply(self.key, payload, encoding=JSON)  # the service's key, not a wildcard
         finally:
             _z.drop(query)
 

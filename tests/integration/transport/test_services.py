@@ -10,6 +10,7 @@ import pytest
 from aiobt.msgs import (
     ClearCostmapExceptRegion,
     ClearCostmapResponse,
+    ClearEntireCostmap,
     IsPathValid,
     Path,
     PoseStamped,
@@ -186,3 +187,20 @@ async def test_closing_a_server_or_publisher_twice_logs_nothing(
         publisher.close()
     # ... and once more each when the bus closed
     assert [r.getMessage() for r in caplog.records if r.levelno >= logging.WARNING] == []
+
+
+async def test_a_wildcard_get_is_answered_on_the_service_key(bus: Bus) -> None:
+    bus.serve("clear", ClearEntireCostmap.Request, ClearCostmapResponse, _cleared)
+    key = bus.keys.service("clear")
+    assert await bus.presence(key).wait(5.0)
+
+    def get_all() -> list[str]:
+        wildcard = f"{bus.namespace}/srv/*"
+        replies = bus.session.get(wildcard, payload=b"{}", timeout=5.0)
+        return [str(r.ok.key_expr) if r.ok else str(r.err) for r in replies]
+
+    assert await asyncio.to_thread(get_all) == [key]
+
+
+def _cleared(request: ClearEntireCostmap.Request) -> ClearCostmapResponse:
+    return ClearCostmapResponse(success=True)

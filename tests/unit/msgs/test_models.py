@@ -235,6 +235,12 @@ def test_laser_scan_consistency() -> None:
     assert caught.value.field == "ranges.1"
     scan = msgs.validate(msgs.LaserScan, {**base, "angle_increment": 0.5, "ranges": [1, 2, 3]})
     assert scan.angles_array().tolist() == [0.0, 0.5, 1.0]
+    backwards = {**base, "angle_min": 1.0, "angle_max": 0.0}
+    with pytest.raises(MessageError) as caught:  # max below min with a positive step
+        msgs.validate(msgs.LaserScan, {**backwards, "angle_increment": 0.5})
+    assert caught.value.field == "angle_increment"
+    clockwise = msgs.validate(msgs.LaserScan, {**backwards, "angle_increment": -0.5})
+    assert clockwise.angles_array().tolist() == [1.0]
 
 
 def test_out_of_range_values_are_refused() -> None:
