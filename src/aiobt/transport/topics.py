@@ -113,6 +113,7 @@ class Subscription(Generic[M]):
         self.latest: M | None = None
         self.received = 0
         self.dropped_invalid = 0
+        self.dropped_overflow = 0  # oldest messages pushed out of a full queue
         self._bridge = bridge
         self._callback = callback
         self._validate_json = wire_validator(model)
@@ -169,8 +170,21 @@ class Subscription(Generic[M]):
             return
         if self._closed:
             return
-        self._queue.append(message)  # full: the oldest is dropped
+        queue = self._queue
+        if len(queue) == queue.maxlen:
+            self._overflow()
+        queue.append(message)  # full: the oldest is dropped
         self._wake()
+
+    def _overflow(self) -> None:
+        self.dropped_overflow += 1
+        if self.dropped_overflow == 1:
+            log.warning(
+                "%s: the reader falls behind; the queue of %d is full and the oldest "
+                "messages are dropped (reported once; see dropped_overflow)",
+                self.key,
+                self._queue.maxlen,
+            )
 
     def _wake(self) -> None:
         for waiter in self._waiters:

@@ -115,7 +115,9 @@ def xs(*values: float) -> list[bytes]:
     return [PoseStamped.from_xy_yaw(x, 0.0).to_json() for x in values]
 
 
-async def test_a_full_queue_keeps_the_newest_messages() -> None:
+async def test_a_full_queue_keeps_the_newest_messages_and_says_so_once(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
     bridge = LoopBridge(asyncio.get_running_loop(), 10_000)
     sub = Subscription(KEY, PoseStamped, bridge, callback=None, queue_size=3)
     feed(sub, *xs(1, 2, 3, 4, 5))
@@ -123,6 +125,11 @@ async def test_a_full_queue_keeps_the_newest_messages() -> None:
     assert [(await sub.next(timeout=1.0)).x for _ in range(3)] == [3.0, 4.0, 5.0]
     with pytest.raises(TimeoutError):
         await sub.next(timeout=0.05)
+    assert sub.dropped_overflow == 2
+    warnings = [r.getMessage() for r in caplog.records if r.levelno == logging.WARNING]
+    assert len(warnings) == 1
+    assert KEY in warnings[0]
+    assert "queue of 3 is full" in warnings[0]
 
 
 async def test_close_ends_iteration_after_the_queued_messages() -> None:
