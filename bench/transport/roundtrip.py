@@ -144,15 +144,24 @@ def blocking_raw_get(session: zenoh.Session, n: int) -> list[float]:
     return out
 
 
+# aiobt probe -> (short name, raw probe's name, raw baselines: far side in Zenoh's thread,
+# in asyncio)
 BASELINES = {
-    "aiobt action goal->result": ("raw get/reply (asyncio)", "raw get/reply (asyncio both ends)"),
-    "aiobt service call": ("raw get/reply (asyncio)", "raw get/reply (asyncio both ends)"),
-    "aiobt typed pub->sub echo": ("raw put->sub echo", "raw put->sub echo (asyncio both ends)"),
-}
-SHORT = {
-    "aiobt action goal->result": ("action", "raw get"),
-    "aiobt service call": ("service", "raw get"),
-    "aiobt typed pub->sub echo": ("typed echo", "raw echo"),
+    "aiobt action goal->result": (
+        "action",
+        "raw get",
+        ("raw get/reply (asyncio)", "raw get/reply (asyncio both ends)"),
+    ),
+    "aiobt service call": (
+        "service",
+        "raw get",
+        ("raw get/reply (asyncio)", "raw get/reply (asyncio both ends)"),
+    ),
+    "aiobt typed pub->sub echo": (
+        "typed echo",
+        "raw echo",
+        ("raw put->sub echo", "raw put->sub echo (asyncio both ends)"),
+    ),
 }
 # the issue's targets: action (and service) within 1.5x of the raw get; the echo is two
 # one-way trips (bench.transport.oneway measures the pub/sub target), so it has none
@@ -168,8 +177,7 @@ def ratios(measured: Measured) -> dict[str, float]:
     """Each aiobt probe's median over each of its raw baselines' medians."""
     med = {name: statistics.median(values) for name, values in measured.samples.items()}
     out = {}
-    for name, bases in BASELINES.items():
-        short, raw = SHORT[name]
+    for name, (short, raw, bases) in BASELINES.items():
         for base, where in zip(bases, ("Zenoh thread", "asyncio"), strict=True):
             out[f"{short} vs {raw} (far side in {where})"] = med[name] / med[base]
     return out
@@ -185,7 +193,7 @@ def report(measured: Measured, blocking: list[float]) -> str:
     ]
     for name, values in samples.items():
         p90 = statistics.quantiles(values, n=10)[-1]
-        bases = BASELINES.get(name, ())
+        bases = BASELINES[name][2] if name in BASELINES else ()
         ratio = " / ".join(f"{med[name] / med[b]:.2f}x" for b in bases) or "baseline"
         near, far = (seconds / len(values) * 1e6 for seconds in measured.cpu[name])
         lines.append(

@@ -49,7 +49,7 @@ class LaserScan(Msg):
 
     @field_validator("angle_increment")
     @classmethod
-    def _nonzero_increment(cls, value: float, info: ValidationInfo) -> float:
+    def _increment_along_the_sweep(cls, value: float, info: ValidationInfo) -> float:
         if value == 0.0:
             raise ValueError("angle_increment must not be 0")
         sweep = info.data.get("angle_max", 0.0) - info.data.get("angle_min", 0.0)

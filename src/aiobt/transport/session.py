@@ -9,7 +9,7 @@ import time
 
 import zenoh
 
-from aiobt.transport.settings import BusSettings
+from aiobt.transport.settings import OPEN_TIMEOUT_KEY, BusSettings
 
 log = logging.getLogger("aiobt.transport.session")
 _RETRY_DELAYS = (0.1, 0.2, 0.5, 1.0)
@@ -64,10 +64,9 @@ async def open_session(settings: BusSettings) -> zenoh.Session:
 
 
 def _bound_open_timeout(config: zenoh.Config, seconds: float) -> None:
-    key = "transport/unicast/open_timeout"
     bound = max(100, int(seconds * 1000))
-    if json.loads(config.get_json(key)) > bound:
-        config.insert_json5(key, json.dumps(bound))
+    if json.loads(config.get_json(OPEN_TIMEOUT_KEY)) > bound:
+        config.insert_json5(OPEN_TIMEOUT_KEY, json.dumps(bound))
 
 
 def _where(settings: BusSettings) -> str:

@@ -23,7 +23,7 @@ DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
 DEFAULT_NAMESPACE = "robot"
 DEFAULT_MAX_PAYLOAD = 16 * 1024 * 1024
 OPEN_TIMEOUT_MS = 2000  # a link handshake (Zenoh's default, 10 s, unless a file sets one)
-_OPEN_TIMEOUT = "transport/unicast/open_timeout"
+OPEN_TIMEOUT_KEY = "transport/unicast/open_timeout"
 _ZENOH_OPEN_TIMEOUT_MS = 10000
 
 
@@ -103,8 +103,8 @@ class BusSettings:
                 _insert(config, "connect/timeout_ms", 0)  # one try per open: we retry
         _insert(config, "listen/endpoints", list(self.listen) or None)
         _insert(config, "transport/link/tx/lease", self.lease_ms)
-        if json.loads(config.get_json(_OPEN_TIMEOUT)) == _ZENOH_OPEN_TIMEOUT_MS:
-            _insert(config, _OPEN_TIMEOUT, OPEN_TIMEOUT_MS)
+        if json.loads(config.get_json(OPEN_TIMEOUT_KEY)) == _ZENOH_OPEN_TIMEOUT_MS:
+            _insert(config, OPEN_TIMEOUT_KEY, OPEN_TIMEOUT_MS)
         _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
         for key, value in self.extra.items():
             _insert(config, key, value)

@@ -75,7 +75,8 @@ class GoalRecord:
 
 
 class WaitingGoals:
-    """Accepted goals waiting, in order, for the running goal to stop: cancelable."""
+    """Accepted goals waiting for the running goal to stop: cancelable. (The runner keeps
+    at most one, Nav2's pending slot: a newer goal takes the others out first.)"""
 
     __slots__ = ("_records",)
 
