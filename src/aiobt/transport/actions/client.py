@@ -24,6 +24,7 @@ F = TypeVar("F", bound=Msg)
 log = logging.getLogger("aiobt.transport.actions")
 _GOAL_STREAM_TIMEOUT = 7 * 24 * 3600.0  # the goal's query lives as long as the goal
 _RETRY_PAUSE = 0.02
+_RESULT_GRACE = 0.25  # s a result may trail its server's vanished liveliness token
 
 
 class _Stream(Generic[G, R, F]):
@@ -146,11 +147,17 @@ class ActionClient(Generic[G, R, F]):
         self._goals.pop(goal_id, None)
 
     def _on_presence(self, present: bool) -> None:
+        """The server's token went away: its accepted goals are lost, unless their result
+        (sent just before a clean shutdown withdrew the token) arrives within a moment:
+        Zenoh does not order the token's end and the goal stream's replies."""
         if present:
             return
+        loop = asyncio.get_running_loop()
         for handle in list(self._goals.values()):
             if handle._accepted.done() and not handle._accepted.exception():
-                handle.lost("the server's liveliness token disappeared")
+                loop.call_later(
+                    _RESULT_GRACE, handle.lost, "the server's liveliness token disappeared"
+                )
 
     def _cancel_quietly(self, goal_id: str) -> None:
         payload = p.CancelRequest(goal_id=goal_id).to_json()
