@@ -4,10 +4,10 @@ from __future__ import annotations
 
 import functools
 import inspect
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, cast
 
 from aiobt.core.clock import Clock
-from aiobt.core.manifest import NodeManifest, ports_dict
+from aiobt.core.manifest import NodeBuilder, NodeManifest, ports_dict
 from aiobt.core.node import TreeNode
 from aiobt.nav.context import NavContext, NavNode
 
@@ -50,9 +50,9 @@ def register_nav2_nodes(
 
 
 def _manifest(node_id: str, node_class: type[TreeNode], nav: NavContext) -> NodeManifest:
-    builder = (
-        functools.partial(node_class, nav=nav) if issubclass(node_class, NavNode) else node_class
-    )
+    builder: NodeBuilder = node_class
+    if issubclass(node_class, NavNode):
+        builder = functools.partial(cast(Any, node_class), nav=nav)
     return NodeManifest(
         id=node_id,
         kind=node_class.KIND,
