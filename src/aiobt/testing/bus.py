@@ -17,7 +17,7 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import AsyncIterator, Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -170,3 +170,25 @@ async def _serve(settings: BusSettings, declare: Callable[[Bus], object]) -> Non
         print("ready", flush=True)
         await stop.wait()
         del declared  # undeclared with the session
+
+
+@contextlib.asynccontextmanager
+async def open_local_bus(namespace: str | None = None) -> AsyncIterator[Bus]:
+    """An in-process bus: a Zenoh peer listening on a free loopback port, no router.
+
+    Publishers, subscribers, services and actions declared on it reach each other
+    within the process (Zenoh delivers within one session), so nodes and servers
+    can be tested together without a router process. ``namespace`` defaults to a
+    fresh one, so tests never hear each other.
+    """
+    import uuid
+
+    from aiobt.transport import BusSettings, open_bus
+
+    settings = BusSettings(
+        mode="peer",
+        listen=(f"tcp/{LOOPBACK}:0",),
+        namespace=namespace or f"t{uuid.uuid4().hex[:10]}",
+    )
+    async with open_bus(settings) as bus:
+        yield bus
