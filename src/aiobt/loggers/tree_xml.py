@@ -20,12 +20,28 @@ from aiobt.core.tree import Tree
 from aiobt.nodes.subtree import SubTreeNode
 from aiobt.xml.model import add_node_model
 
+# a SubTree element's attributes that are not port remappings
+_SUBTREE_OWN = frozenset(("ID", "name", "_fullpath", "_uid"))
+
 
 @dataclass(frozen=True, slots=True)
-class _Instance:
+class SubtreeInstance:
+    """One instance of a BehaviorTree in a built tree (the main tree has fullpath "")."""
+
     tree_id: str
     fullpath: str
     top: TreeNode | None
+
+    def nodes(self) -> list[TreeNode]:
+        """This instance's own nodes, pre-order: a SubTree node, not its contents."""
+        found: list[TreeNode] = []
+        stack = [self.top] if self.top is not None else []
+        while stack:
+            node = stack.pop()
+            found.append(node)
+            if not isinstance(node, SubTreeNode):
+                stack.extend(reversed(node.children_nodes()))
+        return found
 
 
 def _subtree_path(parent: str, node: SubTreeNode) -> str:
@@ -33,21 +49,22 @@ def _subtree_path(parent: str, node: SubTreeNode) -> str:
     return f"{parent}/{own}" if parent else own
 
 
-def _instances(tree: Tree) -> list[_Instance]:
-    found = [_Instance(tree.tree_id or "MainTree", "", tree.root)]
+def subtree_instances(tree: Tree) -> list[SubtreeInstance]:
+    """The main tree, then every SubTree instance in the order it appears (BT.CPP's)."""
+    found = [SubtreeInstance(tree.tree_id or "MainTree", "", tree.root)]
 
     def walk(node: TreeNode, fullpath: str) -> None:
         for child in node.children_nodes():
             if isinstance(child, SubTreeNode):
                 path = _subtree_path(fullpath, child)
-                found.append(_Instance(child.tree_id, path, child.child))
+                found.append(SubtreeInstance(child.tree_id, path, child.child))
                 if child.child is not None:
                     walk(child.child, path)
             else:
                 walk(child, fullpath)
 
     if isinstance(tree.root, SubTreeNode):
-        found[0] = _Instance(tree.root.tree_id, "", tree.root.child)
+        found[0] = SubtreeInstance(tree.root.tree_id, "", tree.root.child)
     walk(tree.root, "")
     return found
 
@@ -74,6 +91,9 @@ def _add_node(parent: etree._Element, node: TreeNode, metadata: bool, fullpath: 
         if metadata:
             element.set("_fullpath", _subtree_path(fullpath, node))
             element.set("_uid", str(node.uid))
+        for name, value in node.config.attributes.items():
+            if name not in _SUBTREE_OWN:
+                element.set(name, value)
         return
     element = etree.SubElement(parent, node.config.registration_id or type(node).__name__)
     element.set("name", node.name)
@@ -85,25 +105,38 @@ def _add_node(parent: etree._Element, node: TreeNode, metadata: bool, fullpath: 
         _add_node(element, child, metadata, fullpath)
 
 
-def _add_models(root: etree._Element, tree: Tree) -> None:
-    models: dict[str, tuple[str, dict[str, PortInfo]]] = {}
+def _builtin_models() -> dict[str, tuple[str, dict[str, PortInfo]]]:
+    from aiobt.factory import BehaviorTreeFactory  # the factory imports the loggers' users
+
+    factory = BehaviorTreeFactory()
+    return {
+        node_id: (manifest.kind, manifest.ports)
+        for node_id, manifest in factory.manifests.items()
+        if manifest.builtin
+    }
+
+
+def _add_models(root: etree._Element, tree: Tree, builtins: bool) -> None:
+    models = _builtin_models() if builtins else {}
     for node in tree.nodes():
         if not isinstance(node, SubTreeNode):
             node_id = node.config.registration_id or type(node).__name__
-            models.setdefault(node_id, (node.KIND, node.config.ports))
+            models[node_id] = (node.KIND, node.config.ports)
     model = etree.SubElement(root, "TreeNodesModel")
     for node_id in sorted(models):
         kind, ports = models[node_id]
         add_node_model(model, kind, node_id, ports.values())
 
 
-def tree_to_xml(tree: Tree, *, metadata: bool = True) -> str:
-    """The XML of ``tree`` as instantiated; ``metadata`` adds ``_uid``/``_fullpath``."""
+def tree_to_xml(tree: Tree, *, metadata: bool = True, builtin_models: bool = False) -> str:
+    """The XML of ``tree`` as instantiated; ``metadata`` adds ``_uid``/``_fullpath``;
+    ``builtin_models`` lists every built-in node in the ``<TreeNodesModel>``, not only
+    those the tree uses (Groot2's live view gets them all, as from BT.CPP)."""
     root = etree.Element("root", BTCPP_format="4")
-    for instance in _instances(tree):
+    for instance in subtree_instances(tree):
         element = etree.SubElement(root, "BehaviorTree", ID=instance.tree_id)
         element.set("_fullpath", instance.fullpath)
         if instance.top is not None:
             _add_node(element, instance.top, metadata, instance.fullpath)
-    _add_models(root, tree)
+    _add_models(root, tree, builtin_models)
     return etree.tostring(root, pretty_print=True, encoding="unicode")

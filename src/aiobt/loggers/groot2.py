@@ -1,0 +1,189 @@
+"""Groot2 attaches live to a running tree, as to BehaviorTree.CPP's ``Groot2Publisher``.
+
+::
+
+    async with Groot2Publisher(tree, port=1667):
+        await tree.tick_while_running()
+
+A REP socket on ``port`` answers Groot2's requests (:mod:`.groot2_monitor`)
+and a PUB socket on ``port + 1`` announces breakpoints. Both are served by a
+task of the running event loop (``zmq.asyncio``): nothing blocks the loop,
+and a breakpoint suspends only the coroutine ticking the tree
+(:mod:`.groot2_hooks`). As in BT.CPP, when Groot2 sends no request for
+``max_heartbeat_delay`` seconds every hook is disabled (a held breakpoint
+lets the tree go on), and enabled again when Groot2 comes back.
+
+The sockets bind to 127.0.0.1 unless another ``host`` is given (a warning is
+logged for a non-loopback address: anyone who reaches it can stop the tree).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import ipaddress
+import logging
+from types import TracebackType
+from typing import Self
+
+import zmq
+import zmq.asyncio
+
+from aiobt.core.tree import Tree
+from aiobt.loggers.groot2_monitor import Groot2Monitor
+from aiobt.loggers.groot2_protocol import error_reply, notification
+
+log = logging.getLogger("aiobt.loggers.groot2")
+
+DEFAULT_PORT = 1667
+_HEARTBEAT_CHECK = 0.1  # seconds of wall time between two checks of the heartbeat
+
+
+def _is_loopback(host: str) -> bool:
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+class Groot2Publisher:
+    """Serves Groot2 for ``tree`` on ``tcp://host:port`` (and ``port + 1``).
+
+    Call :meth:`start` and :meth:`stop` (or use ``async with``) from the event
+    loop that ticks the tree; one publisher per tree, each on its own port.
+    """
+
+    def __init__(
+        self,
+        tree: Tree,
+        port: int = DEFAULT_PORT,
+        host: str = "127.0.0.1",
+        *,
+        max_heartbeat_delay: float = 5.0,
+    ) -> None:
+        if not 0 < port < 0xFFFF:
+            raise ValueError(f"Groot2Publisher: port {port} is not in 1..65534 (port + 1 is used)")
+        if max_heartbeat_delay <= 0:
+            raise ValueError(
+                f"Groot2Publisher: max_heartbeat_delay must be > 0, got {max_heartbeat_delay}"
+            )
+        self.tree = tree
+        self.port = port
+        self.host = host
+        self.max_heartbeat_delay = max_heartbeat_delay
+        self._monitor: Groot2Monitor | None = None
+        self._context: zmq.asyncio.Context | None = None
+        self._server: zmq.asyncio.Socket | None = None
+        self._publisher: zmq.Socket[bytes] | None = None
+        self._tasks: list[asyncio.Task[None]] = []
+        self._last_request = 0.0
+
+    @property
+    def monitor(self) -> Groot2Monitor:
+        if self._monitor is None:
+            raise RuntimeError("Groot2Publisher is not started")
+        return self._monitor
+
+    @property
+    def endpoint(self) -> str:
+        return f"tcp://{self.host}:{self.port}"
+
+    async def start(self) -> None:
+        """Bind both sockets and start serving; raises OSError if a port is taken."""
+        if self._monitor is not None:
+            raise RuntimeError(f"Groot2Publisher on {self.endpoint} is already started")
+        if not _is_loopback(self.host):
+            log.warning(
+                "Groot2 publisher bound to %s: anyone who reaches it can inspect and stop the tree",
+                self.host,
+            )
+        self._bind()
+        self._monitor = Groot2Monitor(self.tree, self._notify)
+        self._last_request = asyncio.get_running_loop().time()
+        self._tasks = [
+            asyncio.create_task(self._serve(), name=f"groot2-serve-{self.port}"),
+            asyncio.create_task(self._heartbeat(), name=f"groot2-heartbeat-{self.port}"),
+        ]
+        log.info("Groot2 publisher for tree %s on %s", self.tree.tree_id, self.endpoint)
+
+    def _bind(self) -> None:
+        context = zmq.asyncio.Context()
+        server = context.socket(zmq.REP)
+        publisher: zmq.Socket[bytes] = zmq.Socket(context, zmq.PUB)  # sends never wait
+        for socket in (server, publisher):
+            socket.setsockopt(zmq.LINGER, 0)
+        try:
+            server.bind(f"tcp://{self.host}:{self.port}")
+            publisher.bind(f"tcp://{self.host}:{self.port + 1}")
+        except zmq.ZMQError as exc:
+            server.close()
+            publisher.close()
+            context.term()
+            raise OSError(
+                f"Groot2Publisher: cannot bind tcp://{self.host}:{self.port} and "
+                f"port {self.port + 1}: {exc}"
+            ) from exc
+        self._context, self._server, self._publisher = context, server, publisher
+
+    async def stop(self) -> None:
+        """Stop serving, remove every hook (a held breakpoint lets the tree go on), close."""
+        for task in self._tasks:
+            task.cancel()
+        await asyncio.gather(*self._tasks, return_exceptions=True)
+        self._tasks = []
+        if self._monitor is not None:
+            self._monitor.close()
+            self._monitor = None
+        for socket in (self._server, self._publisher):
+            if socket is not None:
+                socket.close()
+        if self._context is not None:
+            self._context.term()
+        self._context = self._server = self._publisher = None
+
+    async def __aenter__(self) -> Self:
+        await self.start()
+        return self
+
+    async def __aexit__(
+        self,
+        exc_type: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> None:
+        await self.stop()
+
+    # -- serving ------------------------------------------------------------------------
+    async def _serve(self) -> None:
+        assert self._server is not None
+        server = self._server
+        while True:
+            frames = await server.recv_multipart()
+            self._last_request = asyncio.get_running_loop().time()
+            try:
+                reply = self.monitor.handle(frames)
+            except Exception as exc:  # never leave Groot2's REQ socket without a reply
+                log.exception("Groot2 request failed")
+                reply = error_reply(f"{type(exc).__name__}: {exc}")
+            await server.send_multipart(reply)
+
+    async def _heartbeat(self) -> None:
+        connected = True
+        loop = asyncio.get_running_loop()
+        while True:
+            await asyncio.sleep(_HEARTBEAT_CHECK)  # wall time: Groot2's polling, not robot time
+            alive = loop.time() - self._last_request < self.max_heartbeat_delay
+            if alive != connected:
+                connected = alive
+                log.info(
+                    "Groot2 %s: hooks %s", "back" if alive else "silent", "on" if alive else "off"
+                )
+                self.monitor.hooks.enable_all(alive)
+
+    def _notify(self, uid: int) -> None:
+        if self._publisher is None:
+            return
+        with contextlib.suppress(zmq.Again):  # PUB drops when nobody keeps up, as in BT.CPP
+            self._publisher.send_multipart(notification(uid), flags=zmq.NOBLOCK)
