@@ -29,7 +29,14 @@ from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.display import render
 from aiobt.factory import BehaviorTreeFactory
-from aiobt.loggers import BtlogLogger, JsonlLogger, SqliteLogger, TreeStatistics
+from aiobt.loggers import (
+    BtlogLogger,
+    Groot2Publisher,
+    JsonlLogger,
+    SqliteLogger,
+    TreeStatistics,
+)
+from aiobt.loggers.groot2 import DEFAULT_PORT
 from aiobt.nodes.subtree import SubTreeNode
 
 log = logging.getLogger("aiobt.cli.run")
@@ -80,6 +87,24 @@ def add_tree_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--stats", action="store_true", help="print the tree with per-node tick counts at the end"
     )
+    parser.add_argument(
+        "--groot2", type=_port, nargs="?", const=DEFAULT_PORT, default=None, metavar="PORT",
+        help=f"let Groot2 attach live (ZeroMQ on PORT and PORT+1, default {DEFAULT_PORT})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--host", default="127.0.0.1",
+        help="address the --groot2 publisher binds (default 127.0.0.1; 0.0.0.0 exposes it)",
+    )  # fmt: skip
+
+
+def _port(text: str) -> int:
+    try:
+        port = int(text)
+    except ValueError:
+        port = 0
+    if not 0 < port < 0xFFFF:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a port in 1..65534 (PORT+1 is used too)")
+    return port
 
 
 @dataclass(slots=True)
@@ -187,6 +212,15 @@ async def run_tree(tree: Tree, args: argparse.Namespace, out: TextIO) -> RunRepo
     if args.trace != "none":
         tree.add_status_listener(transition_printer(tree, args.trace, out))
     start = tree.clock.now()
+    async with contextlib.AsyncExitStack() as servers:
+        if getattr(args, "groot2", None) is not None:
+            await servers.enter_async_context(Groot2Publisher(tree, args.groot2, args.host))
+        return await _run_logged(tree, args, out, start, lambda: transitions)
+
+
+async def _run_logged(
+    tree: Tree, args: argparse.Namespace, out: TextIO, start: float, count: Callable[[], int]
+) -> RunReport:
     with contextlib.ExitStack() as loggers:
         stats = _attach_loggers(tree, args, loggers)
         try:
@@ -199,7 +233,7 @@ async def run_tree(tree: Tree, args: argparse.Namespace, out: TextIO) -> RunRepo
                 await tree.halt_tree("aiobt run stopped")
         if stats is not None:
             out.write(render(tree, stats=stats) + "\n")
-    return RunReport(status, tree.clock.now() - start, transitions)
+    return RunReport(status, tree.clock.now() - start, count())
 
 
 def _attach_loggers(
@@ -255,6 +289,9 @@ def finish(tree: Tree, args: argparse.Namespace) -> int:
     except KeyboardInterrupt:
         print("aiobt: interrupted", file=sys.stderr)
         return 1
+    except OSError as exc:  # e.g. the --groot2 port is taken
+        print(f"aiobt run: {exc}", file=sys.stderr)
+        return 2
     print(
         f"tree {tree.tree_id}: {report.status.name} after {report.clock_time:.2f} s of clock time, "
         f"{report.transitions} status changes"

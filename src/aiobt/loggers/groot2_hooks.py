@@ -13,7 +13,9 @@ BT.CPP), the tick unwinds and the tree is paused, which suspends only the
 coroutine ticking it. The unlock resumes the tree; the next tick reaches the
 node again and the hook gives it the unlock's status (SUCCESS or FAILURE
 replace the tick, SKIPPED lets it tick). Reactive parents re-check their
-conditions on that tick, as they would on any tick.
+conditions on that tick, as they would on any tick. A RUNNING node whose tick
+is replaced is halted first (BT.CPP only overwrites its status), so that an
+async leaf's task does not run on unseen.
 """
 
 from __future__ import annotations
@@ -55,6 +57,8 @@ class HookedConditions(NodeConditions):
             pre = self.gate()
             if pre is RUNNING:  # held at a breakpoint: the node is not ticked
                 return RUNNING
+            if pre is not None and node.status is RUNNING:
+                node.halt_sync()  # its work stops: an async leaf's task is cancelled
         if pre is not None:
             return self._settle(node, pre)
         try:
