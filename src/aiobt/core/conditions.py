@@ -75,12 +75,20 @@ class NodeConditions:
         return status
 
     def tick_sync(self, node: TreeNode) -> Status:
+        pre = self._decide(node)
+        if pre is not None:
+            return self._settle(node, pre)
+        return self._execute(node)
+
+    def _decide(self, node: TreeNode) -> Status | None:
+        """The result the conditions give without ticking the node, or None to tick."""
         pre = self._pre(node)
         if self._while_stops(node, pre):
             node.halt_sync()
             pre = SKIPPED
-        if pre is not None:
-            return self._settle(node, pre)
+        return pre
+
+    def _execute(self, node: TreeNode) -> Status:
         try:
             status = node.execute_sync()
         except NodeError:

@@ -25,9 +25,8 @@ import logging
 from collections.abc import Callable
 
 from aiobt.core.conditions import NodeConditions
-from aiobt.core.errors import NodeError
 from aiobt.core.node import TreeNode
-from aiobt.core.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
+from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
 from aiobt.core.tree import Tree
 from aiobt.loggers.groot2_protocol import NODE_NOT_FOUND, Hook, HookMode, ProtocolError
 
@@ -49,10 +48,7 @@ class HookedConditions(NodeConditions):
         self.gate = gate
 
     def tick_sync(self, node: TreeNode) -> Status:
-        pre = self._pre(node)
-        if self._while_stops(node, pre):
-            node.halt_sync()
-            pre = SKIPPED
+        pre = self._decide(node)
         if pre is None and not node.status.is_completed:
             pre = self.gate()
             if pre is RUNNING:  # held at a breakpoint: the node is not ticked
@@ -61,13 +57,7 @@ class HookedConditions(NodeConditions):
                 node.halt_sync()  # its work stops: an async leaf's task is cancelled
         if pre is not None:
             return self._settle(node, pre)
-        try:
-            status = node.execute_sync()
-        except NodeError:
-            raise
-        except Exception as exc:
-            raise NodeError(node.path, exc) from exc
-        return self._settle(node, status)
+        return self._execute(node)
 
 
 class HookTable:

@@ -74,7 +74,10 @@ class Groot2Monitor(StatusObserver):
         nodes = groot2_node_order(tree)
         for node in nodes:
             if not 0 < node.uid <= MAX_UID:
-                raise ValueError(f"Groot2: uid {node.uid} of {node.path} does not fit 16 bits")
+                raise ValueError(
+                    f"Groot2: node {node.path} has uid {node.uid}; Groot2's protocol needs "
+                    f"uids 1..{MAX_UID}, as the factory numbers them"
+                )
         self.uuid = new_tree_uuid()
         self.xml = tree_to_xml(tree, builtin_models=True).encode()
         self._status = bytearray(STATUS_ENTRY.size * len(nodes))

@@ -290,3 +290,10 @@ async def test_a_large_tree_is_served_whole() -> None:
     assert len(statuses) == 3001
     assert statuses[-1] == (3001, 12)
     assert b'_uid="3001"' in xml
+
+
+def test_a_uid_beyond_16_bits_is_refused_naming_the_node() -> None:
+    tree = make_tree([])
+    tree.find("last").config.uid = 70_000
+    with pytest.raises(ValueError, match=r"Seq.*last.* has uid 70000; .* 1\.\.65535"):
+        Groot2Monitor(tree, lambda uid: None)
