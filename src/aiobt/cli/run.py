@@ -3,6 +3,7 @@
     aiobt run mission.xml --plugin mypkg.nodes
     aiobt run trees/nav2/navigate_to_pose_w_replanning_and_recovery.xml \\
         --nodes-model trees/nav2/nav2_tree_nodes.xml --stub '*=SUCCESS:0.5'
+    aiobt run mission.xml --groot2          # Groot2 attaches live on 127.0.0.1:1667
 
 Exit status: 0 when the tree succeeds, 1 when it fails or is stopped, 2 when
 the tree cannot be loaded.
