@@ -21,7 +21,6 @@ async leaf's task does not run on unseen.
 from __future__ import annotations
 
 import dataclasses
-import logging
 from collections.abc import Callable
 
 from aiobt.core.conditions import NodeConditions
@@ -29,8 +28,6 @@ from aiobt.core.node import TreeNode
 from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
 from aiobt.core.tree import Tree
 from aiobt.loggers.groot2_protocol import NODE_NOT_FOUND, Hook, HookMode, ProtocolError
-
-log = logging.getLogger("aiobt.loggers.groot2")
 
 _REPLACING = (SUCCESS, FAILURE)
 
@@ -134,7 +131,7 @@ class HookTable:
         if hook.mode is HookMode.BREAKPOINT and not hook.released:
             if not hook.held:
                 hook.held = True
-                self._pause()
+                self._pause(self._nodes[hook.uid])
             return RUNNING
         hook.released = False
         result = hook.desired_status
@@ -146,10 +143,10 @@ class HookTable:
         hook.held, hook.released = False, True
         self._resume_if_free()
 
-    def _pause(self) -> None:
+    def _pause(self, node: TreeNode) -> None:
         if not self._tree.paused:
             self._paused_by_us = True
-            self._tree.pause("Groot2 breakpoint")
+            self._tree.pause(f"Groot2 breakpoint at {node.path} (uid {node.uid})")
 
     def _resume_if_free(self) -> None:
         if self._paused_by_us and not self.holding:

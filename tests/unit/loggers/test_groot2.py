@@ -114,6 +114,7 @@ async def test_a_breakpoint_pauses_the_tree_not_the_event_loop() -> None:
             assert notified[0][:2] == b"\x02N"
             assert notified[1] == str(LAST_UID).encode()
             await wait_until(lambda: tree.paused, "the tree pauses")
+            assert tree.events[-1].reason.startswith("Groot2 breakpoint at MainTree/")
             turns, statuses = loop_turns, dict(status_pairs((await client.request("S"))[1]))
             await wait_until(lambda: loop_turns > turns + 100, "the loop goes on")
             assert ticks == ["first"], "the node at the breakpoint was not ticked"
