@@ -48,6 +48,11 @@ def _is_loopback(host: str) -> bool:
         return False
 
 
+def _report_end(task: asyncio.Task[None]) -> None:
+    if not task.cancelled() and task.exception() is not None:
+        log.error("Groot2 publisher: %s stopped: %r", task.get_name(), task.exception())
+
+
 class Groot2Publisher:
     """Serves Groot2 for ``tree`` on ``tcp://host:port`` (and ``port + 1``).
 
@@ -106,6 +111,8 @@ class Groot2Publisher:
             asyncio.create_task(self._serve(), name=f"groot2-serve-{self.port}"),
             asyncio.create_task(self._heartbeat(), name=f"groot2-heartbeat-{self.port}"),
         ]
+        for task in self._tasks:
+            task.add_done_callback(_report_end)
         log.info("Groot2 publisher for tree %s on %s", self.tree.tree_id, self.endpoint)
 
     def _bind(self) -> None:
