@@ -17,6 +17,7 @@ import sys
 import time
 from collections.abc import AsyncIterator, Awaitable, Callable
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import msgpack
@@ -34,6 +35,7 @@ from tests.groot2_client import Groot2Client, free_port_pair, status_pairs, tran
 pytestmark = [pytest.mark.conformance, pytest.mark.timeout(90)]
 pytest.importorskip("behaviortreepy")
 
+REPO = Path(__file__).resolve().parents[2]
 BREAKPOINT = {"uid": 8, "mode": 0, "enabled": True, "once": False, "desired_status": "SKIPPED"}
 REPLACE = {"uid": 3, "mode": 1, "enabled": True, "once": True, "desired_status": "SUCCESS"}
 UNLOCK = {"uid": 8, "desired_status": "SUCCESS", "position": 0, "remove_when_done": True}
@@ -73,7 +75,7 @@ async def btcpp_side() -> AsyncIterator[Side]:
     port = free_port_pair()
     process = await asyncio.create_subprocess_exec(
         sys.executable, "-m", "tests.conformance.groot2_btcpp_driver", str(port),
-        stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE,
+        stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE, cwd=REPO,
     )  # fmt: skip
     assert process.stdin is not None
     assert process.stdout is not None
