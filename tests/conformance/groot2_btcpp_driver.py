@@ -1,8 +1,9 @@
 """BT.CPP's Groot2Publisher over the conformance tree, driven through stdin.
 
-``python -m tests.conformance.groot2_btcpp_driver PORT`` prints ``ready`` once
+``python -m tests.conformance.groot2_btcpp_driver PORT [late]`` prints ``ready`` once
 the publisher is up, then answers each ``tick`` line with the status the tick
-returned; ``quit`` (or end of input) stops it. It runs in its own process: a
+returned; ``quit`` (or end of input) stops it. With ``late`` the tree is
+ticked once before the publisher is created. It runs in its own process: a
 BT.CPP breakpoint blocks the ticking thread while holding Python's GIL.
 """
 
@@ -15,7 +16,7 @@ import behaviortreepy as btcpp
 from tests.conformance.groot2_tree import ENTRIES, XML
 
 
-def main(port: int) -> None:
+def main(port: int, late: bool) -> None:
     factory = btcpp.BehaviorTreeFactory()
     factory.register_simple_condition("Check", lambda node: btcpp.NodeStatus.FAILURE)
     running = lambda node: btcpp.NodeStatus.RUNNING  # noqa: E731
@@ -25,6 +26,8 @@ def main(port: int) -> None:
     blackboard.set_string("target", ENTRIES["target"])
     blackboard.set_double("speed", ENTRIES["speed"])
     tree = factory.create_tree_from_text(XML, blackboard)
+    if late:  # attach to a tree already running
+        tree.tick_exactly_once()
     publisher = btcpp.Groot2Publisher(tree, port)
     print("ready", flush=True)
     for line in sys.stdin:
@@ -36,4 +39,4 @@ def main(port: int) -> None:
 
 
 if __name__ == "__main__":
-    main(int(sys.argv[1]))
+    main(int(sys.argv[1]), sys.argv[2:] == ["late"])

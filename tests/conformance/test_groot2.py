@@ -71,10 +71,10 @@ class Side:
 
 
 @contextlib.asynccontextmanager
-async def btcpp_side() -> AsyncIterator[Side]:
+async def btcpp_side(*options: str) -> AsyncIterator[Side]:
     port = free_port_pair()
     process = await asyncio.create_subprocess_exec(
-        sys.executable, "-m", "tests.conformance.groot2_btcpp_driver", str(port),
+        sys.executable, "-m", "tests.conformance.groot2_btcpp_driver", str(port), *options,
         stdin=asyncio.subprocess.PIPE, stdout=asyncio.subprocess.PIPE, cwd=REPO,
     )  # fmt: skip
     assert process.stdin is not None
@@ -238,3 +238,24 @@ async def test_same_session_same_replies_as_behaviortree_cpp() -> None:
         assert uuid[6] >> 4 == 4, "a version 4 UUID"
         assert uuid[8] >> 6 == 2, "the RFC 4122 variant"
     compare(ours.replies, theirs.replies)
+
+
+async def test_attaching_late_aiobt_shows_what_runs_where_btcpp_shows_all_idle() -> None:
+    async with btcpp_side("late") as theirs:
+        await ask(theirs, "status", "S")
+    tree = aiobt_tree()
+    assert await tree.tick_exactly_once() is Status.RUNNING
+    port = free_port_pair()
+    ours = Side(Groot2Client(port), theirs.tick, theirs.tick)
+    try:
+        async with Groot2Publisher(tree, port):
+            await ask(ours, "status", "S")
+    finally:
+        ours.client.close()
+        await tree.halt_tree("test over")
+    assert {status for _, status in status_pairs(theirs.replies["status"])} == {0}
+    # what BT.CPP reports after the same tick when attached from the start, except
+    # the "idle, coming from" codes (3 and 4 went back to IDLE before anyone watched)
+    assert status_pairs(ours.replies["status"]) == [
+        (1, 1), (2, 2), (3, 0), (4, 0), (5, 1), (9, 0), (6, 1), (7, 2), (8, 1)
+    ]  # fmt: skip
