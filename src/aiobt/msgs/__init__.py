@@ -64,6 +64,7 @@ from aiobt.msgs.nav import (
     WaypointState,
     WaypointStatus,
 )
+from aiobt.msgs.route import Route, RouteEdge, RouteNode
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -73,7 +74,7 @@ from aiobt.msgs.services import (
     IsPathValid,
 )
 from aiobt.msgs.sim import Clock
-from aiobt.msgs.std import String
+from aiobt.msgs.std import String, Trigger
 from aiobt.msgs.strings import (
     goals_from_string,
     goals_to_string,
@@ -134,12 +135,16 @@ __all__ = [
     "PoseStamped",
     "PowerSupplyStatus",
     "Quaternion",
+    "Route",
+    "RouteEdge",
+    "RouteNode",
     "SmoothPath",
     "SmoothPathError",
     "Spin",
     "SpinError",
     "String",
     "TrackingFeedback",
+    "Trigger",
     "Twist",
     "Vector3",
     "Wait",
