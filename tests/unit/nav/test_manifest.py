@@ -26,7 +26,7 @@ def exported() -> dict[str, NodeManifest]:
 
 
 def _type(port: PortInfo) -> str:
-    """The type's BT.CPP name, ``std::`` dropped (Nav2 writes ``string``, BT.CPP ``std::string``)."""
+    """The BT.CPP type name without ``std::`` (Nav2 writes ``string``, BT.CPP ``std::string``)."""
     return type_name(port.type).replace("std::", "")
 
 
