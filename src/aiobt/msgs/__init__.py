@@ -69,6 +69,7 @@ from aiobt.msgs.services import (
     ClearCostmapResponse,
     ClearEntireCostmap,
     IsPathValid,
+    ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.strings import (
@@ -131,6 +132,7 @@ __all__ = [
     "PoseStamped",
     "PowerSupplyStatus",
     "Quaternion",
+    "ReinitializeGlobalLocalization",
     "SmoothPath",
     "SmoothPathError",
     "Spin",
