@@ -72,6 +72,7 @@ from aiobt.msgs.services import (
     ClearCostmapResponse,
     ClearEntireCostmap,
     IsPathValid,
+    ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.std import String, Trigger
@@ -135,6 +136,7 @@ __all__ = [
     "PoseStamped",
     "PowerSupplyStatus",
     "Quaternion",
+    "ReinitializeGlobalLocalization",
     "Route",
     "RouteEdge",
     "RouteNode",

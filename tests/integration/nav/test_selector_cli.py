@@ -15,7 +15,7 @@ from aiobt.msgs import String
 from aiobt.nav import NavContext
 from aiobt.nav.shared_topics import SharedTopic, shared_topics
 from aiobt.transport import Bus
-from tests.unit.nav.support import nav_tree
+from tests.unit.nav.state_support import nav_tree
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(120)]
 PLANNER = (

@@ -9,7 +9,7 @@ from aiobt.core.errors import NodeError
 from aiobt.core.status import Status
 from aiobt.msgs import Goals, Path, Route, RouteNode
 from aiobt.msgs.geometry import Header, Point
-from tests.unit.nav.support import at, nav_tree, straight_path
+from tests.unit.nav.state_support import at, nav_tree, straight_path
 
 S, F = Status.SUCCESS, Status.FAILURE
 

@@ -10,7 +10,7 @@ from aiobt.msgs import Trigger
 from aiobt.nav.control.pause_resume_controller import PauseResumeController, State
 from aiobt.testing.stubs import Stubs
 from aiobt.transport import Bus
-from tests.unit.nav.support import WAIT, nav_tree
+from tests.unit.nav.state_support import WAIT, nav_tree
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 pytestmark = pytest.mark.timeout(60)

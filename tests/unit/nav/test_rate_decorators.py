@@ -11,7 +11,7 @@ from aiobt.msgs import Odometry
 from aiobt.msgs.geometry import Header, Twist, Vector3
 from aiobt.testing.stubs import Stubs
 from aiobt.transport import Bus
-from tests.unit.nav.support import at, deliver, nav_tree
+from tests.unit.nav.state_support import at, deliver, nav_tree
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 pytestmark = pytest.mark.timeout(60)

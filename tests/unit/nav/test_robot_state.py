@@ -18,7 +18,7 @@ from aiobt.nav.robot_state import robot_state
 from aiobt.nav.shared_topics import shared_topics
 from aiobt.testing.bus import open_local_bus
 from aiobt.transport import Bus
-from tests.unit.nav.support import WAIT, at, deliver, nav_tree
+from tests.unit.nav.state_support import WAIT, at, deliver, nav_tree
 
 S, F = Status.SUCCESS, Status.FAILURE
 pytestmark = pytest.mark.timeout(60)

@@ -12,7 +12,7 @@ from aiobt.core.status import Status
 from aiobt.msgs import BatteryState, Odometry, PowerSupplyStatus, TrackingFeedback
 from aiobt.msgs.geometry import Header, Pose, Twist, Vector3
 from aiobt.transport import Bus
-from tests.unit.nav.support import at, deliver, nav_tree
+from tests.unit.nav.state_support import at, deliver, nav_tree
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 pytestmark = pytest.mark.timeout(60)
