@@ -68,8 +68,10 @@ from aiobt.msgs.services import (
     ClearCostmapExceptRegion,
     ClearCostmapResponse,
     ClearEntireCostmap,
+    GetCosts,
     IsPathValid,
     ReinitializeGlobalLocalization,
+    Toggle,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.strings import (
@@ -111,6 +113,7 @@ __all__ = [
     "Empty",
     "FollowPath",
     "FollowPathError",
+    "GetCosts",
     "GoalState",
     "GoalStatus",
     "Goals",
@@ -137,6 +140,7 @@ __all__ = [
     "SmoothPathError",
     "Spin",
     "SpinError",
+    "Toggle",
     "TrackingFeedback",
     "Twist",
     "Vector3",
