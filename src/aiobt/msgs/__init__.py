@@ -64,15 +64,17 @@ from aiobt.msgs.nav import (
     WaypointState,
     WaypointStatus,
 )
-from aiobt.msgs.route import Route, RouteEdge, RouteNode
+from aiobt.msgs.remote_actions import Route, RouteEdge, RouteNode
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
     ClearCostmapExceptRegion,
     ClearCostmapResponse,
     ClearEntireCostmap,
+    GetCosts,
     IsPathValid,
     ReinitializeGlobalLocalization,
+    Toggle,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.std import String, Trigger
@@ -115,6 +117,7 @@ __all__ = [
     "Empty",
     "FollowPath",
     "FollowPathError",
+    "GetCosts",
     "GoalState",
     "GoalStatus",
     "Goals",
@@ -145,6 +148,7 @@ __all__ = [
     "Spin",
     "SpinError",
     "String",
+    "Toggle",
     "TrackingFeedback",
     "Trigger",
     "Twist",
