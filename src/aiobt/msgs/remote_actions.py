@@ -9,39 +9,18 @@ durations are float seconds.
 from __future__ import annotations
 
 from enum import IntEnum
-from typing import ClassVar, TypeAlias
+from typing import TypeAlias
 
 from pydantic import Field
 
 from aiobt.msgs import errors
 from aiobt.msgs._base import Msg
 from aiobt.msgs.action import ActionDef, ActionResult, Empty
-from aiobt.msgs.geometry import Header, Point, PoseStamped
+from aiobt.msgs.geometry import PoseStamped
 from aiobt.msgs.nav import Path
+from aiobt.msgs.route import Route
 
 Seconds = float
-
-
-class RouteNode(Msg):
-    nodeid: int = Field(default=0, ge=0)
-    position: Point = Field(default_factory=Point)
-
-
-class RouteEdge(Msg):
-    edgeid: int = Field(default=0, ge=0)
-    start: Point = Field(default_factory=Point)
-    end: Point = Field(default_factory=Point)
-
-
-class Route(Msg):
-    """``nav2_msgs/Route``: nodes of a route graph and the edges joining them."""
-
-    __bt_type_name__: ClassVar[str] = "nav2_msgs::msg::Route"
-
-    header: Header = Field(default_factory=lambda: Header(frame_id="map"))
-    route_cost: float = 0.0
-    nodes: list[RouteNode] = Field(default_factory=list)
-    edges: list[RouteEdge] = Field(default_factory=list)
 
 
 class _RouteGoal(Msg):

@@ -21,7 +21,8 @@ from aiobt.msgs import (
     SmoothPath,
     Toggle,
 )
-from aiobt.msgs.remote_actions import ComputeAndTrackRoute, DockRobot, FollowObject, Route
+from aiobt.msgs.remote_actions import ComputeAndTrackRoute, DockRobot, FollowObject
+from aiobt.msgs.route import Route
 from aiobt.transport import Bus
 
 from .support import nav_tree, run_to_end, straight_path, tick_until, tick_until_true

@@ -9,7 +9,7 @@ from aiobt.core.status import Status
 from aiobt.msgs import Path, PoseStamped
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute as ComputeAndTrackRouteAction
 from aiobt.msgs.remote_actions import ComputeRoute as ComputeRouteAction
-from aiobt.msgs.remote_actions import Route
+from aiobt.msgs.route import Route
 from aiobt.nav.actions.base import BtAction
 from aiobt.nav.remote import action_ports
 
