@@ -11,6 +11,7 @@ from typing import ClassVar, TypeAlias
 from pydantic import Field
 
 from aiobt.msgs._base import Msg
+from aiobt.msgs.action import Empty
 from aiobt.msgs.geometry import PoseStamped
 from aiobt.msgs.nav import Path
 
@@ -89,3 +90,53 @@ class IsPathValid:
     service_name: ClassVar[str] = "is_path_valid"
     Request: TypeAlias = _IsPathValidRequest
     Response: TypeAlias = _IsPathValidResponse
+
+
+class _Acknowledgement(Msg):
+    """The answer of a service without a result (``std_srvs/Empty`` in Nav2):
+    ``ok`` false with the reason in ``message``."""
+
+    ok: bool = True
+    message: str = ""
+    id: str = ""
+
+
+class ReinitializeGlobalLocalization:
+    """Scatter the localization estimate and relocalize (the robot service)."""
+
+    service_name: ClassVar[str] = "reinitialize_global_localization"
+    Request: TypeAlias = Empty
+    Response: TypeAlias = _Acknowledgement
+
+
+class _GetCostsRequest(Msg):
+    use_footprint: bool = False
+    poses: list[PoseStamped] = Field(default_factory=list)
+
+
+class _GetCostsResponse(Msg):
+    costs: list[float] = Field(default_factory=list, description="one per pose, 0..255")
+    success: bool = True
+
+
+class GetCosts:
+    """The costs of a costmap at some poses (the robot's footprint there, or the point)."""
+
+    @staticmethod
+    def service_name(costmap: str) -> str:
+        """Nav2's default name, e.g. ``global_costmap/get_cost_global_costmap``."""
+        return f"{costmap}/get_cost_{costmap}"
+
+    Request: TypeAlias = _GetCostsRequest
+    Response: TypeAlias = _GetCostsResponse
+
+
+class _ToggleRequest(Msg):
+    enable: bool = True
+
+
+class Toggle:
+    """Switch a component on or off (Nav2's collision monitor ``toggle``)."""
+
+    Request: TypeAlias = _ToggleRequest
+    Response: TypeAlias = ClearCostmapResponse  # success and message, as nav2_msgs/Toggle
