@@ -43,6 +43,8 @@ PLAN_AND_FOLLOW = """
     </Fallback>
   </RetryUntilSuccessful>
   <ClearEntireCostmap service_name="global_costmap/clear_entirely_global_costmap"/>
+  <CheckPoseOccupancy pose="{wall}"/>
+  <Inverter><CheckPoseOccupancy pose="{goal}"/></Inverter>
   <FollowPath path="{path}" controller_id="FollowPath" error_code_id="{follow_code}"
               error_msg="{follow_msg}"/>
 </Sequence>
@@ -55,7 +57,8 @@ async def test_compute_path_then_follow_path_reaches_the_goal(
     pose = bus.subscribe("pose", PoseStamped)
     await start_services(spawn, bus, bus_settings)
     goal = PoseStamped.from_xy_yaw(1.5, 1.5, math.pi / 2)
-    tree = nav_tree(bus, PLAN_AND_FOLLOW, server_timeout=SERVER_TIMEOUT, goal=goal)
+    wall = PoseStamped.from_xy_yaw(2.45, 0.0, 0.0)  # the small world's east wall
+    tree = nav_tree(bus, PLAN_AND_FOLLOW, server_timeout=SERVER_TIMEOUT, goal=goal, wall=wall)
     status = await run_to_end(tree, timeout=80.0)
     bb = tree.root_blackboard
     assert status is Status.SUCCESS, (
