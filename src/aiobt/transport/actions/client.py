@@ -101,15 +101,16 @@ class ActionClient(Generic[G, R, F]):
             raise TypeError(f"{self.keys.base}: expected {self._goal_model.__name__}")
         payload = goal.to_json()
         self._bridge.check_size(self.keys.goal, payload)
-        handle = await self._send(goal, payload, goal_id or p.new_goal_id(), server_timeout)
+        handle = await self._send(goal, payload, goal_id, server_timeout)
         handle.on_feedback = on_feedback
         return handle
 
     async def _send(
-        self, goal: G, payload: bytes, goal_id: str, server_timeout: float
+        self, goal: G, payload: bytes, given_id: str | None, server_timeout: float
     ) -> ClientGoal[G, R, F]:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + server_timeout
+        goal_id = given_id or p.new_goal_id()
         while self._presence.present or await self._presence.wait(deadline - loop.time()):
             handle = ClientGoal(self, goal_id, goal)
             self._goals[goal_id] = handle
@@ -126,6 +127,12 @@ class ActionClient(Generic[G, R, F]):
             if loop.time() >= deadline:
                 self._cancel_quietly(goal_id)  # it may still arrive: do not let it run
                 break
+            if given_id is None:
+                # the unanswered get may still reach the server late: that copy is
+                # canceled, and the retry is a new goal (the same id would be refused
+                # as a duplicate)
+                self._cancel_quietly(goal_id)
+                goal_id = p.new_goal_id()
             await asyncio.sleep(_RETRY_PAUSE)  # no queryable routed yet: ask again
         raise p.ServerUnavailable(
             f"action server {self.keys.base} did not accept the goal within {server_timeout} s"
