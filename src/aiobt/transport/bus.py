@@ -83,7 +83,10 @@ class Bus:
         latched: bool = False,
         queue_size: int = 100,
     ) -> topics.Subscription[M]:
-        """Messages on ``{ns}/{name}``; ``latched`` also gets a latched publisher's last value."""
+        """Messages on ``{ns}/{name}``; ``latched`` also gets a latched publisher's last value.
+
+        At most ``queue_size`` messages wait (the oldest dropped): 1 for a reader of
+        the latest value (see :class:`~aiobt.transport.topics.Subscription`)."""
         sub = topics.declare_subscription(
             self.session,
             self.bridge,
