@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+from collections.abc import Callable
 
 import pytest
 
@@ -27,7 +28,7 @@ def other_failure() -> None:
     raise KeyError("x")
 
 
-def raised(fn, *args) -> BaseException:  # type: ignore[no-untyped-def]
+def raised(fn: Callable[..., None], *args: object) -> BaseException:
     try:
         fn(*args)
     except Exception as exc:

@@ -10,6 +10,7 @@ import asyncio
 import itertools
 import logging
 import time
+from collections.abc import Callable
 
 import pytest
 
@@ -22,7 +23,9 @@ from .test_subscription import FakePayload, FakeSample, feed, xs
 KEY = "robot/initialpose"
 
 
-def make(queue_size: int, callback=None) -> Subscription[PoseStamped]:  # type: ignore[no-untyped-def]
+def make(
+    queue_size: int, callback: Callable[[PoseStamped], object] | None = None
+) -> Subscription[PoseStamped]:
     bridge = LoopBridge(asyncio.get_running_loop(), 10_000)
     return Subscription(KEY, PoseStamped, bridge, callback=callback, queue_size=queue_size)
 
