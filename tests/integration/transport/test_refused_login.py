@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from aiobt.testing.bus import free_endpoint, running_router
-from aiobt.transport import BusSettings, BusUnavailable, open_session
+from aiobt.transport import BusSettings, BusUnavailable, _z, open_session
 
 pytestmark = pytest.mark.integration
 
@@ -50,7 +50,7 @@ async def test_wrong_password_is_named_and_logged_by_the_router(tmp_path: Path) 
             connect_timeout=5.0,
         )
         session = await open_session(good)
-        session.close()
+        _z.close(session)
     nobody = free_endpoint()
     with pytest.raises(BusUnavailable) as missing:
         await open_session(BusSettings(connect=(nobody,), connect_timeout=0.3))

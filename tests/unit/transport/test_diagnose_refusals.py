@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import socket
+from collections.abc import Iterator
 
 import pytest
 
@@ -33,7 +34,7 @@ def test_clean_drops_rust_source_places() -> None:
 
 
 @pytest.fixture
-def listening() -> str:
+def listening() -> Iterator[str]:
     with socket.socket() as server:
         server.bind(("127.0.0.1", 0))
         server.listen()
