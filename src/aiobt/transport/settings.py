@@ -16,6 +16,7 @@ from typing import Literal, cast
 
 import zenoh
 
+from aiobt.transport.diagnose import clean
 from aiobt.transport.keys import check_name
 
 Mode = Literal["client", "peer", "router"]
@@ -127,7 +128,7 @@ class BusSettings:
         try:
             return zenoh.Config.from_file(path)
         except zenoh.ZError as exc:
-            raise BusConfigError(f"Zenoh config file {path}: {exc}") from None
+            raise BusConfigError(f"Zenoh config file {path}: {clean(str(exc))}") from None
 
 
 def _endpoints_for(config: zenoh.Config, mode: str, key: str = "connect/endpoints") -> list[str]:
@@ -170,7 +171,7 @@ def _insert(config: zenoh.Config, key: str, value: object) -> None:
     try:
         config.insert_json5(key, json.dumps(value))
     except zenoh.ZError as exc:
-        raise BusConfigError(f"Zenoh config field {key}={value!r}: {exc}") from None
+        raise BusConfigError(f"Zenoh config field {key}={value!r}: {clean(str(exc))}") from None
 
 
 def add_bus_arguments(parser: argparse.ArgumentParser) -> None:
