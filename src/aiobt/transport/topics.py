@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import time
 from collections import deque
 from collections.abc import Callable
 from typing import Generic, Self, TypeVar
@@ -20,8 +21,10 @@ from aiobt.transport.repeats import RepeatedErrors
 M = TypeVar("M", bound=Msg)
 _PUT = zenoh.SampleKind.PUT
 log = logging.getLogger("aiobt.transport.topics")
-# after a drain whose delivery took t seconds the next waits PAUSE_PER_WORK * t: one
-# subscription's messages take at most 1 / (1 + PAUSE_PER_WORK) of the event loop
+# after a drain whose delivery took t seconds of the loop thread's CPU time the next
+# waits PAUSE_PER_WORK * t: one subscription's messages take at most 1 / (1 +
+# PAUSE_PER_WORK) of the event loop (CPU, not wall time: on a loaded machine a
+# preempted delivery would otherwise pause the subscription for nothing)
 PAUSE_PER_WORK = 4.0
 
 
@@ -40,7 +43,7 @@ class Subscription(Generic[M]):
     message (a reader of the latest value), silently. A flood thus costs the
     receiving thread's decoding and never more memory, and at most a fifth of
     the event loop: after a delivery that took t seconds, this subscription
-    waits 4 t before the next (``PAUSE_PER_WORK``), meanwhile its queue keeps
+    waits 4 t before the next (``PAUSE_PER_WORK``; t is CPU time), meanwhile its queue keeps
     the newest messages.
     """
 
@@ -157,9 +160,9 @@ class Subscription(Generic[M]):
             loop.call_later(pause, self._drain)
             return
         self._drain_due = False  # before popping: a message appended from now on reschedules
-        started = loop.time()
+        started = time.thread_time()  # CPU time: a process the OS preempted did no work
         self._deliver()
-        self._resume_at = loop.time() + (loop.time() - started) * PAUSE_PER_WORK
+        self._resume_at = loop.time() + (time.thread_time() - started) * PAUSE_PER_WORK
 
     def _deliver(self) -> None:
         incoming, queue, callback = self._incoming, self._queue, self._callback
