@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 import logging
 
+from aiobt.msgs import ComputeCoveragePath, ComputePathThroughPoses, ComputePathToPose, SmoothPath
 from aiobt.transport import BusSettings, add_bus_arguments
 from aiobt_services._cli import (
     non_negative,
@@ -23,13 +24,15 @@ from aiobt_services._cli import (
 )
 from aiobt_services.costmap import InflationParams, ObstacleParams
 
-from .actions import ActionOptions, PlannerActions
+from .actions import SMOOTHERS, ActionOptions, PlannerActions
 from .coverage import CoverageParams
+from .planning import DEFAULT_PLANNER, PLANNERS
 from .service import PlannerService
 from .state import CostmapOptions, GlobalCostmap
 from .traversal import SearchParams
 
 log = logging.getLogger("aiobt_services.planner.main")
+ACTIONS = (ComputePathToPose, ComputePathThroughPoses, SmoothPath, ComputeCoveragePath)
 
 
 def _factor(text: str) -> int:
@@ -39,9 +42,23 @@ def _factor(text: str) -> int:
     return value
 
 
+def describe() -> str:
+    """What ``--help`` says the planner serves (from the tables the service uses)."""
+    actions = ", ".join(a.name for a in ACTIONS)
+    planners = ", ".join(f"{p} (default)" if p == DEFAULT_PLANNER else p for p in PLANNERS)
+    smoothers = ", ".join(repr(s) for s in SMOOTHERS)
+    return (
+        f"Serves the actions {actions}; the service srv/is_path_valid; and "
+        "srv/global_costmap/clear_X_global_costmap for X in entirely, except, around, "
+        f"around_pose. Planner ids (goal.planner_id): {planners}. Smoother ids "
+        f"(goal.smoother_id): {smoothers}, all the simple smoother. "
+        "See services/planner/README.md."
+    )
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
-    group = parser.add_argument_group("planner")
+    group = parser.add_argument_group("planner", description=describe())
     add = group.add_argument
     add("--robot-radius", type=non_negative, default=0.22, help="inscribed radius, m (%(default)s)")
     add("--inflation-radius", type=non_negative, default=0.55, help="m (default: %(default)s)")

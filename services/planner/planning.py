@@ -11,6 +11,7 @@ from aiobt_services.costmap import CostGrid
 from .astar import astar
 from .dijkstra import compiled_dijkstra
 from .errors import PlanningError
+from .legs import path_points
 from .theta import theta_star
 from .traversal import Budget, SearchParams, Traversal
 
@@ -87,26 +88,9 @@ def plan_through(
         there = traversal.locate(goal[0], goal[1], "goal")
         leg = traversal.opened(origin[0], origin[1]).opened(goal[0], goal[1])
         cells = search(leg, here, there, budget)
-        points.extend(_densify(traversal.to_world(cells)[1:-1], traversal.fine.geometry.resolution))
-        points.append((goal[0], goal[1]))
+        points.extend(path_points(leg, cells, (origin[0], origin[1]), (goal[0], goal[1]))[1:])
         here, origin = there, goal
     return _with_headings(_dedupe(points), goals[-1][2])
-
-
-def _densify(points: list[tuple[float, float]], spacing: float) -> list[tuple[float, float]]:
-    """Fill legs longer than ``spacing * 2`` (any-angle planners) with evenly spaced points."""
-    out: list[tuple[float, float]] = []
-    for i, (x, y) in enumerate(points):
-        if i:
-            px, py = points[i - 1]
-            pieces = int(math.hypot(x - px, y - py) / spacing)
-            if pieces > 2:
-                out.extend(
-                    (px + (x - px) * k / pieces, py + (y - py) * k / pieces)
-                    for k in range(1, pieces)
-                )
-        out.append((x, y))
-    return out
 
 
 def _dedupe(points: list[tuple[float, float]]) -> list[tuple[float, float]]:

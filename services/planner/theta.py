@@ -1,7 +1,8 @@
 """ThetaStar: a lazy Theta* any-angle planner on a :class:`Traversal`.
 
 A node inherits its parent's parent when the straight segment between them is
-clear (line of sight on the costmap), so paths are chains of straight legs.
+clear (line of sight on the costmap: every cell the segment touches is
+passable), so paths are chains of straight legs.
 The check is lazy: made once when a node is expanded, not for every neighbour.
 A leg costs its length times the mean weight of the cells it crosses, so legs
 still prefer low-cost space. Not optimal; any-angle and short.
@@ -21,31 +22,40 @@ MOVES = ((0, 1, 1.0), (0, -1, 1.0), (1, 0, 1.0), (-1, 0, 1.0),
 
 
 def line_cost(weights: list[float], stride: int, a: int, b: int) -> float:
-    """Cost of the straight leg a -> b (inf if any cell on it is blocked): an integer
-    Bresenham walk over flat indices, the mean weight of the cells times the length."""
+    """Cost of the straight leg between the centres of cells a and b (inf if it touches
+    a blocked cell): an integer supercover walk over flat indices, so every cell the leg
+    passes through is checked, and where it passes exactly through a corner both cells
+    beside that corner are too. The mean weight of the cells entered times the length."""
     ar, ac = divmod(a, stride)
     br, bc = divmod(b, stride)
     dr, dc = br - ar, bc - ac
-    row_step = stride if dr > 0 else -stride
-    col_step = 1 if dc > 0 else -1
-    if abs(dc) >= abs(dr):
-        major, minor, major_step, minor_step = abs(dc), abs(dr), col_step, row_step
-    else:
-        major, minor, major_step, minor_step = abs(dr), abs(dc), row_step, col_step
-    if major == 0:
+    nx, ny = abs(dc), abs(dr)
+    if nx + ny == 0:
         return 0.0
-    error, index, total, inf = major // 2, a, 0.0, math.inf
-    for _ in range(major):
-        index += major_step
-        error -= minor
-        if error < 0:
-            index += minor_step
-            error += major
+    col_step = 1 if dc > 0 else -1
+    row_step = stride if dr > 0 else -stride
+    ix = iy = 0
+    index, total, entered, inf = a, 0.0, 0, math.inf
+    while ix < nx or iy < ny:
+        decision = (1 + 2 * ix) * ny - (1 + 2 * iy) * nx
+        if decision == 0:  # through a corner: both cells beside it must be free too
+            if weights[index + col_step] == inf or weights[index + row_step] == inf:
+                return inf
+            index += col_step + row_step
+            ix += 1
+            iy += 1
+        elif decision < 0:
+            index += col_step
+            ix += 1
+        else:
+            index += row_step
+            iy += 1
         w = weights[index]
         if w == inf:
             return inf
         total += w
-    return total / major * math.hypot(dr, dc)
+        entered += 1
+    return total / entered * math.hypot(dr, dc)
 
 
 def theta_star(
@@ -62,6 +72,9 @@ def theta_star(
     cost[start], parents[start] = 0.0, start
     heap: list[tuple[float, int]] = [(h[start], start)]
     steps = tuple((dr * s + dc, step) for dr, dc, step in MOVES)
+    # a start or goal block opened for this search (refused fine cells inside) is left
+    # or entered by a grid step only, never by a long leg through it
+    sealed = {c for c in (start, goal) if traversal.is_opened(c)}
     countdown = CHECK_EVERY
     while heap:
         node = heapq.heappop(heap)[1]
@@ -88,6 +101,8 @@ def theta_star(
             # optimistic: the leg from ``grand`` extended to ``nxt``; checked on expansion
             via_grand = here + (math.hypot(nr + dr - gr, nc + dc - gc) - reach) * w
             via_node = here + step * w
+            if sealed and (grand in sealed or nxt in sealed):
+                via_grand = math.inf
             c = via_grand if via_grand < via_node else via_node
             if c < cost[nxt]:
                 cost[nxt] = c

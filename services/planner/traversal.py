@@ -188,6 +188,10 @@ class Traversal:
         clone.weights[index] = 1.0 + self.params.cost_penalty * fine_cost / 252
         return clone
 
+    def is_opened(self, index: int) -> bool:
+        """True if the cell at ``index`` is passable only because :meth:`opened` opened it."""
+        return bool(self._base.flat[index] == math.inf) and self.weights[index] != math.inf
+
     def to_world(self, indices: list[int]) -> list[tuple[float, float]]:
         return [self.geometry.cell_to_world(*self.cell(i)) for i in indices]
 

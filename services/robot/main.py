@@ -68,8 +68,9 @@ class BusOutputs:
 
 
 def _wire(bus: Bus, service: RobotService) -> None:
-    bus.subscribe("cmd_vel", Twist, callback=service.on_cmd_vel)
-    bus.subscribe("initialpose", PoseStamped, callback=service.on_initialpose)
+    # commands: only the newest counts, so a burst is applied once, not message by message
+    bus.subscribe("cmd_vel", Twist, callback=service.on_cmd_vel, queue_size=1)
+    bus.subscribe("initialpose", PoseStamped, callback=service.on_initialpose, queue_size=1)
     m = messages
     bus.serve("obstacles/spawn", m.SpawnObstacle, m.Ack, service.spawn)
     bus.serve("obstacles/move", m.MoveObstacle, m.Ack, service.move)

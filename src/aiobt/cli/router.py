@@ -1,7 +1,12 @@
 """``aiobt router``: a Zenoh router in this process, for local use and tests.
 
     aiobt router --listen tcp/127.0.0.1:7447
-    aiobt router --listen tcp/0.0.0.0:7447 --config router.json5   # e.g. with auth
+    aiobt router --config router.json5   # e.g. with auth; still loopback only
+    aiobt router --listen tcp/0.0.0.0:7447 --config router.json5   # every interface
+
+Without --listen it listens where the config file says, else on 127.0.0.1:7447
+(never on every interface unless asked). Sessions it refuses (wrong user or
+password) are logged with the peer's address, rate-limited.
 
 Security (user/password, access control, TLS) is Zenoh configuration: pass a
 config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
@@ -10,7 +15,6 @@ config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import logging
 import signal
 import sys
@@ -21,7 +25,14 @@ from types import FrameType
 import zenoh
 
 from aiobt.transport import _z
-from aiobt.transport.settings import DEFAULT_ROUTER, BusConfigError, BusSettings
+from aiobt.transport.diagnose import clean
+from aiobt.transport.refusals import watch_refusals
+from aiobt.transport.settings import (
+    DEFAULT_ROUTER,
+    BusConfigError,
+    BusSettings,
+    listen_endpoints,
+)
 
 log = logging.getLogger("aiobt.cli.router")
 
@@ -32,7 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--listen",
         action="append",
         metavar="ENDPOINT",
-        help=f"endpoint to listen on, repeatable (default: {DEFAULT_ROUTER})",
+        help=f"endpoint to listen on, repeatable (default: the config file's, else "
+        f"{DEFAULT_ROUTER}: loopback only; tcp/0.0.0.0:7447 for every interface)",
     )
     parser.add_argument(
         "-e",
@@ -57,17 +69,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def settings_from_args(args: argparse.Namespace) -> BusSettings:
-    """Router settings; without ``--listen`` nor a config file it listens on the default."""
-    settings = BusSettings(
+    """Router settings; with neither ``--listen`` nor a config file's listen endpoints
+    it listens on loopback (``DEFAULT_ROUTER``), never on every interface."""
+    return BusSettings(
         mode="router",
         listen=tuple(args.listen or ()),
         connect=tuple(args.connect or ()),
         config_file=args.config,
         lease_ms=args.lease_ms,
     )
-    if not settings.listen and not settings.effective_config_file:
-        return dataclasses.replace(settings, listen=(DEFAULT_ROUTER,))
-    return settings
 
 
 def run(args: argparse.Namespace) -> int:
@@ -77,11 +87,12 @@ def run(args: argparse.Namespace) -> int:
     except BusConfigError as exc:
         log.error("%s", exc)
         return 2
-    where = ", ".join(settings.listen) or "the config file's endpoints"
+    where = ", ".join(listen_endpoints(config)) or "nowhere"
+    watch_refusals(log)
     try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:
-        log.error("cannot start the router (listen %s): %s", where, exc)
+        log.error("cannot start the router (listen %s): %s", where, clean(str(exc)))
         return 1
     stop = threading.Event()
     previous = {sig: signal.signal(sig, _setter(stop)) for sig in (signal.SIGINT, signal.SIGTERM)}

@@ -32,6 +32,7 @@ from aiobt.transport.bridge import PayloadTooLarge
 from aiobt.transport.bus import Bus, open_bus
 from aiobt.transport.keys import ActionKeys, Keys
 from aiobt.transport.presence import Presence
+from aiobt.transport.publishers import Publisher
 from aiobt.transport.services import ServiceError, ServiceServer, ServiceUnavailable
 from aiobt.transport.session import BusUnavailable, open_session
 from aiobt.transport.settings import (
@@ -42,7 +43,7 @@ from aiobt.transport.settings import (
     add_bus_arguments,
 )
 from aiobt.transport.simclock import SimClockFollower
-from aiobt.transport.topics import Publisher, Subscription
+from aiobt.transport.topics import Subscription
 
 __all__ = [
     "DEFAULT_NAMESPACE",

@@ -12,7 +12,7 @@ import zenoh
 
 from aiobt.core.clock import Clock
 from aiobt.msgs import ActionDef, ActionResult, Msg
-from aiobt.transport import _z, services, topics
+from aiobt.transport import _z, publishers, services, topics
 from aiobt.transport.actions.client import ActionClient
 from aiobt.transport.actions.runner import Execute
 from aiobt.transport.actions.server import ActionServer
@@ -61,15 +61,15 @@ class Bus:
 
     def publisher(
         self, name: str, model: type[M], *, reliable: bool = False
-    ) -> topics.Publisher[M]:
+    ) -> publishers.Publisher[M]:
         """A publisher on ``{ns}/{name}``; ``reliable``: block, not drop, when congested."""
         key = self.keys.topic(name)
-        pub = topics.declare_publisher(self.session, self.bridge, key, model, reliable=reliable)
+        pub = publishers.declare_publisher(self.session, self.bridge, key, model, reliable=reliable)
         return self._track(pub)
 
-    def latched_publisher(self, name: str, model: type[M]) -> topics.Publisher[M]:
+    def latched_publisher(self, name: str, model: type[M]) -> publishers.Publisher[M]:
         """A publisher whose last value late subscribers (``latched=True``) still get."""
-        pub = topics.declare_latched_publisher(
+        pub = publishers.declare_latched_publisher(
             self.session, self.bridge, self.keys.topic(name), model
         )
         return self._track(pub)
@@ -85,6 +85,9 @@ class Bus:
         namespace: str | None = None,
     ) -> topics.Subscription[M]:
         """Messages on ``{ns}/{name}``; ``latched`` also gets a latched publisher's last value.
+
+        At most ``queue_size`` messages wait (the oldest dropped): 1 for a reader of
+        the latest value (see :class:`~aiobt.transport.topics.Subscription`).
         ``namespace`` (default: the bus's) reads another robot's topic."""
         keys = self.keys if namespace is None else Keys(namespace)
         sub = topics.declare_subscription(

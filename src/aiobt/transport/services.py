@@ -13,6 +13,7 @@ import zenoh
 from aiobt.msgs import MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.repeats import RepeatedErrors
 
 Req = TypeVar("Req", bound=Msg)
 Resp = TypeVar("Resp", bound=Msg)
@@ -59,6 +60,7 @@ class ServiceServer(Generic[Req, Resp]):
         self._bridge = bridge
         self._tasks: set[asyncio.Task[None]] = set()
         self._closed = False
+        self._errors = RepeatedErrors(log, f"{key}: service handler")
         self._queryable = session.declare_queryable(key, callback(self._on_query))
         self._token = session.liveliness().declare_token(key)
 
@@ -112,7 +114,7 @@ class ServiceServer(Generic[Req, Resp]):
             if isinstance(exc, MessageError | PayloadTooLarge):
                 query.reply_err(f"bad request: {exc}")
             else:
-                log.error("%s: service handler failed", self.key, exc_info=exc)
+                self._errors.report(exc)
                 query.reply_err(f"handler failed: {type(exc).__name__}: {exc}")
         finally:
             _z.drop(query)
@@ -122,6 +124,7 @@ class ServiceServer(Generic[Req, Resp]):
         if self._closed:
             return
         self._closed = True
+        self._errors.flush()
         _z.undeclare(self._token)
         _z.undeclare(self._queryable)
         for task in self._tasks:

@@ -9,7 +9,13 @@ import time
 
 import zenoh
 
-from aiobt.transport.settings import OPEN_TIMEOUT_KEY, BusSettings
+from aiobt.transport import diagnose
+from aiobt.transport.settings import (
+    OPEN_TIMEOUT_KEY,
+    BusSettings,
+    connect_endpoints,
+    listen_endpoints,
+)
 
 log = logging.getLogger("aiobt.transport.session")
 _RETRY_DELAYS = (0.1, 0.2, 0.5, 1.0)
@@ -42,20 +48,26 @@ async def open_session(settings: BusSettings) -> zenoh.Session:
         config = settings.zenoh_config()  # a Config is consumed by open()
         if deadline is not None:  # a hung router's handshake must not outlast the deadline
             _bound_open_timeout(config, deadline - time.monotonic())
+        tried = time.monotonic()
         try:
-            return zenoh.open(config)
+            session = zenoh.open(config)
         except zenoh.ZError as exc:
             now = time.monotonic()
             if deadline is not None and now >= deadline:
                 raise BusUnavailable(
                     f"cannot open the Zenoh session ({_where(settings)}) after "
-                    f"{now - start:.1f} s: {exc}"
+                    f"{now - start:.1f} s: {_why(config, exc, now - tried)}"
                 ) from None
             if attempt == 0 or now - last_log > 5.0:
                 log.warning(
-                    "cannot open the Zenoh session yet (%s), retrying: %s", _where(settings), exc
+                    "cannot open the Zenoh session yet (%s), retrying: %s",
+                    _where(settings),
+                    _why(config, exc, now - tried),
                 )
                 last_log = now
+        else:
+            log.info("Zenoh session open (%s); %s", _where(settings), _listening(config))
+            return session
         delay = _RETRY_DELAYS[min(attempt, len(_RETRY_DELAYS) - 1)]
         if deadline is not None:  # the last attempt comes at the deadline, not after it
             delay = max(0.0, min(delay, deadline - time.monotonic()))
@@ -67,6 +79,16 @@ def _bound_open_timeout(config: zenoh.Config, seconds: float) -> None:
     bound = max(100, int(seconds * 1000))
     if json.loads(config.get_json(OPEN_TIMEOUT_KEY)) > bound:
         config.insert_json5(OPEN_TIMEOUT_KEY, json.dumps(bound))
+
+
+def _why(config: zenoh.Config, exc: zenoh.ZError, took: float) -> str:
+    limit = json.loads(config.get_json(OPEN_TIMEOUT_KEY)) / 1000.0
+    return diagnose.open_failure(connect_endpoints(config), str(exc), took, limit)
+
+
+def _listening(config: zenoh.Config) -> str:
+    endpoints = listen_endpoints(config)
+    return f"listening on {', '.join(endpoints)}" if endpoints else "listening nowhere"
 
 
 def _where(settings: BusSettings) -> str:

@@ -16,6 +16,7 @@ from typing import Literal, cast
 
 import zenoh
 
+from aiobt.transport.diagnose import clean
 from aiobt.transport.keys import check_name
 
 Mode = Literal["client", "peer", "router"]
@@ -25,6 +26,9 @@ DEFAULT_MAX_PAYLOAD = 16 * 1024 * 1024
 OPEN_TIMEOUT_MS = 2000  # a link handshake (Zenoh's default, 10 s, unless a file sets one)
 OPEN_TIMEOUT_KEY = "transport/unicast/open_timeout"
 _ZENOH_OPEN_TIMEOUT_MS = 10000
+# where a router or peer listens unless a flag or the config file says otherwise
+# (Zenoh's own default is every interface: tcp/[::]:7447, tcp/[::]:0)
+LOOPBACK_LISTEN = {"router": DEFAULT_ROUTER, "peer": "tcp/127.0.0.1:0"}
 
 
 class BusConfigError(ValueError):
@@ -83,7 +87,10 @@ class BusSettings:
         - a peer told where to connect fails to open when it cannot (as a client
           does), so it is retried and ``--connect-timeout`` applies;
         - a link handshake gives up after 2 s, not 10 s, so a hung router neither
-          holds the event loop nor overruns ``--connect-timeout`` for long.
+          holds the event loop nor overruns ``--connect-timeout`` for long;
+        - a router or peer listens on loopback only (``LOOPBACK_LISTEN``), not on
+          every interface: listening beyond it takes ``--listen`` or a file's
+          ``listen/endpoints``.
         """
         config = self._base_config()
         mode = self.mode or ("client" if _unset(config, "mode") else None)
@@ -102,6 +109,8 @@ class BusSettings:
             if _unset(config, "connect/timeout_ms"):
                 _insert(config, "connect/timeout_ms", 0)  # one try per open: we retry
         _insert(config, "listen/endpoints", list(self.listen) or None)
+        if mode in LOOPBACK_LISTEN and _listens_by_zenoh_default(config):
+            _insert(config, "listen/endpoints", [LOOPBACK_LISTEN[mode]])
         _insert(config, "transport/link/tx/lease", self.lease_ms)
         if json.loads(config.get_json(OPEN_TIMEOUT_KEY)) == _ZENOH_OPEN_TIMEOUT_MS:
             _insert(config, OPEN_TIMEOUT_KEY, OPEN_TIMEOUT_MS)
@@ -119,13 +128,36 @@ class BusSettings:
         try:
             return zenoh.Config.from_file(path)
         except zenoh.ZError as exc:
-            raise BusConfigError(f"Zenoh config file {path}: {exc}") from None
+            raise BusConfigError(f"Zenoh config file {path}: {clean(str(exc))}") from None
 
 
-def _endpoints_for(config: zenoh.Config, mode: str) -> list[str]:
-    """``connect/endpoints`` for ``mode``: a list, or a per-mode dict ({router: [...]})."""
-    endpoints = json.loads(config.get_json("connect/endpoints")) or []
+def _endpoints_for(config: zenoh.Config, mode: str, key: str = "connect/endpoints") -> list[str]:
+    """``connect/endpoints`` (or ``key``) for ``mode``: a list, or a per-mode dict
+    ({router: [...]})."""
+    endpoints = json.loads(config.get_json(key)) or []
     return list(endpoints.get(mode, [])) if isinstance(endpoints, dict) else list(endpoints)
+
+
+def listen_endpoints(config: zenoh.Config) -> list[str]:
+    """Where a session opened with ``config`` listens (a client: nowhere)."""
+    return _endpoints_for(config, _mode_of(config), "listen/endpoints")
+
+
+def connect_endpoints(config: zenoh.Config) -> list[str]:
+    """Where a session opened with ``config`` connects."""
+    return _endpoints_for(config, _mode_of(config))
+
+
+def _mode_of(config: zenoh.Config) -> str:
+    return str(json.loads(config.get_json("mode")) or "peer")  # Zenoh's default mode
+
+
+def _listens_by_zenoh_default(config: zenoh.Config) -> bool:
+    """Whether ``listen/endpoints`` is still Zenoh's default (every interface): neither
+    a file nor a flag named an endpoint."""
+    return json.loads(config.get_json("listen/endpoints")) == json.loads(
+        zenoh.Config().get_json("listen/endpoints")
+    ) or _unset(config, "listen/endpoints")
 
 
 def _unset(config: zenoh.Config, key: str) -> bool:
@@ -139,7 +171,7 @@ def _insert(config: zenoh.Config, key: str, value: object) -> None:
     try:
         config.insert_json5(key, json.dumps(value))
     except zenoh.ZError as exc:
-        raise BusConfigError(f"Zenoh config field {key}={value!r}: {exc}") from None
+        raise BusConfigError(f"Zenoh config field {key}={value!r}: {clean(str(exc))}") from None
 
 
 def add_bus_arguments(parser: argparse.ArgumentParser) -> None:
@@ -157,7 +189,8 @@ def add_bus_arguments(parser: argparse.ArgumentParser) -> None:
         "--listen",
         action="append",
         metavar="ENDPOINT",
-        help="endpoint to listen on, repeatable (e.g. tcp/0.0.0.0:7447)",
+        help="endpoint to listen on, repeatable (peer default: tcp/127.0.0.1:0, loopback "
+        "only; e.g. tcp/0.0.0.0:7447 for every interface)",
     )
     group.add_argument(
         "-m",

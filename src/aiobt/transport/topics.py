@@ -1,9 +1,11 @@
-"""Typed topics: publishers, latched publishers (late joiners get the last value), subscriptions."""
+"""Typed subscriptions: bounded, decoded off the loop, an async iterator, ``latest`` or a
+callback (publishers: ``publishers.py``)."""
 
 from __future__ import annotations
 
 import asyncio
 import logging
+import time
 from collections import deque
 from collections.abc import Callable
 from typing import Generic, Self, TypeVar
@@ -13,91 +15,36 @@ import zenoh.ext
 from pydantic import ValidationError
 
 from aiobt.msgs import MessageError, Msg, wire_validator
-from aiobt.transport import _z
-from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.bridge import LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.repeats import RepeatedErrors
 
 M = TypeVar("M", bound=Msg)
 _PUT = zenoh.SampleKind.PUT
 log = logging.getLogger("aiobt.transport.topics")
-
-
-class Publisher(Generic[M]):
-    """``put(msg)`` publishes one message of ``model`` on ``key``."""
-
-    def __init__(
-        self,
-        zpub: zenoh.Publisher | zenoh.ext.AdvancedPublisher,
-        key: str,
-        model: type[M],
-        bridge: LoopBridge,
-    ) -> None:
-        self.key = key
-        self.model = model
-        self._pub = zpub
-        self._bridge = bridge
-        self._closed = False
-
-    def put(self, message: M) -> None:
-        if not isinstance(message, self.model):
-            raise TypeError(f"{self.key}: expected {self.model.__name__}, got {type(message)}")
-        payload = message.to_json()
-        self._bridge.check_size(self.key, payload)
-        self._pub.put(payload)
-
-    @property
-    def matched(self) -> bool:
-        """Whether a subscriber is known to match (plain publishers only; else True)."""
-        if isinstance(self._pub, zenoh.Publisher):
-            return _z.matching(self._pub.matching_status)
-        return True
-
-    async def wait_for_subscribers(self, timeout: float) -> bool:  # noqa: ASYNC109
-        """Wait until a subscriber matches, so that a first message is not lost; False if
-        none did within ``timeout`` seconds (as ``ActionClient.wait_for_server``)."""
-        try:
-            async with asyncio.timeout(timeout):
-                while not self.matched:  # noqa: ASYNC110 - zenoh's matching listener is a thread
-                    await asyncio.sleep(0.01)
-        except TimeoutError:
-            return False
-        return True
-
-    def close(self) -> None:
-        """Undeclare the publisher (idempotent: the bus closes it again on exit)."""
-        if self._closed:
-            return
-        self._closed = True
-        _z.undeclare(self._pub)
-
-
-def declare_publisher(
-    session: zenoh.Session, bridge: LoopBridge, key: str, model: type[M], *, reliable: bool
-) -> Publisher[M]:
-    congestion = zenoh.CongestionControl.BLOCK if reliable else zenoh.CongestionControl.DROP
-    zpub = session.declare_publisher(key, encoding=JSON, congestion_control=congestion)
-    return Publisher(zpub, key, model, bridge)
-
-
-def declare_latched_publisher(
-    session: zenoh.Session, bridge: LoopBridge, key: str, model: type[M]
-) -> Publisher[M]:
-    zpub = zenoh.ext.declare_advanced_publisher(
-        session,
-        key,
-        encoding=JSON,
-        congestion_control=zenoh.CongestionControl.BLOCK,
-        cache=zenoh.ext.CacheConfig(1),
-        publisher_detection=True,
-    )
-    return Publisher(zpub, key, model, bridge)
+# after a drain whose delivery took t seconds of the loop thread's CPU time the next
+# waits PAUSE_PER_WORK * t: one subscription's messages take at most 1 / (1 +
+# PAUSE_PER_WORK) of the event loop (CPU, not wall time: on a loaded machine a
+# preempted delivery would otherwise pause the subscription for nothing)
+PAUSE_PER_WORK = 4.0
 
 
 class Subscription(Generic[M]):
     """Messages of ``model`` on ``key``: an async iterator, ``latest``, or a callback.
 
     A malformed payload is logged once per key and field, then dropped. With a
-    ``callback``, it is called in the event loop for every message (a sync
-    function; exceptions are logged) and nothing is queued.
+    ``callback``, it is called in the event loop for every message delivered (a
+    sync function; its errors are logged, repeats counted) and nothing is queued
+    for iteration.
+
+    Every subscription is bounded: at most ``queue_size`` messages wait for the
+    event loop, and as many for the iterator's reader. When either is full the
+    oldest is dropped and counted in ``dropped_overflow``; with a queue of more
+    than one the first drop is logged (once). A queue of 1 keeps just the newest
+    message (a reader of the latest value), silently. A flood thus costs the
+    receiving thread's decoding and never more memory, and at most a fifth of
+    the event loop: after a delivery that took t seconds, this subscription
+    waits 4 t before the next (``PAUSE_PER_WORK``; t is CPU time), meanwhile its queue keeps
+    the newest messages.
     """
 
     def __init__(
@@ -108,24 +55,45 @@ class Subscription(Generic[M]):
         callback: Callable[[M], object] | None,
         queue_size: int,
     ) -> None:
+        if queue_size < 1:
+            raise ValueError(f"{key}: queue_size must be at least 1, got {queue_size}")
         self.key = key
         self.model = model
         self.latest: M | None = None
         self.received = 0
         self.dropped_invalid = 0
-        self.dropped_overflow = 0  # oldest messages pushed out of a full queue
         self._bridge = bridge
         self._callback = callback
         self._validate_json = wire_validator(model)
         self._max_payload = bridge.max_payload
-        # a bounded deque (oldest dropped) and the waiting readers' futures: leaner than
-        # an asyncio.Queue on this per-message path
-        self._queue: deque[M] = deque(maxlen=queue_size if queue_size > 0 else None)
+        # Zenoh's thread appends to ``_incoming`` and asks the loop for one drain per
+        # burst (what comes while a drain is due is queued undecoded, for the drain to
+        # decode if it is not dropped first: a flood costs that thread little); the
+        # drain hands the messages to the callback or to ``_queue``, from
+        # which readers take them. Both bounded deques (oldest dropped), leaner than an
+        # asyncio.Queue on this per-message path.
+        self._incoming: deque[M | bytes] = deque(maxlen=queue_size)
+        self._queue: deque[M] = deque(maxlen=queue_size)
+        self._drain_due = False
+        self._resume_at = 0.0  # loop time before which this subscription does not drain
+        self._dropped_incoming = 0  # counted in Zenoh's thread only
+        self._dropped_queued = 0  # counted in the loop only
+        self._overflow_said = False
         self._waiters: list[asyncio.Future[None]] = []
         self._closed = False
         self._reported: set[str] = set()
+        self._errors = RepeatedErrors(log, f"{key}: subscriber callback")
         self._first = asyncio.Event()
         self._undeclare: Callable[[], None] = lambda: None
+
+    @property
+    def queue_size(self) -> int:
+        return self._queue.maxlen or 0
+
+    @property
+    def dropped_overflow(self) -> int:
+        """Messages dropped because a queue was full (the oldest ones)."""
+        return self._dropped_incoming + self._dropped_queued
 
     def on_sample(self, sample: zenoh.Sample) -> None:
         """Zenoh thread: decode here (off the loop), hand the model to the loop.
@@ -139,14 +107,40 @@ class Subscription(Generic[M]):
             too_large = PayloadTooLarge(self.key, len(payload), self._max_payload)
             self._bridge.call(self._reject, too_large)
             return
+        if self._drain_due:  # a burst: decoded by the drain, and only if not dropped first
+            if sample.kind == _PUT:
+                self._push(payload)
+            return
         try:
             message = self._validate_json(payload)
         except ValidationError as exc:
             if sample.kind == _PUT:  # errors name the key (it has no wildcards)
-                error = MessageError.from_validation(self.model, exc, self.key)
-                self._bridge.call(self._reject, error)
+                self._bridge.call(self._reject, self._error(exc))
             return
-        self._bridge.call(self._deliver, message)
+        self._push(message)
+
+    def _error(self, exc: ValidationError) -> MessageError:
+        return MessageError.from_validation(self.model, exc, self.key)
+
+    def _decoded(self, item: M | bytes) -> M | None:
+        """In the loop: a message queued undecoded (in a burst), decoded; None if bad."""
+        if not isinstance(item, bytes):
+            return item
+        try:
+            return self._validate_json(item)
+        except ValidationError as exc:
+            self._reject(self._error(exc))
+            return None
+
+    def _push(self, message: M | bytes) -> None:
+        """Zenoh thread: queue for the loop (oldest dropped when full), wake it once."""
+        incoming = self._incoming
+        if len(incoming) == incoming.maxlen:
+            self._dropped_incoming += 1
+        incoming.append(message)
+        if not self._drain_due:
+            self._drain_due = True
+            self._bridge.call(self._drain)
 
     def _reject(self, exc: MessageError | PayloadTooLarge) -> None:
         self.dropped_invalid += 1
@@ -157,34 +151,59 @@ class Subscription(Generic[M]):
         self._reported.add(tag)
         log.warning("dropped bad message (reported once per field): %s", exc)
 
-    def _deliver(self, message: M) -> None:
-        self.latest = message
-        if not self.received:
-            self._first.set()
-        self.received += 1
-        if self._callback is not None:
-            try:
-                self._callback(message)
-            except Exception:
-                log.exception("%s: subscriber callback failed", self.key)
+    def _drain(self) -> None:
+        """In the loop: deliver what came since the last drain (at most ``queue_size``),
+        unless the last drain's work asks for a pause first (then deliver after it)."""
+        loop = self._bridge.loop
+        pause = self._resume_at - loop.time()
+        if pause > 0.0:  # ``_drain_due`` stays set: Zenoh's thread schedules nothing meanwhile
+            loop.call_later(pause, self._drain)
             return
-        if self._closed:
-            return
-        queue = self._queue
-        if len(queue) == queue.maxlen:
-            self._overflow()
-        queue.append(message)  # full: the oldest is dropped
-        self._wake()
+        self._drain_due = False  # before popping: a message appended from now on reschedules
+        started = time.thread_time()  # CPU time: a process the OS preempted did no work
+        self._deliver()
+        self._resume_at = loop.time() + (time.thread_time() - started) * PAUSE_PER_WORK
 
-    def _overflow(self) -> None:
-        self.dropped_overflow += 1
-        if self.dropped_overflow == 1:
-            log.warning(
-                "%s: the reader falls behind; the queue of %d is full and the oldest "
-                "messages are dropped (reported once; see dropped_overflow)",
-                self.key,
-                self._queue.maxlen,
-            )
+    def _deliver(self) -> None:
+        incoming, queue, callback = self._incoming, self._queue, self._callback
+        count = len(incoming)
+        if not count or self._closed:
+            return
+        for _ in range(count):
+            message = self._decoded(incoming.popleft())
+            if message is None:
+                count -= 1
+                continue
+            self.latest = message
+            if callback is not None:
+                try:
+                    callback(message)
+                except Exception as exc:
+                    self._errors.report(exc)
+            else:
+                if len(queue) == queue.maxlen:
+                    self._dropped_queued += 1
+                queue.append(message)  # full: the oldest is dropped
+        if count and not self.received:
+            self._first.set()
+        self.received += count
+        if self.dropped_overflow and not self._overflow_said:
+            self._say_overflow()
+        if callback is None:
+            self._wake()
+
+    def _say_overflow(self) -> None:
+        self._overflow_said = True
+        if self.queue_size == 1:  # a latest-value reader: dropping is what it asked for
+            return
+        who = "the callback" if self._callback is not None else "the reader"
+        log.warning(
+            "%s: %s falls behind; the queue of %d is full and the oldest messages "
+            "are dropped (reported once; see dropped_overflow)",
+            self.key,
+            who,
+            self.queue_size,
+        )
 
     def _wake(self) -> None:
         for waiter in self._waiters:
@@ -227,6 +246,7 @@ class Subscription(Generic[M]):
         self._undeclare()
         self._undeclare = lambda: None
         self._closed = True
+        self._errors.flush()
         self._wake()
 
 

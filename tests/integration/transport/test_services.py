@@ -204,3 +204,24 @@ async def test_a_wildcard_get_is_answered_on_the_service_key(bus: Bus) -> None:
 
 def _cleared(request: ClearEntireCostmap.Request) -> ClearCostmapResponse:
     return ClearCostmapResponse(success=True)
+
+
+async def test_a_handler_failing_on_every_call_logs_one_traceback(
+    local_bus: Bus, caplog: pytest.LogCaptureFixture
+) -> None:
+    def broken(request: IsPathValid.Request) -> IsPathValid.Response:
+        raise RuntimeError(f"cannot check {len(request.path.poses)} poses")
+
+    server = local_bus.serve("is_path_valid", IsPathValid.Request, IsPathValid.Response, broken)
+    with caplog.at_level(logging.ERROR, logger="aiobt.transport"):
+        for _ in range(20):
+            with pytest.raises(ServiceError, match="handler failed: RuntimeError"):
+                await local_bus.call(
+                    "is_path_valid", IsPathValid.Request(path=Path()), IsPathValid.Response, 5.0
+                )
+        server.close()
+    errors = [r for r in caplog.records if r.levelno >= logging.ERROR]
+    assert len(errors) == 2, [r.getMessage() for r in errors]
+    assert errors[0].exc_info is not None
+    assert "service handler failed" in errors[0].getMessage()
+    assert "failed 19 more times" in errors[1].getMessage()  # said when it closed

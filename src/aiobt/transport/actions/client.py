@@ -73,6 +73,9 @@ class ActionClient(Generic[G, R, F]):
         self._bridge = bridge
         self._presence = presence
         self._goals: dict[str, ClientGoal[G, R, F]] = {}
+        # goals whose stream ended without a result while the server was still announced:
+        # judged when its token ends (a moment later) or after TOKEN_GRACE
+        self.ended_unjudged: set[ClientGoal[G, R, F]] = set()
         self._querier = session.declare_querier(
             keys.goal, consolidation=zenoh.ConsolidationMode.NONE, timeout=_GOAL_STREAM_TIMEOUT
         )  # declared once: every goal reuses its route
@@ -156,15 +159,17 @@ class ActionClient(Generic[G, R, F]):
     def _on_presence(self, present: bool) -> None:
         """The server's token went away: its accepted goals are lost, unless their result
         (sent just before a clean shutdown withdrew the token) arrives within a moment:
-        Zenoh does not order the token's end and the goal stream's replies."""
+        Zenoh does not order the token's end and the goal stream's replies. Goals whose
+        stream already ended without a result are judged at once (a killed server's
+        goal is failed within milliseconds)."""
         if present:
             return
         loop = asyncio.get_running_loop()
         for handle in list(self._goals.values()):
             if handle._accepted.done() and not handle._accepted.exception():
-                loop.call_later(
-                    _RESULT_GRACE, handle.lost, "the server's liveliness token disappeared"
-                )
+                loop.call_later(_RESULT_GRACE, handle.server_lost, loop.time())
+        for handle in list(self.ended_unjudged):  # their streams ended first: judged now
+            handle.server_lost()
 
     def _cancel_quietly(self, goal_id: str) -> None:
         payload = p.CancelRequest(goal_id=goal_id).to_json()

@@ -22,6 +22,10 @@ R = TypeVar("R", bound=ActionResult)
 F = TypeVar("F", bound=Msg)
 T = TypeVar("T")
 log = logging.getLogger("aiobt.transport.actions")
+TOKEN_GRACE = 0.25  # s a goal stream's end and its server's token's end may be apart
+# a server silent this long (s) when its session was dropped was hung, not ended: a
+# killed process's session closes at once; a hung one's after its lease (1 s default)
+HUNG_SILENCE = 0.5
 
 
 class ClientGoal(Generic[G, R, F]):
@@ -39,6 +43,8 @@ class ClientGoal(Generic[G, R, F]):
         self._result: asyncio.Future[R] = loop.create_future()
         self._feedback_queue: asyncio.Queue[F] | None = None  # made at the first feedback
         self._waiters: list[asyncio.Future[None]] = []  # woken directly: no extra loop pass
+        self.last_heard = loop.time()  # loop time of the server's last reply on this goal
+        self.stream_ended_at: float | None = None  # ended without a result
 
     @property
     def _feedback(self) -> asyncio.Queue[F]:
@@ -94,6 +100,7 @@ class ClientGoal(Generic[G, R, F]):
     # -- the goal's reply stream (called in the loop) ----------------------------------------
 
     def on_reply(self, reply: zenoh.Reply) -> None:
+        self.last_heard = asyncio.get_running_loop().time()
         if reply.err is not None:
             self._fail_or_reject(reply.err.payload.to_string())
             return
@@ -154,7 +161,33 @@ class ClientGoal(Generic[G, R, F]):
         if not self._accepted.done():
             settle(self._accepted, None)  # nobody answered: maybe not routed yet
         elif not self.done:
-            self.lost("the goal stream ended without a result (server process gone?)")
+            loop = asyncio.get_running_loop()
+            self.stream_ended_at = loop.time()
+            if self._client.server_present:  # its token ends a moment later, if it does
+                self._client.ended_unjudged.add(self)
+                loop.call_later(TOKEN_GRACE, self.server_lost)
+            else:
+                self.server_lost()
+
+    def server_lost(self, token_ended_at: float | None = None) -> None:
+        """The goal's stream ended without a result, or its server's token ended (at loop
+        time ``token_ended_at``; the other follows within ``TOKEN_GRACE``): fail the
+        goal, saying what was seen."""
+        self._client.ended_unjudged.discard(self)
+        if self.done:
+            return
+        ended = self.stream_ended_at or token_ended_at or asyncio.get_running_loop().time()
+        silence = ended - self.last_heard
+        if self._client.server_present:
+            why = "the goal stream ended without a result, though the server is still announced"
+        elif silence >= HUNG_SILENCE:
+            why = (
+                f"the server is not answering: nothing from it for {silence:.1f} s, then its "
+                "session was dropped (hung or cut off?)"
+            )
+        else:
+            why = "the server is gone: its session closed and its liveliness token ended"
+        self.lost(why)
 
     def lost(self, why: str) -> None:
         if not self.done:
