@@ -59,6 +59,7 @@ class Navigation:
         self._stop: ActionResult | None = None
         self._progress = PathProgress()
         self._btlog: BtlogLogger | None = None
+        self._stalled = False
 
     # -- control from outside ----------------------------------------------------------
     def stop(self, reason: str) -> None:
@@ -110,9 +111,23 @@ class Navigation:
                 return self._stop
             await self._take_newer_goal()
             self.channel.publish_feedback(self._feedback())
-            await tree.wait_for_wake_up(period)
+            await self._wait(tree, period)
             if self._stop is not None:
                 return self._stop
+
+    async def _wait(self, tree: Tree, period: float) -> None:
+        """The loop period on the clock, or a wake-up; a clock that stalls (a simulation
+        that stopped) for ``clock_timeout`` wall seconds lets the loop go on anyway,
+        so that cancel and preemption are still served."""
+        bound = self.navigator.options.clock_timeout
+        try:
+            await asyncio.wait_for(tree.wait_for_wake_up(period), bound)
+        except TimeoutError:
+            if not self._stalled:
+                log.warning(
+                    "goal %s: the clock has not moved for %g s", self.request.goal_id, bound
+                )
+            self._stalled = True
 
     def _result(self, status: Status | ActionResult, unknown: int) -> ActionResult:
         if status is SUCCESS:
