@@ -77,6 +77,7 @@ from aiobt.msgs.services import (
     ClearCostmapResponse,
     ClearEntireCostmap,
     IsPathValid,
+    ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.strings import (
@@ -145,6 +146,7 @@ __all__ = [
     "PoseStamped",
     "PowerSupplyStatus",
     "Quaternion",
+    "ReinitializeGlobalLocalization",
     "SmoothPath",
     "SmoothPathError",
     "Spin",
