@@ -69,7 +69,10 @@ from aiobt.msgs.nav import (
     Path,
     PowerSupplyStatus,
     TrackingFeedback,
+    WaypointState,
+    WaypointStatus,
 )
+from aiobt.msgs.route import Route, RouteEdge, RouteNode
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -80,6 +83,7 @@ from aiobt.msgs.services import (
     ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
+from aiobt.msgs.std import String, Trigger
 from aiobt.msgs.strings import (
     goals_from_string,
     goals_to_string,
@@ -147,15 +151,22 @@ __all__ = [
     "PowerSupplyStatus",
     "Quaternion",
     "ReinitializeGlobalLocalization",
+    "Route",
+    "RouteEdge",
+    "RouteNode",
     "SmoothPath",
     "SmoothPathError",
     "Spin",
     "SpinError",
+    "String",
     "TrackingFeedback",
+    "Trigger",
     "Twist",
     "Vector3",
     "Wait",
     "WaitError",
+    "WaypointState",
+    "WaypointStatus",
     "decode",
     "decoder",
     "goals_from_string",
