@@ -72,7 +72,7 @@ from aiobt.msgs.nav import (
     WaypointState,
     WaypointStatus,
 )
-from aiobt.msgs.remote_actions import Route, RouteEdge, RouteNode
+from aiobt.msgs.route import Route, RouteEdge, RouteNode
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
