@@ -184,9 +184,9 @@ class Navigation:
 
     def _set_goal(self, request: NavRequest) -> None:
         assert self.tree is not None
-        key, value = request.blackboard_goal()
         blackboard = self.tree.root_blackboard
-        blackboard.set(key, value)
+        for key, value in request.blackboard_entries().items():
+            blackboard.set(key, value)
         blackboard.set("number_recoveries", 0)
         self.tree.emit_wake_up()
 
@@ -194,8 +194,8 @@ class Navigation:
     def _start_tree(self, request: NavRequest) -> None:
         source = self.navigator.tree_of(request)
         blackboard = Blackboard.create()
-        key, value = request.blackboard_goal()
-        blackboard.set(key, value)
+        for key, value in request.blackboard_entries().items():
+            blackboard.set(key, value)
         blackboard.set("path", Path())
         blackboard.set("number_recoveries", 0)
         clear_error_codes(blackboard, self.navigator.options.error_code_prefixes)
