@@ -81,9 +81,8 @@ class Navigation:
         if problem is not None:
             log.error("goal %s refused: %s", self.request.goal_id, problem.error_msg)
             return problem
-        if (
-            self.navigator.robot.current_pose() is None
-        ):  # Nav2: "Initial robot pose is not available."
+        # bt_navigator: "Initial robot pose is not available." (TF_ERROR)
+        if self.navigator.robot.current_pose() is None:
             message = "the robot pose is not available (nothing received on pose yet)"
             log.error("goal %s: %s", self.request.goal_id, message)
             return ActionResult(error_code=codes.tf_error, error_msg=message)
@@ -118,9 +117,9 @@ class Navigation:
                 return status
             if self._stop is not None:
                 return self._stop
-            await self._take_newer_goal()
+            await self._take_newer_goal()  # may start another tree
             self.channel.publish_feedback(self._feedback())
-            await self._wait(tree, period)
+            await self._wait(self.tree or tree, period)
             if self._stop is not None:
                 return self._stop
 
