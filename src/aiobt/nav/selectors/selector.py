@@ -76,6 +76,11 @@ class Selector(NavNode, SyncActionNode):
             selected = self.get_input(self.DEFAULT_PORT, "")
             if not selected:
                 return FAILURE
+        key = self.config.outputs.get(self.OUTPUT_PORT)
+        if key is not None:  # unchanged: not written again (Nav2 rewrites it every tick)
+            entry = self.config.blackboard.entry(key)
+            if entry is not None and entry.has_value and entry.value == selected:
+                return SUCCESS
         self.set_output(self.OUTPUT_PORT, selected)
         return SUCCESS
 
