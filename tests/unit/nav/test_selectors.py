@@ -131,3 +131,14 @@ async def test_an_unchanged_choice_is_not_rewritten_but_an_overwrite_is_restored
     await deliver(local_bus, "planner_selector", String(data="SmacHybrid"))
     assert await tree.tick_exactly_once() is S
     assert tree.root_blackboard["planner"] == "SmacHybrid"
+
+
+async def test_a_default_bound_to_the_blackboard_is_read_on_every_tick(local_bus: Bus) -> None:
+    xml = '<PlannerSelector default_planner="{fallback}" selected_planner="{planner}"/>'
+    tree = nav_tree(local_bus, xml)
+    tree.root_blackboard["fallback"] = "GridBased"
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "GridBased"
+    tree.root_blackboard["fallback"] = "ThetaStar"
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "ThetaStar"
