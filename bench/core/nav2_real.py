@@ -19,11 +19,8 @@ node-tick and the ratio real / stub, measured in this run.
 
 from __future__ import annotations
 
-import argparse
 import asyncio
-import gc
 import statistics
-import time
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
@@ -40,6 +37,7 @@ from aiobt.nav import register_nav2_nodes
 from aiobt.testing.bus import open_local_bus
 from aiobt.transport import Bus
 from bench.core.libs import FailCondition, OkAction, OkCondition, RunAction
+from bench.core.remote_leaf import bench_args, ns_per_tick
 
 TREE = FilePath(__file__).parents[2] / "trees/nav2/navigate_to_pose_w_replanning_and_recovery.xml"
 _SELECTORS = ("ProgressChecker", "GoalChecker", "PathHandler", "Controller", "Planner")
@@ -148,14 +146,6 @@ def node_ticks(trees: dict[str, Tree]) -> dict[str, int]:
     return dict(zip(trees, counts, strict=True))
 
 
-def _ns_per_tick(tick: Callable[[], Status], n: int) -> float:
-    gc.collect()
-    start = time.perf_counter()
-    for _ in range(n):
-        tick()
-    return (time.perf_counter() - start) / n * 1e9
-
-
 async def measure(rounds: int, ticks: int) -> tuple[dict[str, list[float]], dict[str, int]]:
     text = TREE.read_text()
     clock = ManualClock()
@@ -168,7 +158,7 @@ async def measure(rounds: int, ticks: int) -> tuple[dict[str, list[float]], dict
         for index in range(rounds):
             order = list(trees)[index % 2 :] + list(trees)[: index % 2]
             for name in order:
-                results[name].append(_ns_per_tick(trees[name].root.tick_sync, ticks))
+                results[name].append(ns_per_tick(trees[name].root.tick_sync, ticks))
         for tree in trees.values():
             await tree.halt_tree("bench done")
     return results, counts
@@ -187,10 +177,7 @@ def report(results: dict[str, list[float]], counts: dict[str, int]) -> str:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--rounds", type=int, default=9)
-    parser.add_argument("--ticks", type=int, default=20000)
-    args = parser.parse_args()
+    args = bench_args(__doc__)
     print(report(*asyncio.run(measure(args.rounds, args.ticks))))
 
 
