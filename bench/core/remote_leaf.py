@@ -34,7 +34,7 @@ from aiobt.transport import Bus
 from bench.core.libs import RunAction
 
 
-def _ns_per_tick(tick: Callable[[], Status], n: int) -> float:
+def ns_per_tick(tick: Callable[[], Status], n: int) -> float:
     gc.collect()
     start = time.perf_counter()
     for _ in range(n):
@@ -88,7 +88,7 @@ async def measure(rounds: int, ticks: int) -> dict[str, list[float]]:
         for index in range(rounds):
             order = list(trees)[index % 3 :] + list(trees)[: index % 3]
             for name in order:
-                results[name].append(_ns_per_tick(trees[name].root.tick_sync, ticks))
+                results[name].append(ns_per_tick(trees[name].root.tick_sync, ticks))
         for tree in trees.values():
             await tree.halt_tree("bench done")
     return results
@@ -107,11 +107,16 @@ def report(results: dict[str, list[float]]) -> str:
     )
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+def bench_args(doc: str) -> argparse.Namespace:
+    """``--rounds`` and ``--ticks``, shared with ``bench.core.nav2_real``."""
+    parser = argparse.ArgumentParser(description=doc.split("\n")[0])
     parser.add_argument("--rounds", type=int, default=9)
     parser.add_argument("--ticks", type=int, default=20000)
-    args = parser.parse_args()
+    return parser.parse_args()
+
+
+def main() -> None:
+    args = bench_args(__doc__)
     print(report(asyncio.run(measure(args.rounds, args.ticks))))
 
 

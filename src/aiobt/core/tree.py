@@ -18,49 +18,47 @@ from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock
 from aiobt.core.node import StatusListener, TreeContext, TreeNode
 from aiobt.core.status import FAILURE, IDLE, RUNNING, SUCCESS, Status
+from aiobt.core.ticker import ticker_for
 
 log = logging.getLogger("aiobt.core.tree")
 
 
 class WakeUp:
-    """BT.CPP's wake-up signal: a flag consumed by the ticking loop."""
+    """BT.CPP's wake-up signal: a flag consumed by the ticking loop.
 
-    __slots__ = ("_event", "_pending")
+    One waiter at a time (the loop that ticks the tree): :meth:`wait` parks
+    one future, resolved by :meth:`emit` or by the shared ticker of its clock
+    and period (:mod:`aiobt.core.ticker`), whichever comes first.
+    """
+
+    __slots__ = ("_pending", "_waiter")
 
     def __init__(self) -> None:
         self._pending = False
-        self._event: asyncio.Event | None = None
+        self._waiter: asyncio.Future[None] | None = None
 
     def emit(self) -> None:
         self._pending = True
-        if self._event is not None:
-            self._event.set()
+        waiter = self._waiter
+        if waiter is not None and not waiter.done():
+            waiter.set_result(None)
 
     def consume(self) -> bool:
         pending, self._pending = self._pending, False
-        if self._event is not None:
-            self._event.clear()
         return pending
 
     async def wait(self, clock: Clock, period: float) -> bool:
         """Wait up to ``period`` of clock time; True if woken up."""
         if self.consume():
             return True
-        if self._event is None:
-            self._event = asyncio.Event()
-        waiter = asyncio.ensure_future(self._event.wait())
-        # the deadline is fixed now: the sleeper task first runs a few loop turns later
-        sleeper = asyncio.ensure_future(_sleep_until(clock, clock.now() + period))
+        ticker = ticker_for(clock, period)
+        waiter = self._waiter = asyncio.get_running_loop().create_future()
+        ticker.add(waiter)  # the deadline is fixed now
         try:
-            await asyncio.wait({waiter, sleeper}, return_when=asyncio.FIRST_COMPLETED)
+            await waiter
         finally:
-            waiter.cancel()
-            sleeper.cancel()
+            self._waiter = None
         return self.consume()
-
-
-async def _sleep_until(clock: Clock, deadline: float) -> None:
-    await clock.sleep(deadline - clock.now())
 
 
 @dataclass(frozen=True, slots=True)
@@ -135,6 +133,14 @@ class Tree:
     def emit_wake_up(self) -> None:
         self._wake.emit()
 
+    async def wait_for_wake_up(self, period: float) -> bool:
+        """Wait up to ``period`` of clock time; True if a wake-up came first.
+
+        For runners that tick with :meth:`tick_once` in their own loop (the
+        navigator does work between ticks), as :meth:`tick_while_running` waits.
+        """
+        return await self._wake.wait(self.context.clock, period)
+
     # -- ticking ------------------------------------------------------------------
     async def _tick_root(self) -> Status:
         status = self.root.tick_sync()
@@ -171,12 +177,15 @@ class Tree:
 
     async def tick_while_running(self, period: float = 0.01) -> Status:
         """Tick every ``period`` seconds of clock time until the root finishes."""
+        ticker_for(self.context.clock, period)  # a bad period fails here, before any tick
+        resumed, wake, clock = self._resumed, self._wake, self.context.clock
         status = IDLE
         while status is IDLE or status is RUNNING:
-            await self._resumed.wait()
+            if not resumed.is_set():
+                await resumed.wait()
             status = await self.tick_once()
             if status is RUNNING:
-                await self._wake.wait(self.context.clock, period)
+                await wake.wait(clock, period)
         return status
 
     # -- control ------------------------------------------------------------------

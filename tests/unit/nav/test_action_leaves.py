@@ -326,3 +326,37 @@ async def test_a_recovery_in_a_subtree_counts_on_the_root(local_bus: Bus) -> Non
     tree.root_blackboard["number_recoveries"] = 4
     assert await run_to_end(tree) is S
     assert tree.root_blackboard["number_recoveries"] == 5
+
+
+async def test_a_goal_port_rewritten_with_the_same_text_builds_no_new_goal(
+    local_bus: Bus, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A selector rewrites controller_id on every tick; only a change is a new goal."""
+    from aiobt.nav.actions.follow_path import FollowPath as FollowPathNode
+
+    built: list[str] = []
+    make_goal = FollowPathNode.make_goal
+
+    def counting(self: FollowPathNode) -> Any:
+        built.append(self.get_input("controller_id"))
+        return make_goal(self)
+
+    monkeypatch.setattr(FollowPathNode, "make_goal", counting)
+    controller = Controller(local_bus)
+    xml = '<FollowPath path="{path}" controller_id="{c}"/>'
+    tree = nav_tree(local_bus, xml, path=straight_path(), c="FollowPath")
+    assert await tick_until(tree, controller.got_goal) is R
+    controller.got_goal.clear()
+    tree.root_blackboard["c"] = "FollowPath"
+    assert await tree.tick_once() is R
+    before = len(built)
+    for _ in range(5):
+        tree.root_blackboard["c"] = "FollowPath"
+        assert await tree.tick_once() is R
+    assert len(built) == before  # equal rewrites: no goal built
+    tree.root_blackboard["c"] = "FollowPathB"
+    assert await tick_until(tree, controller.got_goal) is R
+    assert built[before:] == ["FollowPathB"]
+    assert controller.executions == 1  # the running goal was updated, not restarted
+    controller.finish.set()
+    assert await run_to_end(tree) is S

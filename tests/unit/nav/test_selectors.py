@@ -112,3 +112,33 @@ async def test_every_selector_names_its_ports_as_nav2(local_bus: Bus) -> None:
         tree = nav_tree(local_bus, f'<{node} {default}="d" {output}="{{out}}"/>')
         assert await tree.tick_exactly_once() is S
         assert tree.root_blackboard["out"] == "d"
+
+
+async def test_an_unchanged_choice_is_not_rewritten_but_an_overwrite_is_restored(
+    local_bus: Bus,
+) -> None:
+    tree = nav_tree(local_bus, PLANNER)
+    assert await tree.tick_exactly_once() is S
+    entry = tree.root_blackboard.entry("planner")
+    assert entry is not None
+    written = entry.sequence_id
+    for _ in range(3):
+        assert await tree.tick_exactly_once() is S
+    assert entry.sequence_id == written  # same choice: no write, no watcher woken
+    tree.root_blackboard["planner"] = "SomethingElse"
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "GridBased"
+    await deliver(local_bus, "planner_selector", String(data="SmacHybrid"))
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "SmacHybrid"
+
+
+async def test_a_default_bound_to_the_blackboard_is_read_on_every_tick(local_bus: Bus) -> None:
+    xml = '<PlannerSelector default_planner="{fallback}" selected_planner="{planner}"/>'
+    tree = nav_tree(local_bus, xml)
+    tree.root_blackboard["fallback"] = "GridBased"
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "GridBased"
+    tree.root_blackboard["fallback"] = "ThetaStar"
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "ThetaStar"

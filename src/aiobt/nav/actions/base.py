@@ -19,6 +19,8 @@ from aiobt.transport import ActionClient, ClientGoal, GoalLost, GoalRejected, Se
 
 CANCEL_SHARE = 0.8  # of the tree's halt_timeout, for a halted leaf's cancel of its goal
 _ASYNC_EXECUTE = AsyncActionNode.execute_sync
+_NOTHING = object()
+_IMMUTABLE = frozenset((str, int, float, bool))  # equal values of these are the same value
 # Goal ports that Nav2 reads from the blackboard entry of their own name when unset
 BLACKBOARD_FALLBACK = frozenset({"goal", "goals", "path"})
 
@@ -136,10 +138,28 @@ class BtAction(NavNode, AsyncActionNode):
             else:
                 key = port if port in BLACKBOARD_FALLBACK else None
             if key is not None:
-                self._unwatch.append(self.blackboard.watch(key, self._on_port_written))
+                self._unwatch.append(self.blackboard.watch(key, self._port_watcher(key)))
 
-    def _on_port_written(self) -> None:
-        self._written = self._attention = True
+    def _port_watcher(self, key: str) -> Callable[[], None]:
+        """Flag a write of ``key`` unless it writes the value its last write wrote.
+
+        A selector writes its choice on every tick, as Nav2's does; building and
+        comparing a goal for each of those writes made a RUNNING FollowPath cost
+        more than the rest of Nav2's tree. A write equal to the one before cannot
+        change the goal: that one was flagged and offered already.
+        """
+        entry = self.blackboard.create_entry(key)
+        last: list[Any] = [_NOTHING]
+
+        def written() -> None:
+            value = entry.value
+            # only immutable values: a path changed in place and written again is a change
+            if type(value) in _IMMUTABLE and type(value) is type(last[0]) and value == last[0]:
+                return
+            last[0] = value
+            self._written = self._attention = True
+
+        return written
 
     def _on_feedback_arrived(self, feedback: Any) -> None:
         self._feedback = feedback

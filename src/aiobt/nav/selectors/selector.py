@@ -46,7 +46,7 @@ class Selector(NavNode, SyncActionNode):
     blackboard-bound topic may change between runs.
     """
 
-    __slots__ = ("_topic", "_topic_name")
+    __slots__ = ("_default", "_output_key", "_topic", "_topic_name")
     DEFAULT_PORT: ClassVar[str] = ""
     OUTPUT_PORT: ClassVar[str] = ""
 
@@ -54,6 +54,11 @@ class Selector(NavNode, SyncActionNode):
         super().__init__(*args, **kwargs)
         self._topic: SharedTopic[String] | None = None
         self._topic_name = ""
+        self._output_key = self.config.outputs.get(self.OUTPUT_PORT)
+        default = self.config.inputs.get(self.DEFAULT_PORT)
+        self._default: str | None = "" if default is None else default.value
+        if default is not None and default.key is not None:
+            self._default = None
         binding = self.config.inputs.get("topic_name")
         literal = binding is None or binding.key is None
         if self.nav.bus is not None and literal:
@@ -71,12 +76,20 @@ class Selector(NavNode, SyncActionNode):
         if topic is None or self._status is IDLE:
             topic = self._subscribe()
         message = topic.latest
-        selected = message.data if message is not None else ""
+        selected: str = message.data if message is not None else ""
         if not selected:
-            selected = self.get_input(self.DEFAULT_PORT, "")
+            default = self._default
+            # bound to the blackboard: read on each tick
+            selected = self.get_input(self.DEFAULT_PORT, "") if default is None else default
             if not selected:
                 return FAILURE
-        self.set_output(self.OUTPUT_PORT, selected)
+        key = self._output_key
+        if key is None:  # not connected
+            return SUCCESS
+        entry = self.config.blackboard.entry(key)
+        # unchanged: not written again (Nav2 rewrites it on every tick)
+        if entry is None or entry.value != selected or not entry.has_value:
+            self.config.blackboard.set(key, selected)
         return SUCCESS
 
 
