@@ -118,6 +118,8 @@ async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus
     robot = NavRobotState(nav)
     assert robot.current_pose() is None
     assert robot.linear_speed() == 0.0
+    assert not await robot.wait_for_pose(0.05)
+    waiting = asyncio.create_task(robot.wait_for_pose(WAIT))
     poses = local_bus.publisher("pose", PoseStamped)
     odometry = local_bus.publisher("odom", Odometry)
     moving = Odometry.model_validate({"twist": {"linear": {"x": 0.3, "y": 0.4}}})
@@ -131,6 +133,7 @@ async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus
     assert current is not None
     assert current.pose.position.x == 1.0
     assert robot.linear_speed() == pytest.approx(0.5)
+    assert await asyncio.wait_for(waiting, WAIT)
 
 
 @pytest.mark.timeout(60)
