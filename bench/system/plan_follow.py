@@ -58,12 +58,12 @@ def seeded_goals(
     last = world.start[:2]
     goals: list[tuple[float, float, float]] = []
     while len(goals) < count:
-        x, y = x0 + rng.uniform(0, width), y0 + rng.uniform(0, height)
+        x, y = round(x0 + rng.uniform(0, width), 2), round(y0 + rng.uniform(0, height), 2)
         if not world.contains(x, y, CLEARANCE) or world.disc_blocked(x, y, CLEARANCE):
             continue
         if math.hypot(x - last[0], y - last[1]) < spacing:
             continue
-        goals.append((round(x, 2), round(y, 2), round(float(rng.uniform(-math.pi, math.pi)), 2)))
+        goals.append((x, y, round(float(rng.uniform(-math.pi, math.pi)), 2)))
         last = (x, y)
     return goals
 
