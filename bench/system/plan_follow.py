@@ -175,7 +175,11 @@ def report(label: str, outcomes: Sequence[Outcome], achieved: float, robot_log: 
             + (f"  {o.message}" if o.message else "")
         )
     timeouts = robot_log.count("no velocity command for")
-    lags = [line.split(": ", 1)[-1] for line in robot_log.splitlines() if "behind --speed" in line]
+    lags = [
+        line.split(": ", 1)[-1]
+        for line in robot_log.splitlines()
+        if "simulation behind --speed" in line or "simulation at --speed" in line
+    ]
     print(f"robot: {timeouts} command timeout(s), {len(lags)} lag report(s)")
     for line in lags:
         print(f"  {line}")
