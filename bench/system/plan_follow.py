@@ -28,7 +28,7 @@ import numpy as np
 
 from aiobt.msgs import Clock, ComputePathToPose, FollowPath, PoseStamped
 from aiobt.testing.bus import running_router, spawn_service
-from aiobt.transport import Bus, BusSettings, open_bus
+from aiobt.transport import ActionError, Bus, BusSettings, open_bus
 from aiobt_services.robot.mapfile import MapInfo, load_map
 from aiobt_services.robot.worlds import OFFICE
 
@@ -109,16 +109,43 @@ class Tracker:
 async def plan_and_follow(
     bus: Bus, tracker: Tracker, goal: tuple[float, float, float], patience: float
 ) -> Outcome:
-    """Plan from the robot's pose to ``goal`` and follow the plan; how it ended."""
+    """Plan from the robot's pose to ``goal`` and follow the plan; how it ended (a goal
+    lost, refused or not answered in ``patience`` s counts as not arrived, with why)."""
     sim0, wall0 = tracker.time, time.monotonic()
+    try:
+        return await _plan_and_follow(bus, tracker, goal, patience, sim0, wall0)
+    except (ActionError, TimeoutError) as exc:
+        return _outcome(tracker, goal, (False, -1, -1), sim0, wall0, f"{type(exc).__name__}: {exc}")
+
+
+def _outcome(
+    tracker: Tracker,
+    goal: tuple[float, float, float],
+    codes: tuple[bool, int, int],
+    sim0: float,
+    wall0: float,
+    message: str = "",
+) -> Outcome:
+    arrived, plan, follow = codes
+    pose = tracker.pose
+    distance = math.inf if pose is None else math.hypot(pose.x - goal[0], pose.y - goal[1])
+    return Outcome(
+        goal, arrived and distance <= ARRIVED_WITHIN, plan, follow, distance,
+        tracker.time - sim0, time.monotonic() - wall0, message,
+    )  # fmt: skip
+
+
+async def _plan_and_follow(
+    bus: Bus,
+    tracker: Tracker,
+    goal: tuple[float, float, float],
+    patience: float,
+    sim0: float,
+    wall0: float,
+) -> Outcome:
 
     def outcome(arrived: bool, plan: int, follow: int, message: str = "") -> Outcome:
-        pose = tracker.pose
-        distance = math.inf if pose is None else math.hypot(pose.x - goal[0], pose.y - goal[1])
-        return Outcome(
-            goal, arrived and distance <= ARRIVED_WITHIN, plan, follow, distance,
-            tracker.time - sim0, time.monotonic() - wall0, message,
-        )  # fmt: skip
+        return _outcome(tracker, goal, (arrived, plan, follow), sim0, wall0, message)
 
     here = tracker.pose
     if here is None:
