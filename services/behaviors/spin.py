@@ -10,6 +10,8 @@ from aiobt_services.controller.geometry import STOP, Pose2D, Velocity, wrap_angl
 
 from .base import BehaviorStep, Inputs, Outcome, Safety, TimedBehavior, require_finite
 
+STILL = 1e-3  # rad per cycle: below this the base has stopped turning
+
 
 @dataclass(slots=True)
 class SpinParams:
@@ -17,6 +19,7 @@ class SpinParams:
     min_rotational_vel: float = 0.4
     rotational_acc_lim: float = 3.2
     angle_tolerance: float = 0.02
+    settle_tolerance: float = 0.03  # rad: once stopped, farther off than this turns again
     approach_error: float = 0.025  # rad: a stall's overshoot bound (not Nav2's; approach_limit)
 
 
@@ -28,11 +31,12 @@ class SpinBehavior(TimedBehavior):
     ``sqrt(2 a remaining)`` clamped to [min, max] (and, under a sim speed-up,
     slowed so that a stall of the loop cannot carry it past the target); the stop is sent where the
     base, still turning for the loop's ``lead``, ends at the
-    target. Fails COLLISION_AHEAD when
+    target. Once stopped (the yaw still), it is done within ``settle_tolerance``;
+    farther off (a stall, a late stop) it turns on or back. Fails COLLISION_AHEAD when
     the robot's cell is in collision (a circular robot sweeps nothing new).
     """
 
-    __slots__ = ("_last_w", "_last_yaw", "_turned", "params", "target_yaw")
+    __slots__ = ("_last_w", "_last_yaw", "_settling", "_turned", "params", "target_yaw")
 
     def __init__(
         self,
@@ -48,32 +52,45 @@ class SpinBehavior(TimedBehavior):
         self._turned = 0.0
         self._last_yaw: float | None = None
         self._last_w = 0.0
+        self._settling = False
 
     def progress(self) -> float:
         return abs(self._turned)
 
     def _cycle(self, inputs: Inputs, pose: Pose2D) -> BehaviorStep:
+        delta = 0.0
         if self._last_yaw is not None:
-            self._turned += wrap_angle(pose.yaw - self._last_yaw)
+            delta = wrap_angle(pose.yaw - self._last_yaw)
+            self._turned += delta
         self._last_yaw = pose.yaw
         direction = math.copysign(1.0, self.target_yaw)
         p = self.params
-        remaining = abs(self.target_yaw) - self._turned * direction
+        remaining = abs(self.target_yaw) - self._turned * direction  # < 0: past the target
+        if self._settling:
+            if abs(delta) > STILL:
+                return BehaviorStep(STOP, self.progress())  # still turning after the stop
+            if abs(remaining) <= p.settle_tolerance:
+                return BehaviorStep(STOP, self.progress(), done=True)
+            self._settling = False  # a stall or a late stop left it off: turn on or back
+        sense = math.copysign(1.0, remaining) * direction
         ahead = self.stop_ahead(inputs.now, inputs.lead, self._last_w)
-        if remaining <= max(ahead, p.angle_tolerance):
+        crossed = self._last_w != 0.0 and sense != math.copysign(1.0, self._last_w)
+        if abs(remaining) <= max(ahead, p.angle_tolerance) or crossed:
+            self._settling = True
             self._last_w = 0.0
-            return BehaviorStep(STOP, self.progress(), done=True)
+            self.sent(inputs.now, 0.0)
+            return BehaviorStep(STOP, self.progress())
         checker = self.collision()
         if checker is not None and checker.pose_collides(pose):
             return self.fail(
                 Outcome.COLLISION_AHEAD, "collision ahead: the robot is in collision while spinning"
             )
-        coming = max(0.0, remaining - self.in_flight(inputs.now, inputs.lead))
+        coming = max(0.0, abs(remaining) - self.in_flight(inputs.now, inputs.lead))
         speed = min(
             max(math.sqrt(2.0 * p.rotational_acc_lim * coming), p.min_rotational_vel),
             p.max_rotational_vel,
             self.approach_limit(coming, inputs.lead, p.approach_error),
         )
-        self._last_w = direction * speed
+        self._last_w = sense * speed
         self.sent(inputs.now, speed)
         return BehaviorStep(Velocity(0.0, self._last_w), self.progress())

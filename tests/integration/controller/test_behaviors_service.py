@@ -38,7 +38,9 @@ async def test_backup_and_spin_move_the_robot_as_asked(
     )
     result = await goal.result(timeout=30.0)
     assert result.error_code == 0, result
-    assert result.total_elapsed_time == pytest.approx(2.0, abs=0.5)
+    # 2 s at 0.25 m/s, plus Nav2's ramp and slow-down and, under the sim speed-up, the
+    # slower approach that keeps a stall from carrying the robot past the distance
+    assert 1.8 <= result.total_elapsed_time <= 3.5
     after_backup = await pose.wait_latest(2.0)
     assert after_backup.x == pytest.approx(-0.5, abs=0.07)
     assert abs(after_backup.y) < 0.05

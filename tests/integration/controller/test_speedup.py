@@ -113,9 +113,19 @@ async def test_behaviours_reach_their_targets_at_10x(
     errors: list[str] = []
 
     async def settled() -> PoseStamped:
-        await asyncio.sleep(0.2)  # 2 s of sim: a base still moving would show it
-        assert latest.pose is not None
-        return latest.pose
+        """The pose once the base has stood still for 0.3 s of sim time (at most 20 s)."""
+        async with asyncio.timeout(20.0):
+            anchor = latest.pose
+            assert anchor is not None
+            while True:
+                await asyncio.sleep(0.05)
+                now = latest.pose
+                assert now is not None
+                moved = math.hypot(now.x - anchor.x, now.y - anchor.y)
+                if moved > 1e-3 or yaw_error(now.yaw, anchor.yaw) > 1e-3:
+                    anchor = now
+                elif now.header.stamp - anchor.header.stamp >= 0.3:
+                    return now
 
     spin = bus.action_client("spin", Spin)
     for target in (-math.pi, math.pi / 2):
