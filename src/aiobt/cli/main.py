@@ -20,6 +20,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "demo": ("aiobt.cli.demo", "the main job: run the example mission"),
     "nodes": ("aiobt.cli.nodes", "print the <TreeNodesModel> of every registered node"),
     "router": ("aiobt.cli.router", "run a Zenoh router in this process"),
+    "up": ("aiobt.cli.up", "the whole system on this machine: router and every service"),
     "robot": ("aiobt_services.robot.main", "the pybullet robot service"),
     "planner": ("aiobt_services.planner.main", "the planner service"),
     "controller": ("aiobt_services.controller.main", "the controller service"),
