@@ -19,6 +19,7 @@ from aiobt.msgs import (
     PoseStamped,
     SmoothPath,
 )
+from aiobt.system.announce import announce
 from aiobt.transport import Bus
 
 from .actions import PlannerActions
@@ -32,8 +33,11 @@ COSTMAP = "global_costmap"
 class PlannerService:
     """The planner server: a global costmap plus Nav2's planner-server interface."""
 
-    def __init__(self, bus: Bus, world: GlobalCostmap, actions: PlannerActions) -> None:
+    def __init__(
+        self, bus: Bus, world: GlobalCostmap, actions: PlannerActions, *, sim_time: bool = False
+    ) -> None:
         self.bus = bus
+        self.sim_time = sim_time
         self.world = world
         self.actions = actions
 
@@ -51,7 +55,7 @@ class PlannerService:
         self._serve_clearing()
         bus.serve(IsPathValid.service_name, IsPathValid.Request, IsPathValid.Response,
                   self.is_path_valid)  # fmt: skip
-        bus.declare_token("nodes/planner")
+        announce(bus, "planner", sim_time=self.sim_time)
 
     def _serve_clearing(self) -> None:
         region, response = ClearCostmapExceptRegion.Request, ClearCostmapResponse

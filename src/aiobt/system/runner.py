@@ -65,14 +65,24 @@ class System:
 
         Raises :class:`Fatal` if a service fails for good meanwhile.
         """
-        everything: asyncio.Future[object] = asyncio.ensure_future(
-            asyncio.gather(*(e.wait() for e in self._up.values()))
-        )
+        fatal = self.supervisor.fatal
+        loop = asyncio.get_running_loop()
+        deadline = loop.time() + timeout
+        pending: set[asyncio.Future[object]] = {
+            asyncio.ensure_future(event.wait()) for event in self._up.values()
+        }
         try:
-            await asyncio.wait({everything, self.supervisor.fatal}, timeout=timeout,
-                               return_when=asyncio.FIRST_COMPLETED)  # fmt: skip
+            while pending and not fatal.done():
+                left = deadline - loop.time()
+                done, pending = await asyncio.wait(
+                    {*pending, fatal}, timeout=left, return_when=asyncio.FIRST_COMPLETED
+                )
+                pending.discard(fatal)
+                if not done:
+                    break
         finally:
-            everything.cancel()
+            for waiting in pending:
+                waiting.cancel()
         if self.supervisor.fatal.done():
             raise Fatal(str(self.supervisor.fatal.result()))
         return [name for name, up in self.healthy().items() if not up]
@@ -101,12 +111,15 @@ async def run_system(config: SystemConfig, sink: LogSink) -> AsyncIterator[Syste
             await supervisor.start(Child("router", process_argv(router_command(config))))
             await _wait_listening(config.router.listen, supervisor)
         async with _open_client(config, supervisor) as bus:
-            supervisor.mark_healthy("router", True)
-            system._watch(bus)
-            for name in services:
-                await supervisor.start(Child(name, process_argv(service_command(name, config))))
-            yield system
-            await supervisor.stop(last=("router",))
+            try:  # the services stop before this process's session closes
+                supervisor.mark_healthy("router", True)
+                system._watch(bus)
+                for name in services:
+                    argv = process_argv(service_command(name, config))
+                    await supervisor.start(Child(name, argv))
+                yield system
+            finally:
+                await supervisor.stop(last=("router",))
     finally:
         await supervisor.stop(last=("router",))
 

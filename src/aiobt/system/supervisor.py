@@ -15,6 +15,7 @@ import asyncio
 import contextlib
 import logging
 import os
+import re
 import signal
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -25,6 +26,7 @@ from aiobt.system.config import RestartConfig
 
 log = logging.getLogger("aiobt.system.supervisor")
 _TAIL = 5  # last output lines kept per child, for the report when it dies
+_LOG_PREFIX = re.compile(r"^\d{4}-\d\d-\d\d [\d:,.]+ [A-Z] [\w.]+: ")
 
 
 class LogSink(Protocol):
@@ -50,7 +52,8 @@ class Child:
         return self.process.pid if self.process else None
 
     def last_words(self) -> str:
-        return self.tail[-1] if self.tail else "no output"
+        """The child's last output line, without a log record's time/level/logger prefix."""
+        return _LOG_PREFIX.sub("", self.tail[-1]) if self.tail else "no output"
 
 
 class Fatal(Exception):
@@ -143,34 +146,33 @@ class Supervisor:
         if not self.fatal.done():
             self.fatal.set_result(message)
 
-    async def stop(self, last: Sequence[str] = (), grace: float = 1.5) -> None:
+    async def stop(self, last: Sequence[str] = (), grace: float = 1.2) -> None:
         """Stop every child: SIGTERM to all but ``last`` together, then to ``last`` (the
         router, so the others close their sessions cleanly); SIGKILL after ``grace`` s."""
         self._stopping = True
         for task in self._watchers:
             task.cancel()
         await asyncio.gather(*self._watchers, return_exceptions=True)
-        await _terminate([c for n, c in self.children.items() if n not in last], grace)
-        await _terminate([c for n, c in self.children.items() if n in last], grace / 2)
+        await self._terminate([c for n, c in self.children.items() if n not in last], grace)
+        await self._terminate([c for n, c in self.children.items() if n in last], grace)
+
+    async def _terminate(self, children: list[Child], grace: float) -> None:
+        running = [c for c in children if c.process and c.process.returncode is None]
+        for child in running:
+            _signal(child, signal.SIGTERM)
+        waits = [asyncio.create_task(_wait_exit(c)) for c in running]
+        if not waits:
+            return
+        _done, late = await asyncio.wait(waits, timeout=grace)
+        for child in running:
+            if child.process and child.process.returncode is None:
+                self.sink.event(child.name, f"did not stop within {grace:g} s: killed")
+                _signal(child, signal.SIGKILL)
+        if late:
+            await asyncio.wait(late, timeout=grace)
 
     def pids(self) -> list[int]:
         return [c.pid for c in self.children.values() if c.pid is not None]
-
-
-async def _terminate(children: list[Child], grace: float) -> None:
-    running = [c for c in children if c.process and c.process.returncode is None]
-    for child in running:
-        _signal(child, signal.SIGTERM)
-    waits = [asyncio.create_task(_wait_exit(c)) for c in running]
-    if not waits:
-        return
-    _done, late = await asyncio.wait(waits, timeout=grace)
-    for child in running:
-        if child.process and child.process.returncode is None:
-            log.warning("%s did not stop within %.1f s: killed", child.name, grace)
-            _signal(child, signal.SIGKILL)
-    if late:
-        await asyncio.wait(late, timeout=grace)
 
 
 async def _wait_exit(child: Child) -> None:
