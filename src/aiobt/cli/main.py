@@ -19,6 +19,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("aiobt.cli.run", "load an XML tree and tick it until it finishes"),
     "demo": ("aiobt.cli.demo", "the main job: run the example mission"),
     "nodes": ("aiobt.cli.nodes", "print the <TreeNodesModel> of every registered node"),
+    "validate": ("aiobt.cli.validate", "load and check XML trees with every node, tick nothing"),
     "router": ("aiobt.cli.router", "run a Zenoh router in this process"),
     "up": ("aiobt.cli.up", "the whole system on this machine: router and every service"),
     "robot": ("aiobt_services.robot.main", "the pybullet robot service"),

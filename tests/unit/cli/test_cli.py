@@ -67,7 +67,7 @@ def test_run_halts_at_max_time_and_fails(
     assert main(["run", str(tree), "--speed", "100", "--max-time", "1", "--trace", "all"]) == 1
     out = capsys.readouterr().out
     assert "halted" in out
-    assert "tree T: FAILURE" in out
+    assert "tree T: halted at --max-time 1 s of clock time (it was RUNNING)" in out
 
 
 def test_run_nav2_tree_with_stubbed_leaves_validates_ports_against_the_manifest(
