@@ -134,7 +134,9 @@ def test_a_delayed_stub_on_a_condition_answers_at_once_so_a_reactive_tree_ends(
     model = _file(tmp_path, "model.xml", MODEL)
     args = ["run", tree, "--nodes-model", model, "--stub", "*=SUCCESS:0.5", "--speed", "50"]
     assert main([*args, "--max-time", "20"]) == 0
-    assert "tree R: SUCCESS after 0.5" in capsys.readouterr().out
+    out = capsys.readouterr().out
+    assert "RUNNING  IsDocked" not in out
+    assert "tree R: SUCCESS after" in out
 
 
 def test_run_a_file_without_trees_names_the_file(
