@@ -24,6 +24,14 @@ from aiobt.msgs.actions import (
     Spin,
     Wait,
 )
+from aiobt.msgs.bt import (
+    BtNode,
+    BtNodeStatus,
+    BtSnapshot,
+    BtTransition,
+    BtTransitions,
+    BtTree,
+)
 from aiobt.msgs.errors import (
     AssistedTeleopError,
     BackUpError,
@@ -61,7 +69,10 @@ from aiobt.msgs.nav import (
     Path,
     PowerSupplyStatus,
     TrackingFeedback,
+    WaypointState,
+    WaypointStatus,
 )
+from aiobt.msgs.route import Route, RouteEdge, RouteNode
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -69,8 +80,10 @@ from aiobt.msgs.services import (
     ClearCostmapResponse,
     ClearEntireCostmap,
     IsPathValid,
+    ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
+from aiobt.msgs.std import String, Trigger
 from aiobt.msgs.strings import (
     goals_from_string,
     goals_to_string,
@@ -92,6 +105,12 @@ __all__ = [
     "BackUp",
     "BackUpError",
     "BatteryState",
+    "BtNode",
+    "BtNodeStatus",
+    "BtSnapshot",
+    "BtTransition",
+    "BtTransitions",
+    "BtTree",
     "ClearCostmapAroundPose",
     "ClearCostmapAroundRobot",
     "ClearCostmapExceptRegion",
@@ -131,15 +150,23 @@ __all__ = [
     "PoseStamped",
     "PowerSupplyStatus",
     "Quaternion",
+    "ReinitializeGlobalLocalization",
+    "Route",
+    "RouteEdge",
+    "RouteNode",
     "SmoothPath",
     "SmoothPathError",
     "Spin",
     "SpinError",
+    "String",
     "TrackingFeedback",
+    "Trigger",
     "Twist",
     "Vector3",
     "Wait",
     "WaitError",
+    "WaypointState",
+    "WaypointStatus",
     "decode",
     "decoder",
     "goals_from_string",
