@@ -114,7 +114,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
         )
         _wire(bus, service)
-        announce(bus, "robot", sim_time=False)
+        announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(
             "robot up on namespace '%s': world %s, %s, dt %g s",
             bus.namespace,
