@@ -242,3 +242,26 @@ async def test_a_stalled_clock_does_not_stall_the_loop(
     assert "the clock has not moved for 0.1 s" in caplog.text
     rig.gates.open("drive")
     assert (await asyncio.wait_for(task, WAIT)).error_code == 0
+
+
+async def test_error_codes_start_cleared_and_a_node_error_fails_only_that_goal(
+    tmp_path: Path,
+) -> None:
+    reads_codes = (
+        '<Fallback><WouldAControllerRecoveryHelp error_code="{follow_path_error_code}"/>'
+        '<Gate name="drive"/></Fallback>'
+    )
+    broken = '<WouldAControllerRecoveryHelp error_code="{never_set}"/>'
+    rig = make_rig(tmp_path, {**TREES, "Reads": reads_codes, "Broken": broken})
+    task = start(rig, to_pose("reads", tree="Reads"))
+    await rig.gates.wait_started("drive")  # the condition read 0: no recovery would help
+    rig.gates.open("drive")
+    assert (await asyncio.wait_for(task, WAIT)).error_code == 0
+    result = await asyncio.wait_for(start(rig, to_pose("broken", tree="Broken")), WAIT)
+    assert result.error_code == 9000
+    assert "WouldAControllerRecoveryHelp" in result.error_msg
+    assert "never_set" in result.error_msg
+    task = start(rig, to_pose("after"))
+    await rig.gates.wait_started("drive")
+    rig.gates.open("drive")
+    assert (await asyncio.wait_for(task, WAIT)).error_code == 0
