@@ -19,6 +19,7 @@ import signal
 import sys
 from typing import TextIO
 
+from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.monitor import TreeView
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
 from aiobt.transport import (
@@ -36,6 +37,7 @@ _REFRESH = 0.1  # s of wall time between redraws: what an eye follows
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
+    parser.set_defaults(connect_timeout=CONNECT_TIMEOUT)
     parser.add_argument("--plain", action="store_true", help="a line per change, no redraw")
     parser.add_argument("--once", action="store_true", help="print the tree once and exit")
     parser.add_argument(

@@ -28,6 +28,8 @@ from aiobt.transport import (
     add_bus_arguments,
 )
 
+CONNECT_TIMEOUT = 5.0  # s: a command line tool reports a missing router instead of waiting
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("pose", nargs="*", type=float, metavar="X Y [YAW]", help="the goal")
@@ -42,6 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def add_client_arguments(parser: argparse.ArgumentParser) -> None:
     """The bus flags and ``--server-timeout`` (``navigate``, ``goal``)."""
     add_bus_arguments(parser)
+    parser.set_defaults(connect_timeout=CONNECT_TIMEOUT)
     parser.add_argument(
         "--server-timeout", type=float, default=10.0, metavar="SECONDS",
         help="wait this long for the navigator (default: %(default)s)",

@@ -16,6 +16,7 @@ import asyncio
 import sys
 from dataclasses import dataclass
 
+from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.msgs import Empty
 from aiobt.msgs.system import ServiceInfo
 from aiobt.transport import (
@@ -35,7 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "namespaces", nargs="*", metavar="NAMESPACE", help="only these (default: every one)"
     )
-    parser.set_defaults(connect_timeout=5.0)
+    parser.set_defaults(connect_timeout=CONNECT_TIMEOUT)
 
 
 @dataclass(slots=True, frozen=True)
