@@ -25,7 +25,7 @@ from aiobt.system.supervisor import Child, Fatal, LogSink, Supervisor
 from aiobt.transport import Bus, BusConfigError, BusSettings, BusUnavailable, open_bus
 
 log = logging.getLogger("aiobt.system.runner")
-ROUTER_TIMEOUT = 10.0  # s for the router to accept this process's session
+ROUTER_TIMEOUT = 30.0  # s for the router to accept this process's session (a loaded machine)
 _PORT_POLL = 0.05  # s between probes of the router's port while it starts
 
 
