@@ -16,9 +16,8 @@ from pathlib import Path
 from aiobt.core.clock import Clock
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.nav import register_nav2_nodes
-from aiobt.nav.context import DEFAULT_SERVER_TIMEOUT
 from aiobt.navigator.navigator import Navigator, NavigatorOptions
-from aiobt.navigator.service import BusRobotState, BusStatusSink, NavigatorService
+from aiobt.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 from aiobt.navigator.status import TreeStatusStream
 from aiobt.navigator.trees import (
     DEFAULT_THROUGH_POSES_TREE,
@@ -39,6 +38,9 @@ from aiobt_services._cli import (
 from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
 
 log = logging.getLogger("aiobt.navigator.main")
+# s; more than the nodes' own default: a busy or just-started service (numpy warming
+# up, a 2-core machine) took over a second to accept its first goal
+SERVER_TIMEOUT = 5.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -77,9 +79,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add(
         "--server-timeout",
         type=positive,
-        default=DEFAULT_SERVER_TIMEOUT,
+        default=SERVER_TIMEOUT,
         metavar="SECONDS",
-        help="default server_timeout of the action leaves (default: %(default)s)",
+        help="how long an action leaf waits for its server to accept a goal, when the "
+        "tree does not say (default: %(default)s; a server that is gone is noticed "
+        "sooner, by its liveliness token)",
     )
     add(
         "--snapshot-period",
@@ -95,7 +99,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
     """The navigator with Nav2's nodes on ``bus``; :class:`TreeLoadFailure` if a default
     tree or a tree directory is not there."""
     factory = BehaviorTreeFactory()
-    register_nav2_nodes(factory, bus, clock=clock, server_timeout=args.server_timeout)
+    nav = register_nav2_nodes(factory, bus, clock=clock, server_timeout=args.server_timeout)
     library = TreeLibrary(factory, args.tree_dir or [TREES_DIR])
     library.check(args.default_tree)
     library.check(args.default_through_tree)
@@ -107,7 +111,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
         btlog_dir=args.btlog_dir,
     )
     stream = TreeStatusStream(BusStatusSink(bus))
-    return Navigator(library, BusRobotState(bus), clock, stream, options)
+    return Navigator(library, NavRobotState(nav), clock, stream, options)
 
 
 async def serve(args: argparse.Namespace) -> int:
