@@ -40,12 +40,16 @@ def aiobt(endpoint: str, *args: str, timeout: float = 120.0) -> subprocess.Compl
 
 
 def test_status_lists_every_service_with_version_and_clock(system: str) -> None:
-    done = aiobt(system, "status")
-    assert done.returncode == 0, done.stderr
-    rows = [line.split() for line in done.stdout.splitlines()[1:]]
-    services = {row[1]: row for row in rows if row[0] == NS}
-    assert set(services) == {"robot", "planner", "controller", "behaviors", "navigator"}
-    assert all(row[2] == "0.1.0" and row[3] == "sim" for row in services.values())
+    expected = {"robot", "planner", "controller", "behaviors", "navigator"}
+    for _ in range(10):  # a starved process can miss its lease for a moment: ask again
+        done = aiobt(system, "status")
+        assert done.returncode == 0, done.stderr
+        rows = [line.split() for line in done.stdout.splitlines()[1:]]
+        services = {row[1]: row for row in rows if row[0] == NS}
+        if set(services) == expected and all(len(row) == 6 for row in services.values()):
+            break
+    assert set(services) == expected, done.stdout
+    assert all(row[2] == "0.1.0" and row[3] == "sim" for row in services.values()), done.stdout
 
 
 def test_navigate_reaches_a_goal_with_live_feedback(system: str) -> None:
@@ -71,7 +75,7 @@ def test_goal_then_monitor_sees_the_tree_run(system: str) -> None:
             assert sent.returncode == 0, sent.stderr
             assert sent.stdout.strip() == f"goal (-1, -1, yaw 0) sent on {NS}/goal_pose"
             seen: list[str] = []
-            while not any(_follows_path(line) for line in seen) and len(seen) < 200:
+            while not any(_follows_path(line) for line in seen[-50:]) and len(seen) < 50_000:
                 seen.append(watcher.stdout.readline())
             assert any(_follows_path(line) for line in seen), "".join(seen)
             assert any(
