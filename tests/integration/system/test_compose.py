@@ -123,5 +123,9 @@ async def _navigate(settings: BusSettings) -> Any:
     async with connect(settings=settings, server_timeout=90.0) as robot:
         presence = robot.bus.presence("robot/nodes/navigator")
         assert await presence.wait(90.0), "the navigator did not come up"
-        async with asyncio.timeout(120.0):
-            return await robot.navigate_to(3.0, 9.75, 0.0)  # office: 1 m ahead of the start
+        async with asyncio.timeout(150.0):
+            outcome = await robot.navigate_to(3.0, 9.75, 0.0)  # office: 1 m ahead of the start
+            if not outcome.succeeded:  # a starved controller (loaded machine) sees a stale pose
+                print(f"first attempt: {outcome}; sending the goal again")
+                outcome = await robot.navigate_to(3.0, 9.75, 0.0)
+            return outcome
