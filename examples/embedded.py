@@ -15,6 +15,7 @@ import asyncio
 
 from aiobt import Status
 from aiobt.embed import NavigationOutcome, RobotClient, connect
+from aiobt.transport import ActionError
 
 TREE = """
 <root BTCPP_format="4">
@@ -51,7 +52,11 @@ async def main(args: argparse.Namespace) -> int:
         def show(feedback: object) -> None:
             print(f"  {getattr(feedback, 'distance_remaining', 0.0):.2f} m to go")
 
-        outcome: NavigationOutcome = await robot.navigate_to(-0.5, -0.5, 0.0, on_feedback=show)
+        try:
+            outcome: NavigationOutcome = await robot.navigate_to(-0.5, -0.5, 0.0, on_feedback=show)
+        except ActionError as exc:  # no navigator, goal rejected, or the navigator went away
+            print(f"navigator: {exc}")
+            return 1
         print(f"navigator: {outcome.state.name} {outcome.error_code} {outcome.error_msg}")
     return 0 if status is Status.SUCCESS and outcome.succeeded else 1
 

@@ -98,7 +98,11 @@ class RobotClient:
         behavior_tree: str = "",
         on_feedback: Callable[[Feedback], object] | None = None,
     ) -> NavigationOutcome:
-        """Send a ``navigate_to_pose`` goal and wait for its end (cancelled if you cancel)."""
+        """Send a ``navigate_to_pose`` goal and wait for its end (cancelled if you cancel).
+
+        Raises :class:`~aiobt.transport.ActionError` subclasses: ``ServerUnavailable``
+        (no navigator within ``server_timeout``), ``GoalRejected``, ``GoalLost`` (the
+        navigator went away mid-goal)."""
         goal = NavigateToPose.Goal(pose=pose(x, y, yaw), behavior_tree=behavior_tree)
         sent = await self._to_pose.send_goal(
             goal, server_timeout=self.server_timeout, on_feedback=on_feedback
