@@ -112,6 +112,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             BusOutputs(bus),
             speed=args.speed,
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
+            command_wait=args.command_wait,
         )
         _wire(bus, service)
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time

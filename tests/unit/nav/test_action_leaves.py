@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 from typing import Any
 
 import pytest
 
 from aiobt.core.status import Status
+from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import (
     ComputePathToPose,
     ComputePathToPoseError,
@@ -16,10 +18,13 @@ from aiobt.msgs import (
     Path,
     PoseStamped,
     Spin,
+    TrackingFeedback,
 )
+from aiobt.nav import register_nav2_nodes
+from aiobt.testing.stubs import tree_xml
 from aiobt.transport import Bus, GoalHandle
 
-from .support import nav_tree, run_to_end, straight_path, tick_until
+from .support import nav_tree, run_to_end, straight_path, tick_until, tick_until_true
 
 pytestmark = pytest.mark.timeout(30)
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
@@ -273,3 +278,51 @@ async def test_goal_status_on_the_server_is_canceled_after_halt(local_bus: Bus) 
     await tree.halt_tree()
     statuses.append(handle.status)
     assert statuses == [GoalState.CANCELED]
+
+
+async def test_follow_path_writes_the_controllers_tracking_feedback(local_bus: Bus) -> None:
+    finish = asyncio.Event()
+    tracking = TrackingFeedback(cross_track_error=0.12, distance_to_goal=0.8)
+    publisher = local_bus.publisher("tracking_feedback", TrackingFeedback)
+
+    async def execute(goal: Any, handle: GoalHandle[Any, Any, Any]) -> Any:
+        while not finish.is_set():  # as the controller: tracking, then feedback, each cycle
+            publisher.put(tracking)
+            handle.publish_feedback(FollowPath.Feedback(distance_to_goal=0.8))
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(finish.wait(), 0.02)
+        return FollowPath.Result()
+
+    local_bus.action_server("follow_path", FollowPath, execute)
+    tree = nav_tree(local_bus, '<FollowPath path="{p}" tracking_feedback="{tf}"/>',
+                    p=straight_path())  # fmt: skip
+    seen = await tick_until_true(tree, lambda: "tf" in tree.root_blackboard)
+    assert seen is R
+    assert tree.root_blackboard["tf"] == tracking
+    finish.set()
+    assert await run_to_end(tree) is S
+    assert tree.root_blackboard["tf"] == TrackingFeedback()  # reset when the goal ends
+
+
+async def test_watching_goal_ports_creates_no_blackboard_entries(local_bus: Bus) -> None:
+    controller = Controller(local_bus)
+    tree = nav_tree(local_bus, '<FollowPath path="{p}"/>', p=straight_path())
+    assert await tick_until(tree, controller.got_goal) is R
+    assert sorted(tree.root_blackboard.keys()) == ["p"]  # no controller_id & co.
+    controller.finish.set()
+    assert await run_to_end(tree) is S
+
+
+async def test_a_recovery_in_a_subtree_counts_on_the_root(local_bus: Bus) -> None:
+    async def execute(goal: Any, handle: Any) -> Any:
+        return Spin.Result()
+
+    local_bus.action_server("spin", Spin, execute)
+    factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory, local_bus)
+    text = tree_xml('<SubTree ID="Recover"/>', "MainTree",
+                    '<BehaviorTree ID="Recover"><Spin/></BehaviorTree>')  # fmt: skip
+    tree = factory.create_tree_from_text(text)
+    tree.root_blackboard["number_recoveries"] = 4
+    assert await run_to_end(tree) is S
+    assert tree.root_blackboard["number_recoveries"] == 5
