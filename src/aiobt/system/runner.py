@@ -118,10 +118,10 @@ async def run_system(config: SystemConfig, sink: LogSink) -> AsyncIterator[Syste
                     argv = process_argv(service_command(name, config))
                     await supervisor.start(Child(name, argv))
                 yield system
-            finally:
-                await supervisor.stop(last=("router",))
+            finally:  # the services first, while the router still carries their goodbyes
+                await supervisor.stop(keep=("router",))
     finally:
-        await supervisor.stop(last=("router",))
+        await supervisor.stop(grace=0.8)
 
 
 def _present(name: str, sink: LogSink) -> bool:

@@ -26,6 +26,7 @@ from aiobt.system.config import RestartConfig
 
 log = logging.getLogger("aiobt.system.supervisor")
 _TAIL = 5  # last output lines kept per child, for the report when it dies
+_REAP = 0.5  # s to wait for a SIGKILLed child to be reaped
 _LOG_PREFIX = re.compile(r"^\d{4}-\d\d-\d\d [\d:,.]+ [A-Z] [\w.]+: ")
 
 
@@ -146,15 +147,14 @@ class Supervisor:
         if not self.fatal.done():
             self.fatal.set_result(message)
 
-    async def stop(self, last: Sequence[str] = (), grace: float = 1.2) -> None:
-        """Stop every child: SIGTERM to all but ``last`` together, then to ``last`` (the
-        router, so the others close their sessions cleanly); SIGKILL after ``grace`` s."""
+    async def stop(self, keep: Sequence[str] = (), grace: float = 1.0) -> None:
+        """Stop every child but ``keep`` (no more restarts of any): SIGTERM together,
+        SIGKILL what is left after ``grace`` s. A second call stops the kept ones."""
         self._stopping = True
         for task in self._watchers:
             task.cancel()
         await asyncio.gather(*self._watchers, return_exceptions=True)
-        await self._terminate([c for n, c in self.children.items() if n not in last], grace)
-        await self._terminate([c for n, c in self.children.items() if n in last], grace)
+        await self._terminate([c for n, c in self.children.items() if n not in keep], grace)
 
     async def _terminate(self, children: list[Child], grace: float) -> None:
         running = [c for c in children if c.process and c.process.returncode is None]
@@ -169,7 +169,7 @@ class Supervisor:
                 self.sink.event(child.name, f"did not stop within {grace:g} s: killed")
                 _signal(child, signal.SIGKILL)
         if late:
-            await asyncio.wait(late, timeout=grace)
+            await asyncio.wait(late, timeout=_REAP)
 
     def pids(self) -> list[int]:
         return [c.pid for c in self.children.values() if c.pid is not None]

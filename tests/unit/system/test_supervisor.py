@@ -115,7 +115,9 @@ async def test_stop_terminates_and_kills_a_child_that_ignores_sigterm_within_the
     await sink.until(lambda: len(sink.lines) == 2)
     pids = supervisor.pids()
     began = time.monotonic()
-    await supervisor.stop(last=("polite",), grace=0.5)
+    await supervisor.stop(keep=("polite",), grace=0.5)
+    assert supervisor.children["polite"].process.returncode is None  # type: ignore[union-attr]
+    await supervisor.stop(grace=0.5)
     assert time.monotonic() - began < 2.0
     codes = {name: c.process.returncode for name, c in supervisor.children.items() if c.process}
     assert codes == {"polite": -15, "stubborn": -9}
