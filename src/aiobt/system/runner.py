@@ -118,10 +118,10 @@ async def run_system(config: SystemConfig, sink: LogSink) -> AsyncIterator[Syste
                     argv = process_argv(service_command(name, config))
                     await supervisor.start(Child(name, argv))
                 yield system
-            finally:  # the services first, while the router still carries their goodbyes
-                await supervisor.stop(keep=("router",))
+            finally:  # everything at once, so a loaded machine still stops within 3 s
+                await supervisor.stop()
     finally:
-        await supervisor.stop(grace=0.8)
+        await supervisor.stop()
 
 
 def _present(name: str, sink: LogSink) -> bool:
