@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 from aiobt.core.clock import Clock, ManualClock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
+from aiobt.system.announce import announce
 from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
 
 from .geometry import STOP, Pose2D, Velocity
@@ -157,7 +158,7 @@ async def serve_on_clock(
         if made is None:
             return
         start(bus, made[0])
-        bus.declare_token(f"nodes/{name}")
+        announce(bus, name, sim_time=args.sim_time)
         time = "sim" if args.sim_time else "wall"
         logger.info("%s up on namespace '%s'%s (%s time)", name, bus.namespace, detail, time)
         await stopper

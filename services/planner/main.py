@@ -11,6 +11,7 @@ and ``srv/is_path_valid``; holds the liveliness token ``{ns}/nodes/planner``.
 from __future__ import annotations
 
 import argparse
+import asyncio
 import logging
 
 from aiobt.msgs import ComputeCoveragePath, ComputePathThroughPoses, ComputePathToPose, SmoothPath
@@ -21,7 +22,9 @@ from aiobt_services._cli import (
     positive,
     run_service,
     stop_on_signals,
+    unless_stopped,
 )
+from aiobt_services.controller.robot_io import make_clock
 from aiobt_services.costmap import InflationParams, ObstacleParams
 
 from .actions import SMOOTHERS, ActionOptions, PlannerActions
@@ -58,6 +61,12 @@ def describe() -> str:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
+    parser.add_argument(
+        "--sim-time",
+        action="store_true",
+        help="serve once the simulation's clock ({ns}/clock) runs; paths are stamped with the "
+        "robot pose's time either way",
+    )
     group = parser.add_argument_group("planner", description=describe())
     add = group.add_argument
     add("--robot-radius", type=non_negative, default=0.22, help="inscribed radius, m (%(default)s)")
@@ -111,7 +120,11 @@ async def serve(args: argparse.Namespace) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        PlannerService(bus, world, actions).start()
+        if args.sim_time:
+            stopper = asyncio.create_task(stop.wait())
+            if await unless_stopped(make_clock(bus, sim_time=True), stopper) is None:
+                return
+        PlannerService(bus, world, actions, sim_time=args.sim_time).start()
         log.info("planner up on namespace '%s'", bus.namespace)
         await stop.wait()
 

@@ -20,6 +20,7 @@ from aiobt.msgs import (
     PoseStamped,
     SmoothPath,
 )
+from aiobt.system.announce import announce
 from aiobt.transport import Bus
 
 from .actions import PlannerActions
@@ -33,8 +34,11 @@ COSTMAP = "global_costmap"
 class PlannerService:
     """The planner server: a global costmap plus Nav2's planner-server interface."""
 
-    def __init__(self, bus: Bus, world: GlobalCostmap, actions: PlannerActions) -> None:
+    def __init__(
+        self, bus: Bus, world: GlobalCostmap, actions: PlannerActions, *, sim_time: bool = False
+    ) -> None:
         self.bus = bus
+        self.sim_time = sim_time
         self.world = world
         self.actions = actions
 
@@ -54,7 +58,7 @@ class PlannerService:
                   self.is_path_valid)  # fmt: skip
         bus.serve(GetCosts.service_name(COSTMAP), GetCosts.Request, GetCosts.Response,
                   self.get_costs)  # fmt: skip
-        bus.declare_token("nodes/planner")
+        announce(bus, "planner", sim_time=self.sim_time)
 
     def _serve_clearing(self) -> None:
         region, response = ClearCostmapExceptRegion.Request, ClearCostmapResponse

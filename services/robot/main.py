@@ -28,6 +28,7 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
+from aiobt.system.announce import announce
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt_services._cli import open_bus_unless_stopped, run_service, stop_on_signals
 
@@ -55,6 +56,12 @@ PUBLISHED: dict[str, type[Msg]] = {
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
+    parser.add_argument(
+        "--sim-time",
+        action="store_true",
+        help="accepted as every service takes it: the robot is the simulation, it always "
+        "publishes {ns}/clock",
+    )
     add_robot_arguments(parser)
 
 
@@ -109,7 +116,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             command_wait=args.command_wait,
         )
         _wire(bus, service)
-        bus.declare_token("nodes/robot")
+        announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(
             "robot up on namespace '%s': world %s, %s, dt %g s",
             bus.namespace,

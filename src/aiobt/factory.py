@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import enum
 import inspect
@@ -13,6 +14,7 @@ from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock
 from aiobt.core.errors import TreeLoadError
 from aiobt.core.manifest import (
+    NodeBuilder,
     NodeManifest,
     Substitution,
     SubstitutionRules,
@@ -133,11 +135,9 @@ class BehaviorTreeFactory:
     ) -> NodeManifest:
         leaf = manifest.kind in (NodeKind.ACTION, NodeKind.CONDITION)
         if isinstance(replacement, TestNodeConfig):
-            if not leaf:  # a stub has no children: only leaves are stubbed
+            builder = _stub_builder(manifest, replacement)
+            if builder is None:
                 return manifest
-            from aiobt.nodes.actions.test_node import test_node_builder
-
-            builder = test_node_builder(replacement)
         else:
             target = self.manifests.get(replacement)
             if target is None:
@@ -295,6 +295,24 @@ class BehaviorTreeFactory:
                 self.manifests[manifest.id] = manifest
                 added.append(manifest.id)
         return added
+
+
+def _stub_builder(manifest: NodeManifest, spec: TestNodeConfig) -> NodeBuilder | None:
+    """The stub for ``manifest``: a test leaf (a condition answers at once, it never
+    runs), a pass-through for a decorator without an implementation, else None (kept)."""
+    from aiobt.xml.model import is_unimplemented
+
+    if manifest.kind == NodeKind.DECORATOR and is_unimplemented(manifest):
+        from aiobt.nodes.decorators.pass_through import pass_through_builder
+
+        return pass_through_builder()
+    if manifest.kind not in (NodeKind.ACTION, NodeKind.CONDITION):
+        return None  # control nodes and implemented decorators keep their children
+    from aiobt.nodes.actions.test_node import test_node_builder
+
+    if manifest.kind == NodeKind.CONDITION and spec.delay > 0:
+        spec = dataclasses.replace(spec, delay=0.0)
+    return test_node_builder(spec)
 
 
 def _own_definitions(document: ParsedDocument) -> dict[str, TreeDefinition]:

@@ -1,39 +1,134 @@
-"""``aiobt demo``: the main job, the example patrol mission.
+"""``aiobt demo``: the main job, on the real system.
 
-A robot patrols three waypoints twice on a clock running ``--speed`` times
-faster than the wall; its battery drains while it moves, a reactive check
-halts the move when the battery runs low, and it charges and goes on. See
-:mod:`aiobt.examples.patrol`.
+Brings the whole system up at a sim speed-up (router, robot, planner,
+controller, behaviors, navigator: the processes of ``aiobt up``), then patrols
+four goals of the small world through the navigator; on the third a box lands
+in front of the moving robot, so the navigator needs a recovery. Progress
+shows goal k of n, distance remaining and recoveries; at the end a PNG (map,
+inflated costmap, planned paths, driven trajectory, goals, recoveries) is
+written to the path it prints. The services' output goes to a log file next
+to it. Exit status 0 only when every goal was reached.
 """
 
 from __future__ import annotations
 
 import argparse
+import asyncio
 import sys
+from pathlib import Path
+from typing import TextIO
 
-from aiobt.cli import run as run_cli
-from aiobt.core.errors import BlackboardError, TreeLoadError
-from aiobt.examples import patrol
+from aiobt.demo.mission import PATROL, Patrol
+from aiobt.demo.picture import render
+from aiobt.demo.record import Leg, Record
+from aiobt.embed import Feedback, connect
+from aiobt.system import ConfigError, Fatal, SystemConfig, load_config, run_system
+from aiobt.testing.bus import free_endpoint
+from aiobt.transport import BusSettings
+
+HEALTH_TIMEOUT = 60.0  # s of wall time for every service to come up
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    run_cli.add_tree_arguments(parser)
-    parser.set_defaults(speed=20.0, max_time=600.0)
+    add = parser.add_argument
+    add("--speed", type=float, default=2.0, help="sim speed-up (default: %(default)s)")
+    add("--out", default="out/demo", metavar="DIR", help="PNG and log (default: %(default)s)")
+    add("--listen", metavar="ENDPOINT", help="the router's (default: a free loopback port)")
+
+
+def demo_config(args: argparse.Namespace) -> SystemConfig:
+    """``aiobt up``'s defaults on the small world at ``--speed``; the navigator's leaves
+    wait 5 s (not 1 s) for a server, as a loaded 2-core machine may need."""
+    listen = args.listen or free_endpoint()
+    navigator = {"args": ["--server-timeout", "5"]}
+    overrides = {"world": "small", "speed": args.speed, "router": {"listen": listen}}
+    return load_config(None, {**overrides, "services": {"navigator": navigator}})
+
+
+class FileSink:
+    """The services' output into a log file; supervisor events also on the terminal."""
+
+    def __init__(self, log: TextIO, out: TextIO) -> None:
+        self.log = log
+        self.out = out
+
+    def line(self, name: str, text: str) -> None:
+        self.log.write(f"{name:>10} | {text}\n")
+
+    def event(self, name: str, text: str) -> None:
+        self.log.write(f"{name:>10} * {text}\n")
+        self.log.flush()
+        if text != "up":
+            self.out.write(f"  [{name}] {text}\n")
+
+
+class ProgressLine:
+    def __init__(self, out: TextIO) -> None:
+        self.out = out
+        self.live = out.isatty()
+
+    def __call__(self, number: int, leg: Leg, feedback: Feedback) -> None:
+        if not self.live:
+            return
+        distance, recoveries = feedback.distance_remaining, feedback.number_of_recoveries
+        text = (
+            f"\r  goal {number + 1}/{len(PATROL)} {leg.name}: "
+            f"{distance:5.2f} m to go, recoveries {recoveries}"
+        )
+        self.out.write(f"{text:<90}")
+        self.out.flush()
+
+    def done(self, number: int, leg: Leg) -> None:
+        mark = "reached" if leg.reached else f"NOT reached ({leg.result})"
+        prefix = "\r" if self.live else ""
+        line = (
+            f"{prefix}  goal {number + 1}/{len(PATROL)} {leg.name}: {mark} "
+            f"in {leg.seconds:.1f} s sim, {leg.recoveries} recoveries"
+        )
+        self.out.write(f"{line:<90}\n")
+        self.out.flush()
+
+
+async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
+    record = Record()
+    progress = ProgressLine(out)
+    with (out_dir / "services.log").open("w") as log:
+        async with run_system(config, FileSink(log, out)) as system:
+            down = await system.wait_healthy(HEALTH_TIMEOUT)
+            if down:
+                out.write(f"aiobt demo: not up after {HEALTH_TIMEOUT:g} s: {', '.join(down)}\n")
+                return 1
+            out.write(f"system up (services' output in {out_dir / 'services.log'})\n")
+            settings = BusSettings(connect=(config.router.listen,), namespace=config.namespace)
+            async with connect(settings=settings, sim_time=True, server_timeout=30.0) as robot:
+                patrol = Patrol(robot, record, progress)
+                patrol.attach()
+                for number, leg in enumerate(patrol.legs):
+                    await patrol.drive(number, leg)
+                    progress.done(number, leg)
+    picture = out_dir / "patrol.png"
+    picture.write_bytes(render(record))
+    reached = sum(leg.reached for leg in record.legs)
+    recoveries = sum(leg.recoveries for leg in record.legs)
+    total = len(record.legs)
+    out.write(f"{reached} of {total} goals reached, {recoveries} recoveries; picture: {picture}\n")
+    return 0 if reached == len(record.legs) else 1
 
 
 def run(args: argparse.Namespace) -> int:
-    if "aiobt.examples.patrol" not in args.plugin:
-        args.plugin.insert(0, "aiobt.examples.patrol")
+    listen = args.listen or free_endpoint()
     try:
-        factory = run_cli.build_factory(args)
-        factory.register_behavior_tree_from_text(patrol.PATROL_XML, file=patrol.__file__)
-        bb = run_cli.root_blackboard(args.entries, patrol.INITIAL_STATE)
-        tree = factory.create_tree(args.tree, blackboard=bb, clock=run_cli.make_clock(args.speed))
-    except (TreeLoadError, BlackboardError, ImportError) as exc:
+        config = load_config(
+            None, {"world": "small", "speed": args.speed, "router": {"listen": listen}}
+        )
+    except ConfigError as exc:
         print(f"aiobt demo: {exc}", file=sys.stderr)
         return 2
-    print(f"patrol mission: 3 waypoints, 2 laps, clock x{args.speed:g}, battery {bb['battery']}")
-    code = run_cli.finish(tree, args)
-    pose = bb["pose"]
-    print(f"battery {bb['battery']:.2f}, robot at ({pose[0]:.2f}, {pose[1]:.2f})")
-    return code
+    print(f"aiobt demo: the whole system at x{config.speed:g} sim speed, {len(PATROL)} goals")
+    out_dir = Path(args.out)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    try:
+        return asyncio.run(demo(config, out_dir, sys.stdout))
+    except Fatal as exc:
+        print(f"aiobt demo: {exc}", file=sys.stderr)
+        return 1

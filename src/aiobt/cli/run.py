@@ -38,9 +38,12 @@ from aiobt.loggers import (
     TreeStatistics,
 )
 from aiobt.loggers.groot2 import DEFAULT_PORT
+from aiobt.nav import register_nav2_nodes
 from aiobt.nodes.subtree import SubTreeNode
+from aiobt.xml.model import is_unimplemented
 
 log = logging.getLogger("aiobt.cli.run")
+DEFAULT_MAX_TIME = 300.0  # s of clock time: a stubbed tree that never ends still stops
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -51,19 +54,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def add_tree_arguments(parser: argparse.ArgumentParser) -> None:
     """Options shared by ``run`` and ``demo``."""
     parser.add_argument("--tree", metavar="ID", help="tree to run (default: main_tree_to_execute)")
-    parser.add_argument(
-        "--plugin", action="append", default=[], metavar="MODULE",
-        help="import MODULE and call its register(factory); repeatable",
-    )  # fmt: skip
-    parser.add_argument(
-        "--nodes-model", action="append", default=[], metavar="XML",
-        help="declare the nodes of a <TreeNodesModel> file (their ports validate the tree)",
-    )  # fmt: skip
-    parser.add_argument(
-        "--stub", action="append", default=[], metavar="PATTERN=STATUS[:SECONDS]",
-        help="replace nodes whose path, name or ID matches PATTERN by a stub returning STATUS "
-        "after SECONDS of clock time; repeatable",
-    )  # fmt: skip
+    add_node_source_arguments(parser)
+    add_stub_arguments(parser)
     parser.add_argument(
         "--set", action="append", default=[], metavar="KEY=VALUE", dest="entries",
         help="set a root blackboard entry (text) before the first tick; repeatable",
@@ -75,8 +67,8 @@ def add_tree_arguments(parser: argparse.ArgumentParser) -> None:
         "--speed", type=float, default=1.0, help="clock speed-up factor (1: wall time)"
     )
     parser.add_argument(
-        "--max-time", type=float, default=None, metavar="SECONDS",
-        help="halt the tree after this much clock time",
+        "--max-time", type=float, default=DEFAULT_MAX_TIME, metavar="SECONDS",
+        help="halt the tree after this much clock time; 0: no limit (default: %(default)s)",
     )  # fmt: skip
     parser.add_argument(
         "--trace", choices=("all", "leaves", "none"), default="leaves",
@@ -108,15 +100,45 @@ def _port(text: str) -> int:
     return port
 
 
+def add_node_source_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--plugin`` and ``--nodes-model``: where nodes beyond the built-in and Nav2 ones come
+    from (``run``, ``demo``, ``nodes``, ``validate``)."""
+    parser.add_argument(
+        "--plugin", action="append", default=[], metavar="MODULE",
+        help="import MODULE and call its register(factory); repeatable",
+    )  # fmt: skip
+    parser.add_argument(
+        "--nodes-model", action="append", default=[], metavar="XML",
+        help="declare the nodes of a <TreeNodesModel> file (their ports validate the tree)",
+    )  # fmt: skip
+
+
+def add_stub_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--stub", action="append", default=[], metavar="PATTERN=STATUS[:SECONDS]",
+        help="replace nodes whose path, name or ID matches PATTERN by a stub returning STATUS "
+        "after SECONDS of clock time (conditions answer at once); repeatable",
+    )  # fmt: skip
+    parser.add_argument(
+        "--stub-missing", metavar="STATUS[:SECONDS]",
+        help="stub only the nodes that have no implementation (declared by --nodes-model): "
+        "leaves return STATUS, decorators pass their child's status through",
+    )  # fmt: skip
+
+
 @dataclass(slots=True)
 class RunReport:
     status: Status
     clock_time: float
     transitions: int
+    halted_at: float | None = None  # the --max-time that stopped the tree, if one did
 
 
 def build_factory(args: argparse.Namespace) -> BehaviorTreeFactory:
+    """Built-in and Nav2 nodes (no bus: Nav2 leaves that need one fail when ticked),
+    then ``--plugin``, ``--nodes-model``, ``--stub`` and ``--stub-missing``."""
     factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory)
     for module_name in args.plugin:
         module = importlib.import_module(module_name)
         register = getattr(module, "register", None)
@@ -130,10 +152,15 @@ def build_factory(args: argparse.Namespace) -> BehaviorTreeFactory:
     for spec in args.stub:
         pattern, replacement = parse_stub(spec)
         factory.add_substitution_rule(pattern, replacement)
+    if getattr(args, "stub_missing", None):
+        _, replacement = parse_stub(f"*={args.stub_missing}", "--stub-missing")
+        for node_id, manifest in factory.manifests.items():
+            if is_unimplemented(manifest):
+                factory.add_substitution_rule(node_id, replacement)
     return factory
 
 
-def parse_stub(spec: str) -> tuple[str, TestNodeConfig]:
+def parse_stub(spec: str, flag: str = "--stub") -> tuple[str, TestNodeConfig]:
     """``PATTERN=STATUS[:SECONDS]`` -> (pattern, TestNodeConfig)."""
     pattern, _, rest = spec.partition("=")
     status_text, _, delay_text = (rest or "SUCCESS").partition(":")
@@ -144,7 +171,7 @@ def parse_stub(spec: str) -> tuple[str, TestNodeConfig]:
         delay = -1.0
     if not pattern or status not in (Status.SUCCESS, Status.FAILURE) or delay < 0.0:
         raise TreeLoadError(
-            f"--stub {spec!r}: expected PATTERN=STATUS[:SECONDS] with STATUS SUCCESS or FAILURE"
+            f"{flag} {spec!r}: expected PATTERN=STATUS[:SECONDS] with STATUS SUCCESS or FAILURE"
         )
     return pattern, TestNodeConfig(status=status, delay=delay)
 
@@ -224,17 +251,20 @@ async def _run_logged(
 ) -> RunReport:
     with contextlib.ExitStack() as loggers:
         stats = _attach_loggers(tree, args, loggers)
+        halted_at = None
+        status: Status | None
         try:
-            if args.max_time is None:
+            if not args.max_time:
                 status = await tree.tick_while_running(args.period)
             else:
                 status = await _bounded(tree, args.period, args.max_time)
+                halted_at = None if status is not None else args.max_time
         finally:
             if tree.status is Status.RUNNING:
                 await tree.halt_tree("aiobt run stopped")
         if stats is not None:
             out.write(render(tree, stats=stats) + "\n")
-    return RunReport(status, tree.clock.now() - start, count())
+    return RunReport(status or Status.FAILURE, tree.clock.now() - start, count(), halted_at)
 
 
 def _attach_loggers(
@@ -251,7 +281,8 @@ def _attach_loggers(
     return None
 
 
-async def _bounded(tree: Tree, period: float, max_time: float) -> Status:
+async def _bounded(tree: Tree, period: float, max_time: float) -> Status | None:
+    """The tree's result, or None when it was halted at ``max_time``."""
     ticking = asyncio.ensure_future(tree.tick_while_running(period))
     timer = asyncio.ensure_future(tree.clock.sleep(max_time))
     try:
@@ -262,22 +293,47 @@ async def _bounded(tree: Tree, period: float, max_time: float) -> Status:
         return ticking.result()
     ticking.cancel()
     await asyncio.gather(ticking, return_exceptions=True)
-    await tree.halt_tree(f"--max-time {max_time} s reached")
-    log.warning("halted: --max-time %.1f s of clock time reached", max_time)
-    return Status.FAILURE
+    await tree.halt_tree(f"--max-time {max_time:g} s reached")
+    return None
 
 
 def run(args: argparse.Namespace) -> int:
     try:
         factory = build_factory(args)
-        factory.register_behavior_tree_from_file(args.file)
+        tree_id = register_file(factory, args.file, args.tree)
         tree = factory.create_tree(
-            args.tree, blackboard=root_blackboard(args.entries), clock=make_clock(args.speed)
+            tree_id, blackboard=root_blackboard(args.entries), clock=make_clock(args.speed)
         )
     except (TreeLoadError, BlackboardError, ImportError, OSError) as exc:
-        print(f"aiobt run: {exc}", file=sys.stderr)
+        print(f"aiobt run: {explain(exc)}", file=sys.stderr)
         return 2
     return finish(tree, args)
+
+
+def register_file(factory: BehaviorTreeFactory, path: str, wanted: str | None) -> str:
+    """Register the trees of ``path``; the ID to run (``wanted`` or the file's main tree)."""
+    ids = factory.register_behavior_tree_from_file(path)
+    if not ids:
+        raise TreeLoadError("no <BehaviorTree> in this file", file=path)
+    tree_id = wanted or factory.main_tree_id
+    if tree_id is None:
+        raise TreeLoadError(
+            f"{len(ids)} trees ({', '.join(ids)}) and no main_tree_to_execute: "
+            "choose one with --tree ID",
+            file=path,
+        )
+    return tree_id
+
+
+def explain(exc: Exception) -> str:
+    """The error, and for an unknown node ID where such nodes come from."""
+    text = str(exc)
+    if isinstance(exc, TreeLoadError) and exc.message.startswith("unknown node ID"):
+        text += (
+            "; a node of your own? --plugin MODULE registers its implementation, "
+            "--nodes-model XML declares its ports (then --stub-missing runs it as a stub)"
+        )
+    return text
 
 
 def finish(tree: Tree, args: argparse.Namespace) -> int:
@@ -293,8 +349,9 @@ def finish(tree: Tree, args: argparse.Namespace) -> int:
     except OSError as exc:  # e.g. the --groot2 port is taken
         print(f"aiobt run: {exc}", file=sys.stderr)
         return 2
-    print(
-        f"tree {tree.tree_id}: {report.status.name} after {report.clock_time:.2f} s of clock time, "
-        f"{report.transitions} status changes"
-    )
-    return 0 if report.status is Status.SUCCESS else 1
+    if report.halted_at is not None:
+        ended = f"halted at --max-time {report.halted_at:g} s of clock time (it was RUNNING)"
+    else:
+        ended = f"{report.status.name} after {report.clock_time:.2f} s of clock time"
+    print(f"tree {tree.tree_id}: {ended}, {report.transitions} status changes")
+    return 0 if report.status is Status.SUCCESS and report.halted_at is None else 1

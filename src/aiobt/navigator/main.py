@@ -26,6 +26,7 @@ from aiobt.navigator.trees import (
     TreeLibrary,
     TreeLoadFailure,
 )
+from aiobt.system.announce import announce
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt_services._cli import (
     open_bus_unless_stopped,
@@ -138,7 +139,7 @@ async def serve(args: argparse.Namespace) -> int:
             return 1
         service = NavigatorService(bus, navigator, made[0])
         service.start(args.snapshot_period)
-        bus.declare_token("nodes/navigator")
+        announce(bus, "navigator", sim_time=args.sim_time)
         time = "sim" if args.sim_time else "wall"
         log.info("navigator up on namespace '%s' (%s time)", bus.namespace, time)
         await stopper

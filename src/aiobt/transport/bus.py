@@ -121,13 +121,16 @@ class Bus:
         request: Msg,
         response: type[Resp],
         timeout: float = 2.0,  # noqa: ASYNC109
+        *,
+        namespace: str | None = None,
     ) -> Resp:
-        """Call ``{ns}/srv/{name}``: waits up to ``timeout`` for the server to be there.
+        """Call ``{ns}/srv/{name}`` (``namespace``, default the bus's): waits up to
+        ``timeout`` for the server to be there.
 
         A request that no server answered (not routed yet, or its server went away,
         e.g. restarting) is sent again until ``timeout``: a request whose server died
         while handling it may be handled twice."""
-        key = self.keys.service(name)
+        key = (Keys(namespace) if namespace else self.keys).service(name)
         loop = asyncio.get_running_loop()
         deadline = loop.time() + timeout
         while True:
@@ -152,6 +155,16 @@ class Bus:
         if key not in self._presence:
             self._presence[key] = Presence(self.session, self.bridge, key)
         return self._presence[key]
+
+    async def tokens(self, key: str, timeout: float = 1.0) -> list[str]:  # noqa: ASYNC109
+        """The keys of the liveliness tokens alive now on the absolute ``key`` (wildcards
+        allowed, e.g. ``**/nodes/*``), sorted."""
+
+        def collect() -> list[str]:
+            replies = self.session.liveliness().get(key, timeout=timeout)
+            return sorted(str(r.ok.key_expr) for r in replies if r.ok is not None)
+
+        return await asyncio.to_thread(collect)
 
     def declare_token(self, name: str) -> zenoh.LivelinessToken:
         """A liveliness token on ``{ns}/{name}`` (e.g. ``nodes/planner``), until the bus closes."""

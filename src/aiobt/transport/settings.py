@@ -1,9 +1,10 @@
 """Bus settings: the shared command-line flags, a Zenoh config file, and defaults.
 
 Precedence: a Zenoh config file (``--config`` or ``ZENOH_CONFIG``) first, then
-the explicit flags on top. Services default to ``client`` mode connecting to a
-router on ``tcp/127.0.0.1:7447``, with a 1000 ms lease so a hung process is
-noticed within about a second.
+the explicit flags on top; ``AIOBT_ZENOH_USER`` / ``AIOBT_ZENOH_PASSWORD`` in the
+environment give the credentials for a router that checks them. Services
+default to ``client`` mode connecting to a router on ``tcp/127.0.0.1:7447``,
+with a 1000 ms lease so a hung process is noticed within about a second.
 """
 
 from __future__ import annotations
@@ -115,6 +116,7 @@ class BusSettings:
         if json.loads(config.get_json(OPEN_TIMEOUT_KEY)) == _ZENOH_OPEN_TIMEOUT_MS:
             _insert(config, OPEN_TIMEOUT_KEY, OPEN_TIMEOUT_MS)
         _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
+        _insert_credentials(config)
         for key, value in self.extra.items():
             _insert(config, key, value)
         return config
@@ -129,6 +131,20 @@ class BusSettings:
             return zenoh.Config.from_file(path)
         except zenoh.ZError as exc:
             raise BusConfigError(f"Zenoh config file {path}: {clean(str(exc))}") from None
+
+
+USER_ENV, PASSWORD_ENV = "AIOBT_ZENOH_USER", "AIOBT_ZENOH_PASSWORD"
+
+
+def _insert_credentials(config: zenoh.Config) -> None:
+    """User/password for a router that checks them, from the environment (an env file in
+    docker-compose), so no image or config file holds them; both or neither."""
+    user, password = os.environ.get(USER_ENV), os.environ.get(PASSWORD_ENV)
+    if bool(user) != bool(password):
+        raise BusConfigError(f"set both {USER_ENV} and {PASSWORD_ENV}, or neither")
+    if user and password:
+        _insert(config, "transport/auth/usrpwd/user", user)
+        _insert(config, "transport/auth/usrpwd/password", password)
 
 
 def _endpoints_for(config: zenoh.Config, mode: str, key: str = "connect/endpoints") -> list[str]:

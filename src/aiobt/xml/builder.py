@@ -109,7 +109,9 @@ class TreeBuilder:
             return self._build_subtree(element, definition, bb, site, name, uid, stack)
         manifest = self.lookup(node_id, path, name)
         if manifest is None:
-            raise site.error(f"unknown node ID [{node_id}]{_suggest(node_id, self.known_ids())}")
+            raise site.error(
+                f"unknown node ID [{node_id}]{_suggest(node_id, self.known_ids(), 0.8)}"
+            )
         children = [c for c in element if isinstance(c.tag, str)]
         _check_children(manifest, len(children), site)
         if manifest.id == "ReactiveSequence":
@@ -266,8 +268,10 @@ def _unknown_attribute(key: str, manifest: NodeManifest) -> str:
     return f"attribute [{key}] is not a port of [{manifest.id}]{hint}; its ports: {listed}"
 
 
-def _suggest(word: str, candidates: list[str]) -> str:
-    close = difflib.get_close_matches(word, candidates, n=1, cutoff=0.6)
+def _suggest(word: str, candidates: list[str], cutoff: float = 0.6) -> str:
+    """A close candidate: node IDs ask for a closer match (0.8) than port names, so a
+    Nav2 ID the registry lacks is not "corrected" to an unrelated one."""
+    close = difflib.get_close_matches(word, candidates, n=1, cutoff=cutoff)
     if not close:
         lowered = word.lower()
         close = [c for c in candidates if c.lower() == lowered]

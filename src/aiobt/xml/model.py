@@ -103,6 +103,11 @@ _UNIMPLEMENTED: dict[str, type[TreeNode]] = {
 }
 
 
+def is_unimplemented(manifest: NodeManifest) -> bool:
+    """Whether ``manifest`` comes from a TreeNodesModel alone (no implementation)."""
+    return manifest.node_class in (UnimplementedNode, UnimplementedControl, UnimplementedDecorator)
+
+
 def read_tree_nodes_model(
     source: str | Path, builder: Callable[[str, NodeConfig], TreeNode] | None = None
 ) -> list[NodeManifest]:

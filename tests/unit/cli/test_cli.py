@@ -1,22 +1,33 @@
-"""The ``aiobt`` command line: demo, run, nodes (in-process, through ``main``)."""
+"""The ``aiobt`` command line: run, nodes, the patrol example (in-process)."""
 
 from __future__ import annotations
 
+import argparse
 import re
 from pathlib import Path
 
 import pytest
 
+from aiobt.cli import run as run_cli
 from aiobt.cli.main import main
+from aiobt.core.errors import BlackboardError
+from aiobt.examples import patrol
 
 REPO = Path(__file__).resolve().parents[3]
 NAV2 = REPO / "trees" / "nav2"
 
 
-def test_demo_patrols_charges_when_the_battery_runs_low_and_succeeds(
+def test_the_patrol_example_charges_when_the_battery_runs_low_and_succeeds(
     capsys: pytest.CaptureFixture[str],
 ) -> None:
-    assert main(["demo", "--speed", "200"]) == 0
+    parser = argparse.ArgumentParser()
+    run_cli.add_tree_arguments(parser)
+    args = parser.parse_args(["--speed", "200", "--plugin", "aiobt.examples.patrol"])
+    factory = run_cli.build_factory(args)
+    factory.register_behavior_tree_from_text(patrol.PATROL_XML, file=patrol.__file__)
+    bb = run_cli.root_blackboard([], patrol.INITIAL_STATE)
+    tree = factory.create_tree(blackboard=bb, clock=run_cli.make_clock(args.speed))
+    assert run_cli.finish(tree, args) == 0
     out = capsys.readouterr().out
     lines = [
         line.split(maxsplit=2)[1:]
@@ -39,7 +50,7 @@ def test_demo_patrols_charges_when_the_battery_runs_low_and_succeeds(
     ]
     assert events[-1] == "SUCCESS visit_home/move"
     assert "tree Patrol: SUCCESS" in out
-    assert "robot at (0.00, 0.00)" in out
+    assert bb["pose"][:2] == pytest.approx((0.0, 0.0), abs=0.01)
 
 
 def test_run_reports_a_bad_port_with_file_and_line(
@@ -67,7 +78,7 @@ def test_run_halts_at_max_time_and_fails(
     assert main(["run", str(tree), "--speed", "100", "--max-time", "1", "--trace", "all"]) == 1
     out = capsys.readouterr().out
     assert "halted" in out
-    assert "tree T: FAILURE" in out
+    assert "tree T: halted at --max-time 1 s of clock time (it was RUNNING)" in out
 
 
 def test_run_nav2_tree_with_stubbed_leaves_validates_ports_against_the_manifest(
@@ -154,6 +165,6 @@ def test_run_picks_the_tree_asked_for_and_names_an_unknown_one(
     assert "did you mean [Works]" in capsys.readouterr().err
 
 
-def test_demo_refuses_a_set_value_of_the_wrong_type(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["demo", "--set", "battery=low"]) == 2
-    assert "blackboard [battery]: cannot convert 'low'" in capsys.readouterr().err
+def test_a_set_value_of_the_wrong_type_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(BlackboardError, match=r"blackboard \[battery\]: cannot convert 'low'"):
+        run_cli.root_blackboard(["battery=low"], patrol.INITIAL_STATE)

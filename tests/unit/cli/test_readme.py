@@ -9,8 +9,10 @@ import sys
 from pathlib import Path
 
 import pytest
+import yaml
 
-from aiobt.cli.main import main
+from aiobt.cli.main import _full_parser, main
+from aiobt.system.config import config_from_dict
 
 REPO = Path(__file__).resolve().parents[3]
 README = (REPO / "README.md").read_text(encoding="utf-8")
@@ -42,10 +44,33 @@ def test_embedding_example_runs_and_succeeds(tmp_path: Path) -> None:
     assert done.stdout.split() == ["hello", "world", "Status.SUCCESS"]
 
 
-def _commands() -> list[list[str]]:
-    """The ``aiobt`` commands of the "Running your own tree" block, comments dropped."""
-    block = _blocks("bash")[2].replace("\\\n", " ")
-    return [shlex.split(line.split("#")[0]) for line in block.splitlines() if line.strip()]
+def _commands(marker: str = ".venv/bin/aiobt run ") -> list[list[str]]:
+    """The commands of the first bash block holding ``marker``, comments dropped."""
+    block = next(b for b in _blocks("bash")[2:] if marker in b).replace("\\\n", " ")
+    lines = [line.split(" #")[0] for line in block.splitlines() if not line.startswith("#")]
+    return [shlex.split(line) for line in lines if line.strip()]
+
+
+def test_the_tour_commands_exist_and_their_flags_parse() -> None:
+    tour = _commands(".venv/bin/aiobt up") + _commands(".venv/bin/aiobt navigate")
+    aiobt = [c[1:] for c in tour if c[0] == ".venv/bin/aiobt"]
+    assert {c[0] for c in aiobt} >= {"up", "status", "navigate", "goal", "monitor", "validate"}
+    for argv in aiobt:
+        _full_parser(argv).parse_args(argv)  # SystemExit on an unknown flag
+
+
+def test_the_tour_config_is_a_valid_system_config() -> None:
+    [config] = _blocks("yaml")
+    loaded = config_from_dict(yaml.safe_load(config), "README")
+    assert loaded.uses_sim_time
+    assert loaded.services["controller"].args == ("--max-speed", "0.4")
+
+
+def test_the_embedding_snippet_is_the_example_a_test_runs() -> None:
+    [snippet] = _blocks("py")
+    example = (REPO / "examples" / "embedded.py").read_text()
+    for line in snippet.strip().splitlines():
+        assert line.strip() in example, line
 
 
 def test_the_nav2_run_command_of_the_readme_succeeds(

@@ -1,0 +1,86 @@
+"""``aiobt up``: the whole system on this machine, until Ctrl-C or SIGTERM.
+
+    aiobt up                                  # router, robot, planner, controller,
+    aiobt up --config system.yaml             # behaviors, navigator; defaults below
+    aiobt up --speed 5 --world small          # flags override the file
+
+A Zenoh router, then every service as its own process with the commands
+docker-compose.yml uses; output prefixed by service; a crashed service is
+restarted with back-off; health from the liveliness tokens
+``{ns}/nodes/<service>``. See :mod:`aiobt.system.config` for the file.
+
+Exit status: 0 after a clean stop, 1 when a service cannot be kept running or
+the router is not there, 2 for a bad config.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import sys
+
+from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
+from aiobt.system.console import wants_colour
+from aiobt.system.supervisor import on_signals
+
+log = logging.getLogger("aiobt.cli.up")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_system_arguments(parser)
+    parser.add_argument(
+        "--health-timeout", type=float, default=60.0, metavar="SECONDS",
+        help="report the services not up after this long (default: %(default)s)",
+    )  # fmt: skip
+
+
+def add_system_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--config`` and the settings a flag may override (``up`` and ``demo``)."""
+    add = parser.add_argument
+    add("--config", metavar="YAML", help="system settings (see aiobt.system.config)")
+    add("-n", "--namespace", help="robot namespace (default: robot)")
+    add("--world", help="shipped world (office, small) or a Nav2 map YAML (default: office)")
+    add("--speed", type=float, help="sim speed-up; sim time everywhere when != 1 (default: 1)")
+    add("--listen", dest="router_listen", metavar="ENDPOINT", help="the router's endpoint")
+    add("--colour", "--color", choices=("auto", "always", "never"), default="auto")
+
+
+def config_from_args(args: argparse.Namespace) -> SystemConfig:
+    router = {"listen": args.router_listen} if args.router_listen else None
+    overrides = {
+        "namespace": args.namespace, "world": args.world, "speed": args.speed, "router": router
+    }  # fmt: skip
+    return load_config(args.config, overrides)
+
+
+async def up(config: SystemConfig, sink: ConsoleSink, health_timeout: float) -> int:
+    stop = asyncio.Event()
+    on_signals(stop.set)
+    async with run_system(config, sink) as system:
+        down = await system.wait_healthy(health_timeout)
+        if down:
+            sink.event("up", f"not up after {health_timeout:g} s: {', '.join(down)}")
+        else:
+            clock = f"sim time x{config.speed:g}" if config.uses_sim_time else "wall time"
+            names = ", ".join(system.services)
+            sink.event("up", f"{names} up on namespace '{config.namespace}' ({clock})")
+        failure = await system.stopped(stop)
+        sink.event("up", "stopping" if failure is None else f"stopping: {failure}")
+    if failure is not None:
+        raise Fatal(failure)
+    return 0
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        config = config_from_args(args)
+    except ConfigError as exc:
+        print(f"aiobt up: {exc}", file=sys.stderr)
+        return 2
+    sink = ConsoleSink(sys.stdout, colour=wants_colour(sys.stdout, args.colour))
+    try:
+        return asyncio.run(up(config, sink, args.health_timeout))
+    except Fatal as exc:
+        print(f"aiobt up: {exc}", file=sys.stderr)
+        return 1

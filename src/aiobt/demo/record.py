@@ -1,0 +1,46 @@
+"""What the demo keeps for its picture and its summary: map, trajectory, plans, recoveries."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from aiobt.msgs import OccupancyGrid, PoseStamped
+
+XY = tuple[float, float]
+_STEP = 0.02  # m between kept trajectory points
+
+
+@dataclass(slots=True)
+class Leg:
+    """One goal of the patrol and how it went."""
+
+    name: str
+    goal: tuple[float, float, float]
+    plan: list[XY] = field(default_factory=list)
+    reached: bool = False
+    result: str = ""
+    recoveries: int = 0
+    seconds: float = 0.0  # sim time
+
+
+@dataclass(slots=True)
+class Record:
+    map: OccupancyGrid | None = None
+    trajectory: list[XY] = field(default_factory=list)
+    legs: list[Leg] = field(default_factory=list)
+    recoveries: list[XY] = field(default_factory=list)
+    # boxes dropped in the robot's way: x, y, yaw, size along, size across
+    obstacles: list[tuple[float, float, float, float, float]] = field(default_factory=list)
+
+    def on_map(self, grid: OccupancyGrid) -> None:
+        self.map = grid
+
+    def on_pose(self, pose: PoseStamped) -> None:
+        here = (pose.x, pose.y)
+        if not self.trajectory or math.dist(self.trajectory[-1], here) >= _STEP:
+            self.trajectory.append(here)
+
+    @property
+    def position(self) -> XY:
+        return self.trajectory[-1] if self.trajectory else (0.0, 0.0)

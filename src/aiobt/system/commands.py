@@ -1,0 +1,45 @@
+"""The command line of every service, as ``aiobt up`` and docker-compose.yml run them.
+
+A command is the ``aiobt`` sub-command and its flags (``["robot", "--connect",
+..., "--world", "office"]``); :func:`process_argv` turns it into what a local
+process runs. docker-compose.yml writes the same commands with the router's
+container name as the endpoint (tests/integration/system checks they agree).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+
+from aiobt.system.config import SystemConfig
+
+
+def available(name: str) -> bool:
+    """Whether ``aiobt`` has the sub-command ``name`` and its module is installed."""
+    from aiobt.cli.main import COMMANDS
+
+    if name not in COMMANDS:
+        return False
+    try:
+        return importlib.util.find_spec(COMMANDS[name][0]) is not None
+    except ModuleNotFoundError:
+        return False
+
+
+def router_command(config: SystemConfig) -> list[str]:
+    return ["router", "--listen", config.router.listen]
+
+
+def service_command(name: str, config: SystemConfig) -> list[str]:
+    """``name``'s sub-command and flags: the common bus flags, then its own, then the extras."""
+    command = [name, "--connect", config.router.listen, "--namespace", config.namespace]
+    if name == "robot":
+        command += ["--world", config.world, "--speed", f"{config.speed:g}"]
+    if config.uses_sim_time and name != "robot":
+        command.append("--sim-time")
+    return command + list(config.services[name].args)
+
+
+def process_argv(command: list[str]) -> list[str]:
+    """The local process for an ``aiobt`` sub-command: this Python, not a PATH lookup."""
+    return [sys.executable, "-m", "aiobt.cli.main", *command]

@@ -1,0 +1,108 @@
+"""The user's commands against a running system (``aiobt up`` on the small world)."""
+
+from __future__ import annotations
+
+import select
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from typing import IO
+
+import pytest
+
+from aiobt.testing.bus import free_endpoint
+
+from .helpers import SystemProcess, kill_mentioning
+
+pytestmark = [pytest.mark.integration, pytest.mark.timeout(240)]
+NS = "clitest"
+
+
+@pytest.fixture(scope="module")
+def system(tmp_path_factory: pytest.TempPathFactory) -> Iterator[str]:
+    """``aiobt up`` at 3x on the small world; yields the router endpoint."""
+    endpoint = free_endpoint()
+    config = tmp_path_factory.mktemp("up") / "system.yaml"
+    config.write_text(
+        f"namespace: {NS}\nworld: small\nspeed: 3\nrouter: {{listen: '{endpoint}'}}\n"
+    )
+    with SystemProcess(["up", "--config", str(config)]) as up:
+        try:
+            up.wait_line("        up * ")
+            yield endpoint
+            code, _ = up.stop()
+            assert code == 0
+        finally:
+            kill_mentioning(endpoint)
+
+
+def aiobt(endpoint: str, *args: str, timeout: float = 120.0) -> subprocess.CompletedProcess[str]:
+    command = [sys.executable, "-m", "aiobt.cli.main", *args, "-e", endpoint, "-n", NS]
+    return subprocess.run(command, capture_output=True, text=True, timeout=timeout, check=False)
+
+
+def test_status_lists_every_service_with_version_and_clock(system: str) -> None:
+    expected = {"robot", "planner", "controller", "behaviors", "navigator"}
+    for _ in range(10):  # a starved process can miss its lease for a moment: ask again
+        done = aiobt(system, "status")
+        assert done.returncode == 0, done.stderr
+        rows = [line.split() for line in done.stdout.splitlines()[1:]]
+        services = {row[1]: row for row in rows if row[0] == NS}
+        if set(services) == expected and all(len(row) == 6 for row in services.values()):
+            break
+    assert set(services) == expected, done.stdout
+    assert all(row[2] == "0.1.0" and row[3] == "sim" for row in services.values()), done.stdout
+
+
+def test_navigate_reaches_a_goal_with_live_feedback(system: str) -> None:
+    done = aiobt(system, "navigate", "1.0", "1.0", "1.57")
+    assert done.returncode == 0, done.stdout + done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[-1] == "goal reached"
+    assert any(line.startswith("distance remaining") for line in lines)
+
+
+def test_navigate_to_a_goal_off_the_map_fails_with_nav2s_error(system: str) -> None:
+    done = aiobt(system, "navigate", "40", "40")
+    assert done.returncode == 1
+    assert done.stdout.splitlines()[-1].startswith("navigation ABORTED: error ")
+
+
+def test_goal_then_monitor_sees_the_tree_run(system: str) -> None:
+    aiobt(system, "navigate", "0.5", "0.0")  # so a tree is latched for the monitor to show first
+    command = [sys.executable, "-m", "aiobt.cli.main", "monitor", "--plain", "-e", system, "-n", NS]
+    with subprocess.Popen(command, stdout=subprocess.PIPE, text=True) as watcher:
+        try:
+            assert watcher.stdout is not None
+            first = _line(watcher.stdout, 60.0)  # the monitor is subscribed once it shows this
+            assert first.startswith("tree NavigateToPose"), first
+            sent = aiobt(system, "goal", "-1.0", "-1.0")
+            assert sent.returncode == 0, sent.stderr
+            assert sent.stdout.strip() == f"goal (-1, -1, yaw 0) sent on {NS}/goal_pose"
+            deadline = time.monotonic() + 90.0
+            line = ""
+            while not _follows_path(line):
+                line = _line(watcher.stdout, deadline - time.monotonic())
+        finally:
+            watcher.terminate()
+    assert watcher.returncode in (0, -15)
+
+
+def _line(stream: IO[str], timeout: float) -> str:
+    """The next line of ``stream``; AssertionError after ``timeout`` s without one."""
+    ready, _, _ = select.select([stream], [], [], max(0.0, timeout))
+    assert ready, f"no monitor output within {timeout:.0f} s"
+    return stream.readline()
+
+
+def _follows_path(line: str) -> bool:
+    return " RUNNING " in line and line.rstrip().endswith("/FollowPath")
+
+
+def test_monitor_once_prints_the_whole_tree(system: str) -> None:
+    done = aiobt(system, "monitor", "--once")
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert lines[0].startswith("NavigateToPoseWReplanningAndRecovery (run ")
+    assert any(line.split()[1:] == ["ComputePathToPose"] for line in lines)
