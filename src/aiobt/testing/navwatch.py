@@ -1,0 +1,184 @@
+"""Watching a navigation from outside: the robot's track and the action servers' goals.
+
+- :class:`RobotTrack` follows ``{ns}/pose``: the latest pose (its stamp is sim
+  time), the distance driven, the top speed, and waits for conditions on it;
+- :class:`ServerGoals` follows ``{ns}/action/<server>/status/*`` of several
+  servers: which goals each one has, in which state, and which are still active;
+- :func:`navigate` sends a NavigateToPose goal and keeps its feedback until the end.
+
+Both are callbacks in the event loop (no task, no polling); waits are bounded.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import math
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+
+from aiobt.msgs import ActionResult, GoalState, GoalStatus, NavigateToPose, PoseStamped
+from aiobt.transport import ActionClient, Bus
+from aiobt.transport.topics import Subscription, declare_subscription
+
+TELEPORT = 0.5  # m between two poses (at 50 Hz): a reset, not driving
+
+
+@dataclass(frozen=True, slots=True)
+class Sample:
+    stamp: float
+    x: float
+    y: float
+    yaw: float
+
+
+class RobotTrack:
+    """The robot's pose stream: latest pose, distance driven since :meth:`restart`."""
+
+    def __init__(self, bus: Bus) -> None:
+        self.latest: Sample | None = None
+        self.driven = 0.0
+        self.top_speed = 0.0
+        self._changed = asyncio.Event()
+        self._sub = bus.subscribe("pose", PoseStamped, self._on_pose)
+
+    def _on_pose(self, pose: PoseStamped) -> None:
+        sample = Sample(pose.header.stamp, pose.x, pose.y, pose.yaw)
+        last, self.latest = self.latest, sample
+        if last is not None and sample.stamp > last.stamp:
+            step = math.hypot(sample.x - last.x, sample.y - last.y)
+            if step < TELEPORT:
+                self.driven += step
+                self.top_speed = max(self.top_speed, step / (sample.stamp - last.stamp))
+        self._changed.set()
+
+    def restart(self) -> None:
+        """Count distance and top speed from now on."""
+        self.driven = 0.0
+        self.top_speed = 0.0
+
+    def distance_to(self, x: float, y: float) -> float:
+        if self.latest is None:
+            return math.inf
+        return math.hypot(self.latest.x - x, self.latest.y - y)
+
+    async def wait_for(
+        self,
+        predicate: Callable[[Sample], bool],
+        timeout: float,  # noqa: ASYNC109
+    ) -> Sample | None:
+        """The first pose (the latest included) that satisfies ``predicate``; None on timeout."""
+        with contextlib.suppress(TimeoutError):
+            async with asyncio.timeout(timeout):
+                while self.latest is None or not predicate(self.latest):
+                    self._changed.clear()
+                    await self._changed.wait()
+        return self.latest if self.latest is not None and predicate(self.latest) else None
+
+    async def wait_still(self, seconds: float, timeout: float, tolerance: float = 0.01) -> bool:  # noqa: ASYNC109
+        """True once the robot moved less than ``tolerance`` m over ``seconds`` of sim time."""
+        anchor: list[Sample] = []
+
+        def settled(sample: Sample) -> bool:
+            if not anchor or math.hypot(sample.x - anchor[0].x, sample.y - anchor[0].y) > tolerance:
+                anchor[:] = [sample]
+            return sample.stamp - anchor[0].stamp >= seconds
+
+        return await self.wait_for(settled, timeout) is not None
+
+    def close(self) -> None:
+        self._sub.close()
+
+
+class ServerGoals:
+    """Goal states of action servers, from their status streams (subscribe before sending)."""
+
+    def __init__(self, bus: Bus, servers: Iterable[str]) -> None:
+        self.states: dict[str, dict[str, GoalState]] = {}
+        self.history: list[tuple[str, GoalStatus]] = []
+        self._changed = asyncio.Event()
+        self._subs: list[Subscription[GoalStatus]] = []
+        for server in servers:
+            self.states[server] = {}
+            key = bus.keys.action(server).any_status
+            self._subs.append(
+                declare_subscription(
+                    bus.session,
+                    bus.bridge,
+                    key,
+                    GoalStatus,
+                    callback_fn=self._recorder(server),
+                    latched=False,
+                    queue_size=0,
+                )
+            )
+
+    def _recorder(self, server: str) -> Callable[[GoalStatus], None]:
+        def record(status: GoalStatus) -> None:
+            known = self.states[server].get(status.goal_id)
+            if known is None or not known.is_terminal:  # a late EXECUTING never undoes an end
+                self.states[server][status.goal_id] = status.status
+            self.history.append((server, status))
+            self._changed.set()
+
+        return record
+
+    def active(self) -> dict[str, list[str]]:
+        """Goals not yet SUCCEEDED, CANCELED or ABORTED, per server (servers with none left out)."""
+        found: dict[str, list[str]] = {}
+        for server, goals in self.states.items():
+            live = [goal for goal, state in goals.items() if not state.is_terminal]
+            if live:
+                found[server] = live
+        return found
+
+    def ended(self, server: str, state: GoalState) -> int:
+        """How many goals of ``server`` ended in ``state``."""
+        return sum(1 for s in self.states[server].values() if s is state)
+
+    async def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:  # noqa: ASYNC109
+        """True once ``predicate()`` holds (checked on every status change)."""
+        with contextlib.suppress(TimeoutError):
+            async with asyncio.timeout(timeout):
+                while not predicate():
+                    self._changed.clear()
+                    await self._changed.wait()
+        return predicate()
+
+    async def wait_idle(self, timeout: float) -> bool:  # noqa: ASYNC109
+        """True once no server has an active goal."""
+        return await self.wait_for(lambda: not self.active(), timeout)
+
+    def close(self) -> None:
+        for sub in self._subs:
+            sub.close()
+
+
+@dataclass
+class Navigation:
+    """A navigation goal's end: state, result and what its feedback said on the way."""
+
+    state: GoalState
+    result: ActionResult
+    feedback: list[NavigateToPose.Feedback] = field(default_factory=list)
+
+    @property
+    def recoveries(self) -> int:
+        return max((f.number_of_recoveries for f in self.feedback), default=0)
+
+
+NavClient = ActionClient[NavigateToPose.Goal, NavigateToPose.Result, NavigateToPose.Feedback]
+
+
+async def navigate(
+    client: NavClient,
+    pose: PoseStamped,
+    tree: str = "",
+    timeout: float = 90.0,  # noqa: ASYNC109
+) -> Navigation:
+    """NavigateToPose to ``pose`` (``tree``: "" for the navigator's default); bounded wait."""
+    feedback: list[NavigateToPose.Feedback] = []
+    goal = NavigateToPose.Goal(pose=pose, behavior_tree=tree)
+    sent = await client.send_goal(goal, server_timeout=10.0, on_feedback=feedback.append)
+    result = await sent.result(timeout)
+    return Navigation(sent.status, result, feedback)
