@@ -24,6 +24,14 @@ from aiobt.msgs.actions import (
     Spin,
     Wait,
 )
+from aiobt.msgs.bt import (
+    BtNode,
+    BtNodeStatus,
+    BtSnapshot,
+    BtTransition,
+    BtTransitions,
+    BtTree,
+)
 from aiobt.msgs.errors import (
     AssistedTeleopError,
     BackUpError,
@@ -92,6 +100,12 @@ __all__ = [
     "BackUp",
     "BackUpError",
     "BatteryState",
+    "BtNode",
+    "BtNodeStatus",
+    "BtSnapshot",
+    "BtTransition",
+    "BtTransitions",
+    "BtTree",
     "ClearCostmapAroundPose",
     "ClearCostmapAroundRobot",
     "ClearCostmapExceptRegion",
