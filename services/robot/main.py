@@ -34,6 +34,7 @@ from aiobt_services._cli import open_bus_unless_stopped, run_service, stop_on_si
 from . import convert, messages
 from .mapfile import MapError, load_map
 from .options import add_robot_arguments, sim_config
+from .pacing import speed_label
 from .runner import Rates, SimRunner
 from .service import RobotService
 from .sim import Simulation
@@ -111,7 +112,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             "robot up on namespace '%s': world %s, %s, dt %g s",
             bus.namespace,
             sim.world.source,
-            "stepped by srv/step" if args.stepped else f"speed x{args.speed:g}",
+            "stepped by srv/step" if args.stepped else f"speed {speed_label(args.speed)}",
             sim.config.dt,
         )
         if args.stepped:

@@ -8,6 +8,7 @@ import math
 from aiobt_services._cli import positive
 
 from .drive import DriveLimits
+from .pacing import parse_speed
 from .sensors import LidarConfig, NoiseConfig
 from .sim import SimConfig
 
@@ -22,9 +23,10 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add(
         "--speed",
-        type=positive,
+        type=_speed,
         default=1.0,
-        help="sim time runs this many times faster than wall time (default: %(default)s)",
+        help="sim time runs this many times faster than wall time, or 'max': as fast as "
+        "the machine allows (default: %(default)s)",
     )
     add(
         "--stepped",
@@ -86,6 +88,13 @@ def sim_config(args: argparse.Namespace) -> SimConfig:
         ),
         gui=args.gui,
     )
+
+
+def _speed(text: str) -> float:
+    try:
+        return parse_speed(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def _angle_max(rays: int) -> float:

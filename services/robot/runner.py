@@ -1,7 +1,9 @@
 """Paces the simulation against a wall clock and publishes what is due at each step.
 
 The simulation has its own time line; :class:`SimRunner` steps it so that sim
-time runs ``speed`` times as fast as the injected wall :class:`Clock`, and
+time runs ``speed`` times as fast as the injected wall :class:`Clock` (``inf``:
+as fast as the machine allows), one step at a time with the event loop in
+between, and
 publishes odometry, pose, scan, battery, clock and bumper events through an
 :class:`Outputs` sink (Zenoh in the service, a list in tests).
 """
@@ -19,6 +21,7 @@ from aiobt.msgs import Clock as ClockMsg
 from aiobt.msgs import Msg
 
 from . import convert
+from .pacing import Pacer
 from .sim import Simulation
 
 log = logging.getLogger("aiobt_services.robot.runner")
@@ -62,19 +65,17 @@ class SimRunner:
         wall: Clock | None = None,
         publish_clock: bool = True,
         max_lag: float = 0.25,
+        report_every: float = 5.0,
     ) -> None:
-        if not (math.isfinite(speed) and speed > 0.0):
-            raise ValueError(f"speed must be a finite number > 0, got {speed}")
         self.sim = sim
         self.speed = speed
+        self._pacer = Pacer(speed, sim.config.dt, max_lag=max_lag, report_every=report_every)
         self.wall: Clock = wall or SystemClock()
         self._outputs = outputs
         rates = rates or Rates()
         self._periods = {t: rates.period_steps(t, sim.config.dt) for t in TOPICS[:5]}
         if not publish_clock:
             del self._periods["clock"]
-        self._max_lag = max_lag
-        self._lagging = False
 
     def tick(self) -> None:
         """One physics step, then every publication due at the new sim time."""
@@ -95,8 +96,9 @@ class SimRunner:
         if "battery" in due:
             self._outputs.publish("battery", convert.battery_state(sim.battery, sim.time))
 
-    async def advance(self, seconds: float, chunk: int = 50) -> int:
-        """Stepped mode: tick through ``seconds`` of sim time now, yielding every ``chunk``."""
+    async def advance(self, seconds: float, chunk: int = 1) -> int:
+        """Stepped mode: tick through ``seconds`` of sim time now, yielding every ``chunk``
+        steps (by default every step, so commands land between steps as in :meth:`run`)."""
         steps = max(0, round(seconds / self.sim.config.dt))
         for done in range(steps):
             self.tick()
@@ -105,27 +107,22 @@ class SimRunner:
         return steps
 
     async def run(self, stop: asyncio.Event) -> None:
-        """Step in scaled real time until ``stop`` is set."""
-        dt = self.sim.config.dt
-        wall0, sim0 = self.wall.now(), self.sim.time
-        max_batch = max(1, math.ceil(self._max_lag * self.speed / dt))
-        while not stop.is_set():
-            target = sim0 + (self.wall.now() - wall0) * self.speed
-            steps = 0
-            while self.sim.time + 0.5 * dt <= target and steps < max_batch:
-                self.tick()
-                steps += 1
-            if target - self.sim.time > self._max_lag * self.speed:
-                self._warn_lag()
-                wall0, sim0 = self.wall.now(), self.sim.time
-            next_step = wall0 + (self.sim.time + dt - sim0) / self.speed
-            # yield to the loop even when behind, so commands and services get in
-            await self.wall.sleep(max(0.0, next_step - self.wall.now()))
+        """Step until ``stop`` is set, one physics step at a time, paced by :class:`Pacer`.
 
-    def _warn_lag(self) -> None:
-        if not self._lagging:
-            log.warning(
-                "simulation cannot keep up with --speed %g; sim time now lags the target",
-                self.speed,
-            )
-        self._lagging = True
+        The event loop runs between every two steps, so the latest ``cmd_vel``
+        (and any service request) is applied before the next step whatever the
+        speed-up, and a command timeout measured in sim time means what it says.
+        """
+        pacer = self._pacer
+        pacer.start(self.wall.now(), self.sim.time)
+        while not stop.is_set():
+            wait = pacer.delay(self.wall.now(), self.sim.time)
+            if wait > 0.0:
+                await self.wall.sleep(wait)
+                if stop.is_set():
+                    break
+            self.tick()
+            await asyncio.sleep(0)  # commands and requests in, before the next step
+            line = pacer.report(self.wall.now(), self.sim.time)
+            if line is not None:
+                log.log(logging.INFO if pacer.unpaced else logging.WARNING, "%s", line)

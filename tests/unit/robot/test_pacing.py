@@ -1,0 +1,228 @@
+"""Pacing of the sim loop on a fake wall clock: step timing, commands between steps,
+the command timeout in sim time, lag reports, and ``--speed max``."""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import itertools
+import logging
+import math
+from collections.abc import Iterator
+
+import pytest
+
+from aiobt.msgs import Msg
+from aiobt_services.robot.mapfile import load_map
+from aiobt_services.robot.options import add_robot_arguments
+from aiobt_services.robot.pacing import Pacer, parse_speed
+from aiobt_services.robot.runner import SimRunner
+from aiobt_services.robot.sim import Simulation
+from aiobt_services.robot.worlds import SMALL
+
+DT = 0.01
+
+
+class FakeWall:
+    """Virtual wall time: ``sleep`` moves it on; each physics step can cost ``step_cost``."""
+
+    def __init__(self) -> None:
+        self.time = 0.0
+        self.sleeps = 0
+        self.end = math.inf
+        self.stop = asyncio.Event()
+
+    def now(self) -> float:
+        return self.time
+
+    def pass_time(self, seconds: float) -> None:
+        self.time += seconds
+        if self.time >= self.end:
+            self.stop.set()
+
+    async def sleep(self, seconds: float) -> None:
+        self.sleeps += 1
+        self.pass_time(max(0.0, seconds))
+        await asyncio.sleep(0)
+
+
+class CostlySink:
+    """The runner's outputs; every published clock stamp costs wall time (a slow step)."""
+
+    def __init__(self, wall: FakeWall, step_cost: float) -> None:
+        self.wall = wall
+        self.step_cost = step_cost
+
+    def publish(self, topic: str, msg: Msg) -> None:
+        if topic == "clock":
+            self.wall.pass_time(self.step_cost)
+
+
+@pytest.fixture
+def sim() -> Iterator[Simulation]:
+    with Simulation(load_map(SMALL)) as simulation:
+        yield simulation
+
+
+async def run_until(runner: SimRunner, wall: FakeWall, wall_end: float) -> None:
+    wall.end = wall_end
+    await asyncio.wait_for(runner.run(wall.stop), 30.0)
+
+
+# -- Pacer (pure) ---------------------------------------------------------------------------
+
+
+def test_pacer_waits_until_each_step_is_due() -> None:
+    pacer = Pacer(10.0, DT)
+    pacer.start(100.0, 0.0)
+    assert pacer.delay(100.0, 0.0) == pytest.approx(0.001)  # one 10 ms step at 10x: 1 ms
+    assert pacer.delay(100.001, 0.0) == 0.0
+    assert pacer.delay(100.0, 0.05) == pytest.approx(0.006)  # ahead: wait for it
+
+
+def test_pacer_gives_up_lag_instead_of_catching_up_and_counts_it() -> None:
+    pacer = Pacer(10.0, DT, max_lag=0.25, report_every=5.0)
+    pacer.start(0.0, 0.0)
+    assert pacer.delay(0.2, 1.5) == 0.0  # 0.5 s of sim behind: within 0.25 s of wall
+    assert pacer.report(0.2, 1.5) is None
+    assert pacer.delay(1.0, 2.0) == 0.0  # 8 s behind: the target moves to now
+    assert pacer.delay(1.0, 2.0) == pytest.approx(0.001)  # and is not caught up in a burst
+    assert pacer.delay(2.0, 3.0) == 0.0  # behind again: 9 s
+    assert pacer.report(4.9, 3.0) is None  # not before report_every
+    line = pacer.report(5.0, 4.0)
+    assert line is not None
+    assert "achieved x0.8" in line
+    assert "2 time(s)" in line
+    assert "17.00 s of sim time given up" in line
+    assert pacer.report(10.0, 54.0) is None  # a period without lag says nothing
+
+
+def test_pacer_max_never_waits_and_reports_the_speed_achieved() -> None:
+    pacer = Pacer(math.inf, DT, report_every=2.0)
+    pacer.start(0.0, 0.0)
+    assert pacer.unpaced
+    assert pacer.delay(0.0, 1000.0) == 0.0
+    line = pacer.report(2.0, 60.0)
+    assert line == "running as fast as possible: x30.0 over the last 2.0 s"
+
+
+@pytest.mark.parametrize(
+    ("text", "value"), [("max", math.inf), ("MAX", math.inf), ("10", 10.0), ("0.5", 0.5)]
+)
+def test_parse_speed(text: str, value: float) -> None:
+    assert parse_speed(text) == value
+
+
+@pytest.mark.parametrize("text", ["0", "-1", "inf", "nan", "fast"])
+def test_parse_speed_refuses_bad_values(text: str) -> None:
+    with pytest.raises(ValueError, match="speed"):
+        parse_speed(text)
+
+
+def test_speed_flag_takes_max_and_names_bad_values(capsys: pytest.CaptureFixture[str]) -> None:
+    parser = argparse.ArgumentParser()
+    add_robot_arguments(parser)
+    assert parser.parse_args(["--speed", "max"]).speed == math.inf
+    with pytest.raises(SystemExit):
+        parser.parse_args(["--speed", "fast"])
+    err = capsys.readouterr().err
+    assert "--speed" in err
+    assert "'max'" in err
+
+
+def test_pacer_refuses_bad_parameters() -> None:
+    with pytest.raises(ValueError, match="speed"):
+        Pacer(0.0, DT)
+    with pytest.raises(ValueError, match="dt"):
+        Pacer(1.0, 0.0)
+
+
+# -- SimRunner.run on the fake clock ---------------------------------------------------------
+
+
+async def test_run_paces_sim_time_at_the_speed_up(sim: Simulation) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
+    await run_until(runner, wall, 2.0)
+    assert sim.time == pytest.approx(20.0, abs=0.02)
+
+
+async def test_every_step_lets_the_loop_in_whatever_the_lag(sim: Simulation) -> None:
+    """A slow machine (5 ms per 10 ms step at 10x): far behind, yet one step per loop pass."""
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.005), speed=10.0, wall=wall)
+    seen: list[int] = []
+
+    async def watcher() -> None:
+        while wall.time < 1.0:
+            seen.append(sim.steps)
+            await asyncio.sleep(0)
+
+    await asyncio.gather(run_until(runner, wall, 1.0), watcher())
+    gaps = [b - a for a, b in itertools.pairwise(seen)]
+    assert sim.steps >= 150
+    assert max(gaps) == 1
+
+
+async def test_command_timeout_is_sim_time_even_when_behind(sim: Simulation) -> None:
+    """A client commanding every 0.1 s of sim time keeps the base moving though the sim
+    lags far behind its 20x target (the old loop stepped 5 s of sim time in one batch)."""
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.002), speed=20.0, wall=wall)
+    stopped_at: list[float] = []
+    last = -math.inf
+
+    async def client() -> None:
+        nonlocal last
+        while wall.time < 1.0:
+            if sim.time - last >= 0.1:
+                sim.command(0.3, 0.0)
+                last = sim.time
+            if sim.time > 0.5 and sim.drive.linear == 0.0:
+                stopped_at.append(sim.time)
+            await asyncio.sleep(0)
+
+    await asyncio.gather(run_until(runner, wall, 1.0), client())
+    assert sim.time > 3.0
+    assert stopped_at == []
+    assert sim.drive.linear == pytest.approx(0.3)
+
+
+async def test_command_timeout_stops_after_its_sim_time(sim: Simulation) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
+    moving: list[tuple[float, float]] = []
+    sim.command(0.3, 0.0)
+
+    async def watcher() -> None:
+        while wall.time < 0.2:
+            moving.append((sim.time, sim.drive.linear))
+            await asyncio.sleep(0)
+
+    await asyncio.gather(run_until(runner, wall, 0.2), watcher())
+    last_moving = max(t for t, v in moving if v > 0.0)
+    assert 0.5 <= last_moving <= 0.5 + 0.3 / 2.5 + 2 * DT  # timeout, then the deceleration ramp
+
+
+async def test_lag_is_reported_periodically(
+    sim: Simulation, caplog: pytest.LogCaptureFixture
+) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.004), speed=10.0, wall=wall, report_every=0.5)
+    with caplog.at_level(logging.WARNING, logger="aiobt_services.robot.runner"):
+        await run_until(runner, wall, 1.6)
+    lines = [r.getMessage() for r in caplog.records if "behind --speed 10" in r.getMessage()]
+    assert len(lines) == 3
+    assert all("achieved x2.5" in line for line in lines)
+
+
+async def test_speed_max_never_sleeps_and_reports_the_speed_up(
+    sim: Simulation, caplog: pytest.LogCaptureFixture
+) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.001), speed=math.inf, wall=wall, report_every=0.5)
+    with caplog.at_level(logging.INFO, logger="aiobt_services.robot.runner"):
+        await run_until(runner, wall, 1.0)
+    assert wall.sleeps == 0
+    assert sim.time == pytest.approx(10.0, abs=0.02)
+    assert "running as fast as possible: x10.0" in caplog.text
