@@ -38,6 +38,7 @@ SERVERS = (
     "wait",
 )
 ARRIVED = 0.3  # m: the goal checker's 0.25 plus the last pose's lag
+YAW_TOLERANCE = 0.3  # rad: the goal checker's 0.25 plus the last pose's lag
 
 
 class World:
@@ -94,5 +95,11 @@ class World:
         """NavigateToPose to (x, y, yaw); waits for the end (bounded)."""
         return await navigate(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree, timeout)
 
-    def arrived(self, x: float, y: float) -> bool:
-        return self.track.distance_to(x, y) <= ARRIVED
+    def assert_at(self, x: float, y: float, yaw: float | None = None) -> None:
+        """The robot stands within ARRIVED m (and YAW_TOLERANCE rad) of the pose."""
+        here = self.track.latest
+        assert here is not None, "no pose from the robot"
+        assert math.dist((here.x, here.y), (x, y)) <= ARRIVED, f"at {here}, not ({x}, {y})"
+        if yaw is not None:
+            error = abs((here.yaw - yaw + math.pi) % (2 * math.pi) - math.pi)
+            assert error <= YAW_TOLERANCE, f"heading {here.yaw:.2f}, wanted {yaw:.2f}"

@@ -33,10 +33,12 @@ class Sample:
 
 
 class RobotTrack:
-    """The robot's pose stream: latest pose, distance driven since :meth:`restart`."""
+    """The robot's pose stream: latest pose; poses, distance driven and top speed since
+    :meth:`restart`."""
 
     def __init__(self, bus: Bus) -> None:
         self.latest: Sample | None = None
+        self.samples: list[Sample] = []  # since restart()
         self.driven = 0.0
         self.top_speed = 0.0
         self._changed = asyncio.Event()
@@ -45,6 +47,7 @@ class RobotTrack:
     def _on_pose(self, pose: PoseStamped) -> None:
         sample = Sample(pose.header.stamp, pose.x, pose.y, pose.yaw)
         last, self.latest = self.latest, sample
+        self.samples.append(sample)
         if last is not None and sample.stamp > last.stamp:
             step = math.hypot(sample.x - last.x, sample.y - last.y)
             if step < TELEPORT:
@@ -56,6 +59,11 @@ class RobotTrack:
         """Count distance and top speed from now on."""
         self.driven = 0.0
         self.top_speed = 0.0
+        self.samples.clear()
+
+    def closest(self, x: float, y: float) -> float:
+        """How near the robot came to (x, y) since :meth:`restart`."""
+        return min((math.hypot(s.x - x, s.y - y) for s in self.samples), default=math.inf)
 
     def distance_to(self, x: float, y: float) -> float:
         if self.latest is None:
