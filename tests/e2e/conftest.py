@@ -3,10 +3,11 @@
 - ``stack``: router + robot (office world, seeded, at ``AIOBT_E2E_SPEED``, default 4x)
   + planner + controller + behaviors + navigator, on sim time, shared by the tests of
   a module (CI budget); each test starts with the robot at the world's start, no
-  obstacles and no goal on any server (:func:`fresh_world`).
+  obstacles and no goal on any navigator (the ``world`` fixture).
 - ``own_stack``: the same, for one test only (scenarios that kill a service).
 - ``bus``: a client of the stack's router in its namespace; ``track`` (the robot's
-  pose), ``goals`` (every server's goal states) and ``world`` (obstacles, resets).
+  pose), ``goals`` (every server's goal states and last result codes), ``tree`` (the
+  navigator's tree transitions) and ``world`` (obstacles, resets, navigation goals).
 
 Readiness is liveliness tokens ({ns}/nodes/<service>) and the navigator's action
 servers, never a fixed sleep; every wait is bounded; processes are killed by PID;
@@ -23,10 +24,11 @@ import pytest
 from aiobt.testing.bus import running_router
 from aiobt.testing.navwatch import RobotTrack, ServerGoals
 from aiobt.testing.stack import NavStack, StackConfig
+from aiobt.testing.treewatch import TreeWatch
 from aiobt.transport import Bus, open_bus
 from tests.integration.conftest import pytest_runtest_makereport
 
-from .world import NAVIGATORS, SERVERS, World
+from .world import ACTIONS, NAVIGATORS, World
 
 __all__ = ["pytest_runtest_makereport"]
 
@@ -88,7 +90,7 @@ async def track(bus: Bus) -> AsyncIterator[RobotTrack]:
 
 @pytest.fixture
 async def goals(bus: Bus) -> AsyncIterator[ServerGoals]:
-    watcher = ServerGoals(bus, SERVERS)
+    watcher = ServerGoals(bus, ACTIONS)
     try:
         yield watcher
     finally:
@@ -104,3 +106,12 @@ async def world(bus: Bus, track: RobotTrack, goals: ServerGoals) -> AsyncIterato
         yield here
     finally:
         await here.clear()
+
+
+@pytest.fixture
+async def tree(bus: Bus) -> AsyncIterator[TreeWatch]:
+    watcher = TreeWatch(bus)
+    try:
+        yield watcher
+    finally:
+        watcher.close()

@@ -11,7 +11,20 @@ from __future__ import annotations
 import contextlib
 import math
 
-from aiobt.msgs import Empty, NavigateThroughPoses, NavigateToPose, PoseStamped
+from aiobt.msgs import (
+    BackUp,
+    ComputePathThroughPoses,
+    ComputePathToPose,
+    DriveOnHeading,
+    Empty,
+    FollowPath,
+    NavigateThroughPoses,
+    NavigateToPose,
+    PoseStamped,
+    SmoothPath,
+    Spin,
+    Wait,
+)
 from aiobt.testing.navwatch import Navigation, RobotTrack, navigate
 from aiobt.transport import ActionError, Bus, ServiceError
 from aiobt_services.robot.messages import (
@@ -25,17 +38,18 @@ from aiobt_services.robot.messages import (
 
 START = (2.0, 9.75, 0.0)
 Request = SpawnObstacle | MoveObstacle | RemoveObstacle
-NAVIGATORS = ("navigate_to_pose", "navigate_through_poses")
-SERVERS = (
-    *NAVIGATORS,
-    "compute_path_to_pose",
-    "compute_path_through_poses",
-    "follow_path",
-    "smooth_path",
-    "spin",
-    "backup",
-    "drive_on_heading",
-    "wait",
+NAVIGATORS = (NavigateToPose.name, NavigateThroughPoses.name)
+ACTIONS = (
+    NavigateToPose,
+    NavigateThroughPoses,
+    ComputePathToPose,
+    ComputePathThroughPoses,
+    FollowPath,
+    SmoothPath,
+    Spin,
+    BackUp,
+    DriveOnHeading,
+    Wait,
 )
 ARRIVED = 0.3  # m: the goal checker's 0.25 plus the last pose's lag
 YAW_TOLERANCE = 0.3  # rad: the goal checker's 0.25 plus the last pose's lag

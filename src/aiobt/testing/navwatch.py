@@ -2,8 +2,9 @@
 
 - :class:`RobotTrack` follows ``{ns}/pose``: the latest pose (its stamp is sim
   time), the distance driven, the top speed, and waits for conditions on it;
-- :class:`ServerGoals` follows ``{ns}/action/<server>/status/*`` of several
-  servers: which goals each one has, in which state, and which are still active;
+- :class:`ServerGoals` follows ``{ns}/action/<server>/status/*`` and ``result/*``
+  of several servers: which goals each one has, in which state, which are still
+  active, and the error code of each server's latest result;
 - :func:`navigate` sends a NavigateToPose goal and keeps its feedback until the end.
 
 Both are callbacks in the event loop (no task, no polling); waits are bounded.
@@ -16,11 +17,14 @@ import contextlib
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from typing import Any, TypeVar
 
-from aiobt.msgs import ActionResult, GoalState, GoalStatus, NavigateToPose, PoseStamped
+from aiobt.msgs import ActionResult, GoalState, GoalStatus, Msg, NavigateToPose, PoseStamped
+from aiobt.msgs.action import ActionDef
 from aiobt.transport import ActionClient, Bus
 from aiobt.transport.topics import Subscription, declare_subscription
 
+M = TypeVar("M", bound=Msg)
 TELEPORT = 0.5  # m between two poses (at 50 Hz): a reset, not driving
 
 
@@ -99,34 +103,41 @@ class RobotTrack:
 
 
 class ServerGoals:
-    """Goal states of action servers, from their status streams (subscribe before sending)."""
+    """Goal states and last result codes of action servers, from their status and result
+    streams (create it before the goals are sent: servers publish only when observed)."""
 
-    def __init__(self, bus: Bus, servers: Iterable[str]) -> None:
+    def __init__(self, bus: Bus, actions: Iterable[type[ActionDef[Any, Any, Any]]]) -> None:
         self.states: dict[str, dict[str, GoalState]] = {}
-        self.history: list[tuple[str, GoalStatus]] = []
+        self.last_code: dict[str, int] = {}  # the error code of each server's latest result
         self._changed = asyncio.Event()
-        self._subs: list[Subscription[GoalStatus]] = []
-        for server in servers:
-            self.states[server] = {}
-            key = bus.keys.action(server).any_status
-            self._subs.append(
-                declare_subscription(
-                    bus.session,
-                    bus.bridge,
-                    key,
-                    GoalStatus,
-                    callback_fn=self._recorder(server),
-                    latched=False,
-                    queue_size=0,
-                )
+        self._subs: list[Subscription[Any]] = []
+        for action in actions:
+            self.states[action.name] = {}
+            keys = bus.keys.action(action.name)
+            self._watch(bus, keys.any_status, GoalStatus, self._status_recorder(action.name))
+            self._watch(
+                bus, keys.any_result, action.result_type(), self._result_recorder(action.name)
             )
 
-    def _recorder(self, server: str) -> Callable[[GoalStatus], None]:
+    def _watch(self, bus: Bus, key: str, model: type[M], record: Callable[[M], None]) -> None:
+        self._subs.append(
+            declare_subscription(
+                bus.session, bus.bridge, key, model, callback_fn=record, latched=False, queue_size=0
+            )
+        )
+
+    def _status_recorder(self, server: str) -> Callable[[GoalStatus], None]:
         def record(status: GoalStatus) -> None:
             known = self.states[server].get(status.goal_id)
             if known is None or not known.is_terminal:  # a late EXECUTING never undoes an end
                 self.states[server][status.goal_id] = status.status
-            self.history.append((server, status))
+            self._changed.set()
+
+        return record
+
+    def _result_recorder(self, server: str) -> Callable[[ActionResult], None]:
+        def record(result: ActionResult) -> None:
+            self.last_code[server] = result.error_code
             self._changed.set()
 
         return record
