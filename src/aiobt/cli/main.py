@@ -24,6 +24,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "planner": ("aiobt_services.planner.main", "the planner service"),
     "controller": ("aiobt_services.controller.main", "the controller service"),
     "behaviors": ("aiobt_services.behaviors.main", "the behavior service"),
+    "navigator": ("aiobt.navigator.main", "the navigator: Nav2's bt_navigator over Zenoh"),
 }
 
 

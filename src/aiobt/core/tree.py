@@ -135,6 +135,14 @@ class Tree:
     def emit_wake_up(self) -> None:
         self._wake.emit()
 
+    async def wait_for_wake_up(self, period: float) -> bool:
+        """Wait up to ``period`` of clock time; True if a wake-up came first.
+
+        For runners that tick with :meth:`tick_once` in their own loop (the
+        navigator does work between ticks), as :meth:`tick_while_running` waits.
+        """
+        return await self._wake.wait(self.context.clock, period)
+
     # -- ticking ------------------------------------------------------------------
     async def _tick_root(self) -> Status:
         status = self.root.tick_sync()

@@ -1,0 +1,142 @@
+"""``aiobt navigator``: Nav2's bt_navigator on Zenoh.
+
+Serves ``navigate_to_pose`` and ``navigate_through_poses``, takes goals from
+``{ns}/goal_pose``, ticks a Nav2 tree per goal with Nav2's nodes, and publishes
+the tree status stream on ``{ns}/bt/tree``, ``{ns}/bt/transitions`` and
+``{ns}/bt/snapshot`` (see docs/navigator.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+from pathlib import Path
+
+from aiobt.core.clock import Clock
+from aiobt.factory import BehaviorTreeFactory
+from aiobt.nav import register_nav2_nodes
+from aiobt.nav.context import DEFAULT_SERVER_TIMEOUT
+from aiobt.navigator.navigator import Navigator, NavigatorOptions
+from aiobt.navigator.service import BusRobotState, BusStatusSink, NavigatorService
+from aiobt.navigator.status import TreeStatusStream
+from aiobt.navigator.trees import (
+    DEFAULT_THROUGH_POSES_TREE,
+    DEFAULT_TO_POSE_TREE,
+    TREES_DIR,
+    TreeLibrary,
+    TreeLoadFailure,
+)
+from aiobt.transport import Bus, BusSettings, add_bus_arguments
+from aiobt_services._cli import (
+    open_bus_unless_stopped,
+    positive,
+    run_service,
+    stop_on_signals,
+    unless_stopped,
+)
+from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
+
+log = logging.getLogger("aiobt.navigator.main")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_bus_arguments(parser)
+    add_clock_arguments(parser)
+    group = parser.add_argument_group("navigator")
+    add = group.add_argument
+    add(
+        "--default-tree",
+        default=str(DEFAULT_TO_POSE_TREE),
+        metavar="FILE|ID",
+        help="navigate_to_pose's tree when a goal names none (default: Nav2's "
+        "navigate_to_pose_w_replanning_and_recovery)",
+    )
+    add(
+        "--default-through-tree",
+        default=str(DEFAULT_THROUGH_POSES_TREE),
+        metavar="FILE|ID",
+        help="navigate_through_poses's tree when a goal names none (default: "
+        "navigate_through_poses_w_replanning_and_recovery)",
+    )
+    add(
+        "--tree-dir",
+        action="append",
+        type=Path,
+        metavar="DIR",
+        help=f"register every tree of DIR by ID, repeatable (default: {TREES_DIR})",
+    )
+    add(
+        "--bt-loop-duration",
+        type=positive,
+        default=0.01,
+        metavar="SECONDS",
+        help="tick period (default: %(default)s, as Nav2)",
+    )
+    add(
+        "--server-timeout",
+        type=positive,
+        default=DEFAULT_SERVER_TIMEOUT,
+        metavar="SECONDS",
+        help="default server_timeout of the action leaves (default: %(default)s)",
+    )
+    add(
+        "--snapshot-period",
+        type=positive,
+        default=1.0,
+        metavar="SECONDS",
+        help="period of {ns}/bt/snapshot (default: %(default)s)",
+    )
+    add("--btlog-dir", type=Path, metavar="DIR", help="write a .btlog per navigation in DIR")
+
+
+def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigator:
+    """The navigator with Nav2's nodes on ``bus``; :class:`TreeLoadFailure` if a default
+    tree or a tree directory is not there."""
+    factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory, bus, clock=clock, server_timeout=args.server_timeout)
+    library = TreeLibrary(factory, args.tree_dir or [TREES_DIR])
+    library.check(args.default_tree)
+    library.check(args.default_through_tree)
+    options = NavigatorOptions(
+        default_to_pose_tree=args.default_tree,
+        default_through_poses_tree=args.default_through_tree,
+        bt_loop_duration=args.bt_loop_duration,
+        btlog_dir=args.btlog_dir,
+    )
+    stream = TreeStatusStream(BusStatusSink(bus))
+    return Navigator(library, BusRobotState(bus), clock, stream, options)
+
+
+async def serve(args: argparse.Namespace) -> int:
+    stop = stop_on_signals()
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return 0
+        stopper = asyncio.ensure_future(stop.wait())
+        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
+        if made is None:
+            return 0
+        try:
+            navigator = build_navigator(args, bus, made[0])
+        except TreeLoadFailure as exc:
+            log.error("navigator: %s", exc)
+            return 1
+        service = NavigatorService(bus, navigator, made[0])
+        service.start(args.snapshot_period)
+        bus.declare_token("nodes/navigator")
+        time = "sim" if args.sim_time else "wall"
+        log.info("navigator up on namespace '%s' (%s time)", bus.namespace, time)
+        await stopper
+        await service.aclose()
+    return 0
+
+
+def run(args: argparse.Namespace) -> int:
+    code = 0
+
+    async def main() -> None:
+        nonlocal code
+        code = await serve(args)
+
+    return run_service(main(), log, "navigator") or code
