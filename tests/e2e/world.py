@@ -25,13 +25,14 @@ from aiobt.msgs import (
     Spin,
     Wait,
 )
-from aiobt.testing.navwatch import Navigation, RobotTrack, navigate
+from aiobt.testing.navwatch import Navigation, RobotTrack, Running, navigate, start_navigation
 from aiobt.transport import ActionError, Bus, ServiceError
 from aiobt_services.robot.messages import (
     Ack,
     MoveObstacle,
     ObstacleList,
     ObstacleMotion,
+    ObstacleState,
     RemoveObstacle,
     SpawnObstacle,
 )
@@ -83,6 +84,13 @@ class World:
     async def remove(self, oid: str) -> None:
         await self._ack("remove", RemoveObstacle(id=oid))
 
+    async def obstacle(self, oid: str) -> ObstacleState:
+        """Where obstacle ``oid`` is now."""
+        listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
+        found = [o for o in listing.obstacles if o.id == oid]
+        assert found, f"no obstacle {oid!r}: {listing}"
+        return found[0]
+
     async def clear(self) -> None:
         """No goal on any navigator, no obstacle, the robot standing at the start."""
         for client in (self.to_pose, self.through):
@@ -108,6 +116,10 @@ class World:
     ) -> Navigation:
         """NavigateToPose to (x, y, yaw); waits for the end (bounded)."""
         return await navigate(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree, timeout)
+
+    async def start(self, x: float, y: float, yaw: float = 0.0, tree: str = "") -> Running:
+        """Send NavigateToPose to (x, y, yaw) and return at once (``.end(timeout)`` waits)."""
+        return await start_navigation(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree)
 
     def assert_at(self, x: float, y: float, yaw: float | None = None) -> None:
         """The robot stands within ARRIVED m (and YAW_TOLERANCE rad) of the pose."""

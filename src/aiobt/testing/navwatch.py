@@ -5,7 +5,8 @@
 - :class:`ServerGoals` follows ``{ns}/action/<server>/status/*`` and ``result/*``
   of several servers: which goals each one has, in which state, which are still
   active, and the error code of each server's latest result;
-- :func:`navigate` sends a NavigateToPose goal and keeps its feedback until the end.
+- :func:`start_navigation` / :func:`navigate` send a NavigateToPose goal and keep
+  its feedback until the end.
 
 Both are callbacks in the event loop (no task, no polling); waits are bounded.
 """
@@ -21,7 +22,7 @@ from typing import Any, TypeVar
 
 from aiobt.msgs import ActionResult, GoalState, GoalStatus, Msg, NavigateToPose, PoseStamped
 from aiobt.msgs.action import ActionDef
-from aiobt.transport import ActionClient, Bus
+from aiobt.transport import ActionClient, Bus, ClientGoal
 from aiobt.transport.topics import Subscription, declare_subscription
 
 M = TypeVar("M", bound=Msg)
@@ -187,6 +188,28 @@ class Navigation:
 
 
 NavClient = ActionClient[NavigateToPose.Goal, NavigateToPose.Result, NavigateToPose.Feedback]
+NavGoal = ClientGoal[NavigateToPose.Goal, NavigateToPose.Result, NavigateToPose.Feedback]
+
+
+@dataclass
+class Running:
+    """A sent NavigateToPose goal and the feedback it has given so far."""
+
+    goal: NavGoal
+    feedback: list[NavigateToPose.Feedback]
+
+    async def end(self, timeout: float) -> Navigation:  # noqa: ASYNC109
+        """Wait (bounded) for the result."""
+        result = await self.goal.result(timeout)
+        return Navigation(self.goal.status, result, self.feedback)
+
+
+async def start_navigation(client: NavClient, pose: PoseStamped, tree: str = "") -> Running:
+    """Send NavigateToPose to ``pose`` (``tree``: "" for the navigator's default)."""
+    feedback: list[NavigateToPose.Feedback] = []
+    goal = NavigateToPose.Goal(pose=pose, behavior_tree=tree)
+    sent = await client.send_goal(goal, server_timeout=10.0, on_feedback=feedback.append)
+    return Running(sent, feedback)
 
 
 async def navigate(
@@ -195,9 +218,5 @@ async def navigate(
     tree: str = "",
     timeout: float = 90.0,  # noqa: ASYNC109
 ) -> Navigation:
-    """NavigateToPose to ``pose`` (``tree``: "" for the navigator's default); bounded wait."""
-    feedback: list[NavigateToPose.Feedback] = []
-    goal = NavigateToPose.Goal(pose=pose, behavior_tree=tree)
-    sent = await client.send_goal(goal, server_timeout=10.0, on_feedback=feedback.append)
-    result = await sent.result(timeout)
-    return Navigation(sent.status, result, feedback)
+    """NavigateToPose to ``pose`` and its end (bounded wait)."""
+    return await (await start_navigation(client, pose, tree)).end(timeout)

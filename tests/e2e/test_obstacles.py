@@ -1,0 +1,161 @@
+"""Obstacles spawned, moved and removed under a running navigation, on one shared stack.
+
+Scenarios 4, 5 and 8 of issue 15: the corridor blocked after the plan is made,
+the robot boxed in (recoveries in Nav2's order, then the right error code), a
+moving target followed with Nav2's follow_point tree, and our pause-near-goal
+tree waiting for an obstacle at a door to leave.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import math
+from functools import partial
+from pathlib import Path
+
+import pytest
+
+from aiobt.msgs import (
+    ComputePathToPoseError,
+    FollowPathError,
+    GoalState,
+    PoseStamped,
+)
+from aiobt.testing.navwatch import Sample, ServerGoals
+from aiobt.testing.treewatch import TreeWatch
+from aiobt_services.robot.messages import BumperEvent
+
+from .world import World
+
+pytestmark = [pytest.mark.e2e, pytest.mark.integration]
+
+TREES = Path(__file__).resolve().parents[2] / "trees"
+FOLLOW_POINT = "nav2/follow_point.xml"
+PAUSE_NEAR_GOAL = "nav_to_pose_and_pause_near_goal_obstacle.xml"
+CORRIDOR_EAST = (18.5, 9.75, 0.0)
+EAST_DOOR = (16.5, 8.5)  # the south-east room's door
+EAST_ROOM = (16.5, 7.0, -math.pi / 2)  # 1.5 m inside it: the long way round is ~17 m
+SOUTH_MIDDLE_ROOM = (10.0, 6.0, 0.0)
+RECOVERY_CYCLE = ("ClearingActions", "Spin", "Wait", "BackUp")  # Nav2's RoundRobin order
+LEAVES = ("compute_path_to_pose", "follow_path", "spin", "backup", "wait")
+
+
+async def _first_plan_made(goals: ServerGoals, world: World) -> None:
+    planned = await goals.wait_for(
+        lambda: goals.ended("compute_path_to_pose", GoalState.SUCCEEDED) >= 1, 30.0
+    )
+    assert planned, "no path planned"
+    moving = await world.track.wait_for(lambda _: world.track.driven > 0.3, 30.0)
+    assert moving is not None, "the robot does not move"
+
+
+@pytest.mark.timeout(150)
+async def test_replans_around_a_corridor_blocked_after_planning(world: World, goals: ServerGoals):
+    contacts: list[BumperEvent] = []
+    world.bus.subscribe("bumper", BumperEvent, contacts.append)
+    running = await world.start(*CORRIDOR_EAST)
+    await _first_plan_made(goals, world)
+    await world.spawn(12.0, 9.75, size_x=0.4, size_y=2.7)  # wall to wall across the corridor
+
+    done = await running.end(120.0)
+    assert done.state is GoalState.SUCCEEDED, done.result
+    world.assert_at(*CORRIDOR_EAST)
+    through_rooms = min(abs(s.y - 9.75) for s in world.track.samples if 11.0 < s.x < 13.0)
+    assert through_rooms > 1.5, "it crossed x 12 in the corridor, through the obstacle?"
+    assert not [c for c in contacts if c.pressed], contacts
+
+
+@pytest.mark.timeout(150)
+async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_navigates(
+    world: World, goals: ServerGoals, tree: TreeWatch
+):
+    boxes = [await world.spawn(x, 9.75, size_x=0.3, size_y=2.7) for x in (0.9, 3.1)]
+    here = world.track.latest
+    assert here is not None
+    seen = await world.track.wait_for(lambda s: s.stamp >= here.stamp + 1.0, 20.0)
+    assert seen is not None  # a second of sim time: ten scans saw the boxes
+
+    done = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=120.0)
+
+    assert done.state is GoalState.ABORTED, done.result
+    codes = [goals.last_code.get(leaf, 0) for leaf in LEAVES]
+    assert done.result.error_code == min(c for c in codes if c), (done.result, codes)
+    known = {int(c) for c in (*ComputePathToPoseError, *FollowPathError)}
+    assert done.result.error_code in known, done.result
+    assert done.result.error_msg
+    order = tree.activations(RECOVERY_CYCLE)
+    assert len(order) >= len(RECOVERY_CYCLE), order
+    assert order == [RECOVERY_CYCLE[i % 4] for i in range(len(order))], order
+    assert done.recoveries >= 3, [f.number_of_recoveries for f in done.feedback]
+    for behavior in ("spin", "wait", "backup"):
+        assert goals.states[behavior], f"no {behavior} goal was sent"
+    assert await goals.wait_idle(5.0), goals.active()
+
+    for box in boxes:
+        await world.remove(box)
+    again = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=90.0)
+    assert again.state is GoalState.SUCCEEDED, again.result
+    world.assert_at(*SOUTH_MIDDLE_ROOM)
+
+
+def _at_or_after(stamp: float, sample: Sample) -> bool:
+    return sample.stamp >= stamp
+
+
+async def _publish_target(world: World, target: str, period: float) -> None:
+    """Put the target's position on ``goal_update`` every ``period`` s of sim time."""
+    updates = world.bus.publisher("goal_update", PoseStamped)
+    due = -math.inf
+    while True:
+        tick = await world.track.wait_for(partial(_at_or_after, due), 10.0)
+        assert tick is not None, "sim time stopped"
+        due = tick.stamp + period
+        where = await world.obstacle(target)
+        updates.put(PoseStamped.from_xy_yaw(where.x, where.y, 0.0, stamp=tick.stamp))
+
+
+@pytest.mark.timeout(150)
+async def test_follow_point_tree_follows_a_moving_target(world: World, goals: ServerGoals):
+    # low (under the lidar plane): the planner plans to it, TruncatePath keeps 1 m back
+    target = await world.spawn(4.0, 9.75, shape="cylinder", radius=0.15, height=0.1)
+    await world.move(target, 4.0, 9.75, motion=(11.0, 9.75, 0.25))
+    publishing = asyncio.create_task(_publish_target(world, target, 0.5))
+    try:
+        sent = (await world.start(4.0, 9.75, tree=str(TREES / FOLLOW_POINT))).goal
+        far = await world.track.wait_for(lambda s: s.x > 8.0, 90.0)
+        assert far is not None, f"the robot did not follow: at {world.track.latest}"
+        assert not sent.done, sent.status  # follow_point runs until canceled
+        ahead = (await world.obstacle(target)).x - far.x
+        assert 0.5 < ahead < 2.5, f"target {ahead:.2f} m ahead of the robot"
+        await sent.cancel(timeout=10.0)
+        assert sent.status is GoalState.CANCELED
+    finally:
+        publishing.cancel()
+        with contextlib.suppress(asyncio.CancelledError):
+            await publishing
+    assert await goals.wait_idle(5.0), goals.active()
+
+
+@pytest.mark.timeout(150)
+async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
+    world: World, goals: ServerGoals, tree: TreeWatch
+):
+    running = await world.start(*EAST_ROOM, tree=str(TREES / PAUSE_NEAR_GOAL))
+    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 1.3, 90.0)
+    assert near is not None, f"the robot never came near the door: at {world.track.latest}"
+    since = len(world.track.samples)
+    door = await world.spawn(*EAST_DOOR, size_x=0.7, size_y=0.5)  # the short way in is shut
+
+    paused = await tree.wait_for(lambda: tree.find("PauseNearGoal", "RUNNING"), 30.0)
+    assert paused, "the tree did not pause near the goal"
+    assert await world.track.wait_still(0.5, timeout=10.0), "the robot did not stop"
+    assert goals.ended("follow_path", GoalState.CANCELED) >= 1  # CancelControl
+    await world.remove(door)
+
+    done = await running.end(90.0)
+    assert done.state is GoalState.SUCCEEDED, done.result
+    world.assert_at(*EAST_ROOM)
+    strayed = max(math.dist((s.x, s.y), EAST_DOOR) for s in world.track.samples[since:])
+    assert strayed < 2.0, f"it went {strayed:.1f} m from the door: took the long way round"
+    assert tree.find("PauseNearGoal", "SUCCESS") is not None  # the pause ran to its end
