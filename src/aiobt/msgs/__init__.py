@@ -69,6 +69,8 @@ from aiobt.msgs.nav import (
     Path,
     PowerSupplyStatus,
     TrackingFeedback,
+    WaypointState,
+    WaypointStatus,
 )
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
@@ -79,6 +81,7 @@ from aiobt.msgs.services import (
     IsPathValid,
 )
 from aiobt.msgs.sim import Clock
+from aiobt.msgs.std import String
 from aiobt.msgs.strings import (
     goals_from_string,
     goals_to_string,
@@ -149,11 +152,14 @@ __all__ = [
     "SmoothPathError",
     "Spin",
     "SpinError",
+    "String",
     "TrackingFeedback",
     "Twist",
     "Vector3",
     "Wait",
     "WaitError",
+    "WaypointState",
+    "WaypointStatus",
     "decode",
     "decoder",
     "goals_from_string",

@@ -70,7 +70,8 @@ def wire_validator(model: type[M]) -> Callable[[Payload], M]:
     the input allows; same results, same ``ValidationError`` as the model's own."""
     validate = _VALIDATORS.get(model)
     if validate is None:
-        validate = _VALIDATORS[model] = _build(model)
+        own = getattr(model, "__wire_validate__", None)  # a model that reads non-JSON payloads
+        validate = _VALIDATORS[model] = own if own is not None else _build(model)
     return cast(Callable[[Payload], M], validate)
 
 

@@ -288,6 +288,8 @@ class TrackingFeedback(Msg):
     path (published on ``{ns}/tracking_feedback`` each control cycle; read by
     IsWithinPathTrackingBounds)."""
 
+    __bt_type_name__: ClassVar[str] = "nav2_msgs::msg::TrackingFeedback"
+
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
     current_path_index: int = Field(default=0, ge=0)
     cross_track_error: float = Field(default=0.0, description="m, > 0: robot left of the path")
@@ -295,3 +297,25 @@ class TrackingFeedback(Msg):
     distance_to_goal: float = Field(default=0.0, ge=0.0)
     remaining_path_length: float = Field(default=0.0, ge=0.0)
     robot_position: Point = Field(default_factory=Point)
+
+
+class WaypointState(IntEnum):
+    """``nav2_msgs/WaypointStatus`` states."""
+
+    PENDING = 0
+    COMPLETED = 1
+    SKIPPED = 2
+    FAILED = 3
+
+
+class WaypointStatus(Msg):
+    """Nav2's ``nav2_msgs/WaypointStatus``: what became of one waypoint of a multi-goal
+    navigation (RemovePassedGoals marks the passed ones COMPLETED)."""
+
+    __bt_type_name__: ClassVar[str] = "nav2_msgs::msg::WaypointStatus"
+
+    waypoint_status: WaypointState = WaypointState.PENDING
+    waypoint_index: int = Field(default=0, ge=0)
+    waypoint_pose: PoseStamped = Field(default_factory=PoseStamped)
+    error_code: int = Field(default=0, ge=0)
+    error_msg: str = ""

@@ -10,6 +10,10 @@ from aiobt.core.clock import Clock
 from aiobt.core.manifest import NodeBuilder, NodeManifest, ports_dict
 from aiobt.core.node import TreeNode
 from aiobt.nav.context import NavContext, NavNode
+from aiobt.nav.decorators import DECORATOR_NODES
+from aiobt.nav.path import PATH_NODES
+from aiobt.nav.selectors import SELECTOR_NODES
+from aiobt.nav.state import STATE_NODES
 
 if TYPE_CHECKING:
     from aiobt.factory import BehaviorTreeFactory
@@ -18,7 +22,12 @@ if TYPE_CHECKING:
 # Every Nav2 node class, registered under its class name (the XML ID).
 # Families add their classes here as they land: actions, services, cancels,
 # selectors, conditions, path utilities, decorators.
-NAV2_NODES: tuple[type[TreeNode], ...] = ()
+NAV2_NODES: tuple[type[TreeNode], ...] = (
+    *SELECTOR_NODES,
+    *STATE_NODES,
+    *PATH_NODES,
+    *DECORATOR_NODES,
+)
 
 # Registered under an ID other than the class name (e.g. Nav2 aliases).
 NAV2_ALIASES: tuple[tuple[str, type[TreeNode]], ...] = ()

@@ -82,12 +82,15 @@ class Bus:
         *,
         latched: bool = False,
         queue_size: int = 100,
+        namespace: str | None = None,
     ) -> topics.Subscription[M]:
-        """Messages on ``{ns}/{name}``; ``latched`` also gets a latched publisher's last value."""
+        """Messages on ``{ns}/{name}``; ``latched`` also gets a latched publisher's last value.
+        ``namespace`` (default: the bus's) reads another robot's topic."""
+        keys = self.keys if namespace is None else Keys(namespace)
         sub = topics.declare_subscription(
             self.session,
             self.bridge,
-            self.keys.topic(name),
+            keys.topic(name),
             model,
             callback_fn=callback,
             latched=latched,

@@ -1,0 +1,9 @@
+"""Nav2's navigation decorators: tick a child by distance, speed, goal updates, path length."""
+
+from aiobt.core.node import TreeNode
+from aiobt.nav.decorators.goal_updater import GoalUpdater
+from aiobt.nav.decorators.path_longer_on_approach import PathLongerOnApproach
+
+DECORATOR_NODES: tuple[type[TreeNode], ...] = (GoalUpdater, PathLongerOnApproach)
+
+__all__ = ["DECORATOR_NODES", "GoalUpdater", "PathLongerOnApproach"]

@@ -1,0 +1,14 @@
+"""Nav2's path and goal utilities: truncate, pick, join and prune paths and goals."""
+
+from aiobt.core.node import TreeNode
+from aiobt.nav.path.remove_passed_goals import RemovePassedGoals
+from aiobt.nav.path.truncate_path import TruncatePath
+from aiobt.nav.path.truncate_path_local import TruncatePathLocal
+
+PATH_NODES: tuple[type[TreeNode], ...] = (
+    TruncatePath,
+    TruncatePathLocal,
+    RemovePassedGoals,
+)
+
+__all__ = ["PATH_NODES", "RemovePassedGoals", "TruncatePath", "TruncatePathLocal"]

@@ -1,0 +1,213 @@
+"""The robot as Nav2's nodes see it: pose, odometry, battery, initial pose, tracking.
+
+Nav2's nodes ask TF for the robot pose and open their own subscriptions; aiobt's
+read one :class:`RobotState` per bus and namespace, over shared subscriptions
+(:mod:`aiobt.nav.shared_topics`), each declared on first use:
+
+- ``{ns}/pose``: PoseStamped, the robot in ``map`` (localization);
+- ``{ns}/odom``: Odometry (pose in ``odom``, twist);
+- ``{ns}/battery``: BatteryState;
+- ``{ns}/initialpose``: PoseStamped, a localization reset;
+- ``{ns}/tracking_feedback``: TrackingFeedback, published by the controller
+  each control cycle while it follows a path.
+
+Without TF, the frames known are the pose's (``map``) and the odometry's
+(``odom``); the base frame is whatever the robot reports its pose of.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections import deque
+from typing import TYPE_CHECKING, Any, ClassVar
+
+from aiobt.msgs import BatteryState, Msg, Odometry, PoseStamped, TrackingFeedback
+from aiobt.nav.context import NavNode
+from aiobt.nav.shared_topics import SharedTopic, SharedTopics, shared_topics
+
+if TYPE_CHECKING:
+    from aiobt.nav.context import NavContext
+
+log = logging.getLogger("aiobt.nav.robot_state")
+
+POSE, ODOM, BATTERY, INITIAL_POSE, TRACKING = (
+    "pose",
+    "odom",
+    "battery",
+    "initialpose",
+    "tracking_feedback",
+)
+_MODELS: dict[str, type[Msg]] = {
+    POSE: PoseStamped,
+    ODOM: Odometry,
+    INITIAL_POSE: PoseStamped,
+    TRACKING: TrackingFeedback,
+}
+ODOM_SMOOTHING_WINDOW = 0.3  # s of odometry averaged for the speed (Nav2's OdomSmoother)
+BRAKE_ACCEL_LIMIT = -10.0  # m/s^2: a harder deceleration means the robot hit something
+
+
+class OdomSmoother:
+    """The robot's speed: the twists of the last ``window`` seconds of odometry
+    (by their stamps), averaged, as Nav2's ``nav2_util::OdomSmoother``."""
+
+    def __init__(self, odom: SharedTopic[Odometry], window: float = ODOM_SMOOTHING_WINDOW) -> None:
+        self.window = window
+        self._history: deque[Odometry] = deque()
+        odom.listen(self._add)
+
+    def _add(self, message: Odometry) -> None:
+        history = self._history
+        if history and message.header.stamp < history[-1].header.stamp:
+            history.clear()  # time went back (a simulation reset): start afresh
+        history.append(message)
+        newest = message.header.stamp
+        while history and history[0].header.stamp < newest - self.window:
+            history.popleft()
+
+    def speed(self) -> float | None:
+        """Mean planar speed (m/s) over the window; None before any odometry."""
+        if not self._history:
+            return None
+        n = len(self._history)
+        vx = sum(m.twist.linear.x for m in self._history) / n
+        vy = sum(m.twist.linear.y for m in self._history) / n
+        return float((vx * vx + vy * vy) ** 0.5)
+
+
+class BrakeDetector:
+    """IsStuck's measure (Nav2): the acceleration between the last two odometry
+    messages; below ``BRAKE_ACCEL_LIMIT`` the robot is stuck (it braked on something)."""
+
+    def __init__(self, odom: SharedTopic[Odometry]) -> None:
+        self.accel = 0.0
+        self.stuck = False
+        self._previous: Odometry | None = None
+        self._reported = False
+        odom.listen(self._add)
+
+    def _add(self, message: Odometry) -> None:
+        previous, self._previous = self._previous, message
+        if previous is None:
+            return
+        dt = message.header.stamp - previous.header.stamp
+        if dt <= 0.0:  # repeated or reordered stamps: no rate to measure
+            if not self._reported:
+                self._reported = True
+                log.warning("odometry stamps do not increase (dt=%.3f s); ignored", dt)
+            return
+        self.accel = (message.twist.linear.x - previous.twist.linear.x) / dt
+        stuck = self.accel < BRAKE_ACCEL_LIMIT
+        if stuck != self.stuck:
+            log.info("robot %s (accel %.2f m/s^2)", "got stuck" if stuck else "is free", self.accel)
+        self.stuck = stuck
+
+
+class RobotState:
+    """Latest robot data of one bus and namespace (None until the first message)."""
+
+    def __init__(self, topics: SharedTopics) -> None:
+        self.topics = topics
+
+    @property
+    def pose(self) -> PoseStamped | None:
+        return self.topics.topic(POSE, PoseStamped).latest
+
+    @property
+    def odometry(self) -> Odometry | None:
+        return self.topics.topic(ODOM, Odometry).latest
+
+    @property
+    def initial_pose(self) -> PoseStamped | None:
+        return self.topics.topic(INITIAL_POSE, PoseStamped).latest
+
+    @property
+    def tracking_feedback(self) -> TrackingFeedback | None:
+        return self.topics.topic(TRACKING, TrackingFeedback).latest
+
+    def battery(self, topic: str = BATTERY) -> BatteryState | None:
+        return self.topics.topic(topic, BatteryState).latest
+
+    def pose_in(self, frame: str = "") -> PoseStamped | None:
+        """The robot pose in ``frame`` (``""``: the localization frame, ``map``), or None
+        when that frame has no data yet or is not one this robot reports."""
+        pose = self.pose
+        if pose is not None and frame in ("", pose.header.frame_id):
+            return pose
+        odom = self.odometry
+        if odom is not None and frame == odom.header.frame_id:
+            return PoseStamped(header=odom.header, pose=odom.pose)
+        return None
+
+    def knows_frame(self, frame: str) -> bool:
+        """Whether ``frame`` is one the robot's data are given in."""
+        return self.pose_in(frame) is not None
+
+    def speed(self) -> float | None:
+        """The smoothed planar speed (m/s), None before any odometry."""
+        smoother: OdomSmoother = self.topics.shared(
+            "odom_smoother", lambda t: OdomSmoother(t.topic(ODOM, Odometry))
+        )
+        return smoother.speed()
+
+    def brake(self) -> BrakeDetector:
+        detector: BrakeDetector = self.topics.shared(
+            "brake_detector", lambda t: BrakeDetector(t.topic(ODOM, Odometry))
+        )
+        return detector
+
+    def prepare(self, *names: str) -> None:
+        """Subscribe now to the keys a node will read (so data arrive before its first tick)."""
+        for name in names:
+            self.topics.topic(name, _MODELS.get(name, BatteryState))
+
+
+def robot_state(nav: NavContext, who: str) -> RobotState:
+    """The :class:`RobotState` of ``nav``'s bus and namespace (``who`` names the node
+    in the error raised when the factory has no bus)."""
+    topics = shared_topics(nav, who)
+    state: RobotState = topics.shared("robot_state", RobotState)
+    return state
+
+
+class RobotStateNode(NavNode):
+    """Mixin of the nodes that read the robot (put it first, as NavNode).
+
+    ``READS`` names the keys the node reads; with a bus they are subscribed
+    when the node is built, so data arrive before its first tick.
+    :meth:`robot_pose` logs a missing pose once per node, not every tick.
+    """
+
+    READS: ClassVar[tuple[str, ...]] = (POSE,)
+    _robot: RobotState | None = None
+    _pose_missing_reported = False
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        if self.nav.bus is not None:
+            self.robot.prepare(*self.READS)
+
+    @property
+    def robot(self) -> RobotState:
+        robot = self._robot
+        if robot is None:
+            robot = self._robot = robot_state(self.nav, getattr(self, "path", "?"))
+        return robot
+
+    def robot_pose(self, frame: str = "") -> PoseStamped | None:
+        """The robot pose in ``frame``; None (reported once) when there is none yet."""
+        pose = self.robot.pose_in(frame)
+        if pose is None and not self._pose_missing_reported:
+            self._pose_missing_reported = True
+            log.warning(
+                "%s: no robot pose in frame %r yet (from %s/%s or %s/%s)",
+                getattr(self, "path", "?"),
+                frame or "map",
+                self.robot.topics.namespace,
+                POSE,
+                self.robot.topics.namespace,
+                ODOM,
+            )
+        elif pose is not None:
+            self._pose_missing_reported = False
+        return pose

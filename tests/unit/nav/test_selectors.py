@@ -1,0 +1,114 @@
+"""Selectors: default until a message, then the last one; plain text, JSON, std_msgs/String;
+one shared latched subscription per key."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+
+import pytest
+
+from aiobt.core.status import Status
+from aiobt.msgs import String
+from aiobt.nav import NavContext
+from aiobt.nav.shared_topics import shared_topics
+from aiobt.transport import Bus
+from tests.unit.nav.support import WAIT, deliver, nav_tree
+
+S, F = Status.SUCCESS, Status.FAILURE
+PLANNER = (
+    '<PlannerSelector topic_name="planner_selector" default_planner="GridBased" '
+    'selected_planner="{planner}"/>'
+)
+
+pytestmark = pytest.mark.timeout(60)
+
+
+async def test_outputs_the_default_until_a_message_then_the_last_message(local_bus: Bus) -> None:
+    tree = nav_tree(local_bus, PLANNER)
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "GridBased"
+    await deliver(local_bus, "planner_selector", String(data="SmacHybrid"))
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "SmacHybrid"
+
+
+async def test_no_message_and_no_default_fails(local_bus: Bus) -> None:
+    tree = nav_tree(local_bus, '<ControllerSelector selected_controller="{c}"/>')
+    assert await tree.tick_exactly_once() is F
+
+
+@pytest.mark.parametrize("payload", [b"FollowPathB", b'"FollowPathB"', b'{"data": "FollowPathB"}'])
+async def test_raw_text_a_json_string_and_std_msgs_string_all_switch_it(
+    local_bus: Bus, payload: bytes
+) -> None:
+    tree = nav_tree(
+        local_bus,
+        '<ControllerSelector default_controller="FollowPath" selected_controller="{c}"/>',
+    )
+    topic = shared_topics(NavContext(bus=local_bus), "test").topic("controller_selector", String)
+    arrived = asyncio.Event()
+    topic.listen(lambda _: arrived.set())
+    local_bus.session.put(f"{local_bus.namespace}/controller_selector", payload)
+    await asyncio.wait_for(arrived.wait(), WAIT)
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["c"] == "FollowPathB"
+
+
+async def test_a_late_selector_gets_the_latched_value(local_bus: Bus) -> None:
+    publisher = local_bus.latched_publisher("goal_checker_selector", String)
+    publisher.put(String(data="precise_goal_checker"))
+    tree = nav_tree(
+        local_bus,
+        '<GoalCheckerSelector default_goal_checker="general" selected_goal_checker="{g}"/>',
+    )
+    topic = shared_topics(NavContext(bus=local_bus), "test").topic(
+        "goal_checker_selector", String, latched=True
+    )
+    if topic.latest is None:
+        arrived = asyncio.Event()
+        topic.listen(lambda _: arrived.set())
+        await asyncio.wait_for(arrived.wait(), WAIT)
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["g"] == "precise_goal_checker"
+
+
+async def test_two_factories_share_one_subscription_per_key(local_bus: Bus) -> None:
+    first = nav_tree(local_bus, PLANNER)
+    second = nav_tree(local_bus, PLANNER.replace("{planner}", "{other}"))
+    hub = shared_topics(NavContext(bus=local_bus), "test")
+    assert hub.subscribed().count(f"{local_bus.namespace}/planner_selector") == 1
+    await deliver(local_bus, "planner_selector", String(data="Theta"))
+    for tree, key in ((first, "planner"), (second, "other")):
+        assert await tree.tick_exactly_once() is S
+        assert tree.root_blackboard[key] == "Theta"
+
+
+async def test_bad_data_keeps_the_last_good_value_and_is_logged_once(
+    local_bus: Bus, caplog: pytest.LogCaptureFixture
+) -> None:
+    tree = nav_tree(local_bus, PLANNER)
+    await deliver(local_bus, "planner_selector", String(data="Good"))
+    hub = shared_topics(NavContext(bus=local_bus), "test")
+    topic = hub.topic("planner_selector", String)
+    assert topic.subscription is not None
+    with caplog.at_level(logging.WARNING):
+        for _ in range(6):
+            local_bus.session.put(f"{local_bus.namespace}/planner_selector", b'{"data": 5}')
+        async with asyncio.timeout(WAIT):
+            while topic.subscription.dropped_invalid < 6:  # noqa: ASYNC110 - no drop event
+                await asyncio.sleep(0.01)
+    assert await tree.tick_exactly_once() is S
+    assert tree.root_blackboard["planner"] == "Good"
+    assert sum("planner_selector" in r.getMessage() for r in caplog.records) == 1
+
+
+async def test_every_selector_names_its_ports_as_nav2(local_bus: Bus) -> None:
+    for node, default, output in (
+        ("SmootherSelector", "default_smoother", "selected_smoother"),
+        ("ProgressCheckerSelector", "default_progress_checker", "selected_progress_checker"),
+        ("PathHandlerSelector", "default_path_handler", "selected_path_handler"),
+    ):
+        tree = nav_tree(local_bus, f'<{node} {default}="d" {output}="{{out}}"/>')
+        assert await tree.tick_exactly_once() is S
+        assert tree.root_blackboard["out"] == "d"
