@@ -79,6 +79,7 @@ from aiobt.msgs.services import (
     ClearCostmapResponse,
     ClearEntireCostmap,
     IsPathValid,
+    ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.std import String
@@ -148,6 +149,7 @@ __all__ = [
     "PoseStamped",
     "PowerSupplyStatus",
     "Quaternion",
+    "ReinitializeGlobalLocalization",
     "SmoothPath",
     "SmoothPathError",
     "Spin",

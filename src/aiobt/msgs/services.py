@@ -11,6 +11,7 @@ from typing import ClassVar, TypeAlias
 from pydantic import Field
 
 from aiobt.msgs._base import Msg
+from aiobt.msgs.action import Empty
 from aiobt.msgs.geometry import PoseStamped
 from aiobt.msgs.nav import Path
 
@@ -89,3 +90,20 @@ class IsPathValid:
     service_name: ClassVar[str] = "is_path_valid"
     Request: TypeAlias = _IsPathValidRequest
     Response: TypeAlias = _IsPathValidResponse
+
+
+class _Acknowledgement(Msg):
+    """The answer of a service without a result (``std_srvs/Empty`` in Nav2):
+    ``ok`` false with the reason in ``message``."""
+
+    ok: bool = True
+    message: str = ""
+    id: str = ""
+
+
+class ReinitializeGlobalLocalization:
+    """Scatter the localization estimate and relocalize (the robot service)."""
+
+    service_name: ClassVar[str] = "reinitialize_global_localization"
+    Request: TypeAlias = Empty
+    Response: TypeAlias = _Acknowledgement

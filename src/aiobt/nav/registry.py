@@ -9,10 +9,13 @@ from typing import TYPE_CHECKING, Any, cast
 from aiobt.core.clock import Clock
 from aiobt.core.manifest import NodeBuilder, NodeManifest, ports_dict
 from aiobt.core.node import TreeNode
+from aiobt.nav.actions import ACTION_NODES
+from aiobt.nav.cancel import CANCEL_NODES
 from aiobt.nav.context import NavContext, NavNode
 from aiobt.nav.decorators import DECORATOR_NODES
 from aiobt.nav.path import PATH_NODES
 from aiobt.nav.selectors import SELECTOR_NODES
+from aiobt.nav.services import SERVICE_NODES
 from aiobt.nav.state import STATE_NODES
 
 if TYPE_CHECKING:
@@ -23,6 +26,9 @@ if TYPE_CHECKING:
 # Families add their classes here as they land: actions, services, cancels,
 # selectors, conditions, path utilities, decorators.
 NAV2_NODES: tuple[type[TreeNode], ...] = (
+    *ACTION_NODES,
+    *SERVICE_NODES,
+    *CANCEL_NODES,
     *SELECTOR_NODES,
     *STATE_NODES,
     *PATH_NODES,

@@ -1,0 +1,22 @@
+"""Nav2's remote action leaves (BtActionNode), one per module."""
+
+from aiobt.core.node import TreeNode
+from aiobt.nav.actions.assisted_teleop import AssistedTeleop
+from aiobt.nav.actions.base import BtAction
+from aiobt.nav.actions.compute_path_to_pose import ComputePathToPose
+from aiobt.nav.actions.drive import BackUp, DriveOnHeading
+from aiobt.nav.actions.follow_path import FollowPath
+from aiobt.nav.actions.spin import Spin
+from aiobt.nav.actions.wait import Wait
+
+ACTION_NODES: tuple[type[TreeNode], ...] = (
+    AssistedTeleop,
+    BackUp,
+    ComputePathToPose,
+    DriveOnHeading,
+    FollowPath,
+    Spin,
+    Wait,
+)
+
+__all__ = ["ACTION_NODES", "BtAction"]

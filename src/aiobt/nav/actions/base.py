@@ -1,0 +1,236 @@
+"""BtAction: Nav2's BtActionNode, a leaf that runs one goal on a remote action server."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from typing import Any, ClassVar
+
+from pydantic import ValidationError
+
+from aiobt.core.blackboard import Entry
+from aiobt.core.errors import LogicError, PortError
+from aiobt.core.leaves import AsyncActionNode
+from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
+from aiobt.msgs import ActionDef, GoalState
+from aiobt.nav import remote
+from aiobt.nav.context import NavNode
+from aiobt.transport import ActionClient, ClientGoal, GoalLost, GoalRejected, ServerUnavailable
+
+CANCEL_TIMEOUT = 1.5  # s a halted leaf waits for its goal's cancel (the tree's halt budget is 2)
+
+
+class BtAction(NavNode, AsyncActionNode):
+    """Sends one goal to ``server_name`` and returns its outcome (Nav2's BtActionNode).
+
+    - first tick: the goal (from :meth:`make_goal`) is sent; FAILURE with
+      ``error_msg`` naming the server if it is not accepted within ``server_timeout``;
+    - RUNNING until the result: SUCCEEDED -> :meth:`on_success` (SUCCESS),
+      ABORTED -> :meth:`on_aborted` (FAILURE, the server's ``error_code_id`` /
+      ``error_msg``), CANCELED by someone else -> :meth:`on_cancelled` (SUCCESS);
+    - a goal port in ``WATCHED`` changed while RUNNING (checked in the tick, by
+      the blackboard entry's sequence id): :meth:`goal_update` builds the new
+      goal, which is sent to the server (it preempts); the leaf stays RUNNING;
+    - halted while RUNNING: the goal is canceled and the cancel awaited (bounded);
+    - the server gone mid-goal (its liveliness): FAILURE within about 1.2 s.
+
+    Subclasses set ``ACTION`` (the action type; its ``name`` is the default
+    server) and implement :meth:`make_goal`.
+    """
+
+    ACTION: ClassVar[type[ActionDef[Any, Any, Any]]]
+    WATCHED: ClassVar[tuple[str, ...]] = ()
+    log: ClassVar[logging.Logger] = logging.getLogger(__name__)
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        cls.log = logging.getLogger(cls.__module__)
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self._handle: ClientGoal[Any, Any, Any] | None = None
+        self._goal: Any = None
+        self._watched: list[tuple[Entry, int]] = []
+        self._update: asyncio.Future[Any] | None = None
+        self._server = ""
+
+    # -- what subclasses provide -----------------------------------------------------------
+    def make_goal(self) -> Any:
+        """The goal, from the ports (Nav2's ``on_tick``)."""
+        raise LogicError(f"{type(self).__name__} does not implement make_goal()")
+
+    def counts_as_recovery(self) -> bool:
+        """True: each activation adds one to the ``number_recoveries`` blackboard entry."""
+        return False
+
+    def goal_update(self, goal: Any) -> Any | None:
+        """A watched port changed: the goal to send instead of ``goal``, or None."""
+        new = self.make_goal()
+        return new if new != goal else None
+
+    def on_success(self, result: Any) -> Status:
+        self.set_error(0, "")
+        return SUCCESS
+
+    def on_aborted(self, result: Any) -> Status:
+        self.set_error(result.error_code, result.error_msg)
+        return FAILURE
+
+    def on_cancelled(self, result: Any | None) -> Status:
+        """Canceled by the server or another client, or halted (``result`` None)."""
+        self.set_error(0, "")
+        return SUCCESS
+
+    def on_failure(self, code: int | None, message: str) -> None:
+        """No result: rejected, the server went away, or (by default) not accepted in time."""
+        self.set_error(code, message)
+
+    def on_timeout(self, message: str) -> None:
+        """The server did not accept the goal within ``server_timeout``."""
+        self.on_failure(self._code("TIMEOUT", "UNKNOWN"), message)
+
+    def set_error(self, code: int | None, message: str) -> None:
+        if code is not None:
+            self.set_output("error_code_id", code)
+        self.set_output("error_msg", message)
+
+    # -- the tick ----------------------------------------------------------------------------
+    def execute_sync(self) -> Status:
+        if self._update is not None and self._watched and self._ports_changed():
+            self._offer_update()
+        return super().execute_sync()
+
+    def halt_sync(self) -> None:
+        if self._status is RUNNING:
+            self.on_cancelled(None)
+        super().halt_sync()
+
+    def _ports_changed(self) -> bool:
+        return any(entry.sequence_id != sequence_id for entry, sequence_id in self._watched)
+
+    def _watch(self) -> None:
+        """Remember the sequence ids of the watched ports' blackboard entries."""
+        watched = []
+        for port in self.WATCHED:
+            binding = self.config.inputs.get(port)
+            if binding is not None and binding.key is None:
+                continue  # a literal never changes
+            key = binding.key if binding is not None and binding.key is not None else port
+            entry = self.blackboard.create_entry(key)
+            watched.append((entry, entry.sequence_id))
+        self._watched = watched
+
+    def _offer_update(self) -> None:
+        self._watch()
+        try:
+            new = self.goal_update(self._goal)
+        except (PortError, ValidationError, ValueError) as exc:
+            self.log.warning("%s: new goal ignored, keeping the current one: %s", self.path, exc)
+            return
+        if new is not None and self._update is not None and not self._update.done():
+            self._update.set_result(new)
+
+    # -- the goal's life ---------------------------------------------------------------------
+    async def run(self) -> Status:
+        self._server = remote.server_name(self, "server_name", self.ACTION.name)
+        timeout = remote.server_timeout(self)
+        client = remote.action_client(self, self._server, self.ACTION)
+        try:
+            goal = self.make_goal()
+        except (PortError, ValidationError, ValueError) as exc:
+            message = f"{self.path}: cannot make a goal for {self._server}: {exc}"
+            self.log.error("%s", message)
+            self.on_failure(self._code("UNKNOWN"), message)
+            return FAILURE
+        if self.counts_as_recovery():
+            remote.increment_recoveries(self)
+        if not await self._send(client, goal, timeout):
+            return FAILURE
+        try:
+            return await self._follow(client, timeout)
+        except asyncio.CancelledError:
+            await self._cancel_goal()
+            raise
+        finally:
+            self._handle = None
+            self._update = None
+
+    async def _send(self, client: ActionClient[Any, Any, Any], goal: Any, wait: float) -> bool:
+        self._watch()
+        try:
+            handle = await client.send_goal(goal, server_timeout=wait)
+        except ServerUnavailable as exc:
+            self.log.warning("%s: %s (server_timeout)", self.path, exc)
+            self.on_timeout(f"{exc} (server_timeout)")
+            return False
+        except GoalRejected as exc:
+            self._no_result(self._code("GOAL_REJECTED", "UNKNOWN"), str(exc))
+            return False
+        self._handle, self._goal = handle, goal
+        return True
+
+    async def _follow(self, client: ActionClient[Any, Any, Any], wait: float) -> Status:
+        """Wait for the result; send each updated goal the tick offers meanwhile."""
+        while True:
+            handle = self._handle
+            assert handle is not None
+            update = self._update = asyncio.get_running_loop().create_future()
+            if self._watched and self._ports_changed():
+                self._offer_update()  # changed while the goal was being accepted
+            result = asyncio.ensure_future(handle.result())
+            try:
+                await asyncio.wait((result, update), return_when=asyncio.FIRST_COMPLETED)
+            finally:
+                result.cancel()
+                self._update = None
+            if result.done() and not result.cancelled():
+                return self._result_status(handle, result)
+            if not await self._send(client, update.result(), wait):
+                await self._cancel_goal()  # the old goal must not run on without us
+                return FAILURE
+
+    def _result_status(
+        self, handle: ClientGoal[Any, Any, Any], done: asyncio.Future[Any]
+    ) -> Status:
+        error = done.exception()
+        if isinstance(error, GoalLost):
+            self._no_result(self._code("UNKNOWN"), f"action server {self._server} lost: {error}")
+            return FAILURE
+        if error is not None:
+            raise error
+        result = done.result()
+        if handle.status is GoalState.SUCCEEDED:
+            return self.on_success(result)
+        if handle.status is GoalState.CANCELED:
+            return self.on_cancelled(result)
+        self.log.info(
+            "%s: %s aborted the goal: %d %s",
+            self.path,
+            self._server,
+            result.error_code,
+            result.error_msg,
+        )
+        return self.on_aborted(result)
+
+    async def _cancel_goal(self) -> None:
+        handle = self._handle
+        if handle is None or handle.done:
+            return
+        try:
+            async with asyncio.timeout(CANCEL_TIMEOUT):
+                await handle.cancel(timeout=CANCEL_TIMEOUT)
+        except TimeoutError:
+            self.log.warning(
+                "%s: %s did not confirm the cancel of goal %s within %.1f s",
+                self.path,
+                self._server,
+                handle.goal_id,
+                CANCEL_TIMEOUT,
+            )
+
+    def _no_result(self, code: int | None, message: str) -> None:
+        self.log.warning("%s: %s", self.path, message)
+        self.on_failure(code, message)
+
+    def _code(self, *names: str) -> int | None:
+        return remote.error_code(self.ACTION.ErrorCode, *names)

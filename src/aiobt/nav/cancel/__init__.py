@@ -1,0 +1,25 @@
+"""Nav2's cancel leaves (BtCancelActionNode): cancel all goals of one server."""
+
+from aiobt.core.node import TreeNode
+from aiobt.nav.cancel.base import BtCancelAction
+from aiobt.nav.cancel.behaviors import (
+    CancelAssistedTeleop,
+    CancelBackUp,
+    CancelControl,
+    CancelCoverage,
+    CancelDriveOnHeading,
+    CancelSpin,
+    CancelWait,
+)
+
+CANCEL_NODES: tuple[type[TreeNode], ...] = (
+    CancelAssistedTeleop,
+    CancelBackUp,
+    CancelControl,
+    CancelCoverage,
+    CancelDriveOnHeading,
+    CancelSpin,
+    CancelWait,
+)
+
+__all__ = ["CANCEL_NODES", "BtCancelAction"]
