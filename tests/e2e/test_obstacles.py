@@ -37,6 +37,7 @@ CORRIDOR_EAST = (18.5, 9.75, 0.0)
 EAST_DOOR = (16.5, 8.5)  # the south-east room's door
 EAST_ROOM = (16.5, 7.2, -math.pi / 2)  # 1.3 m inside it: the long way round is ~17 m
 SOUTH_MIDDLE_ROOM = (10.0, 6.0, 0.0)
+FENCE_YS = (8.95, 9.75, 10.55)  # three 0.9 m boxes: wall to wall across the corridor
 RECOVERY_CYCLE = ("ClearingActions", "Spin", "Wait", "BackUp")  # Nav2's RoundRobin order
 LEAVES = ("compute_path_to_pose", "follow_path", "spin", "backup", "wait")
 
@@ -70,7 +71,8 @@ async def test_replans_around_a_corridor_blocked_after_planning(world: World, go
 async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_navigates(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
-    boxes = [await world.spawn(x, 9.75, size_x=0.3, size_y=2.7) for x in (0.9, 3.1)]
+    # two fences across the corridor, 0.65 m behind and 0.95 m ahead of the robot
+    boxes = [await world.spawn(x, y, size_x=0.3, size_y=0.9) for x in (1.2, 3.1) for y in FENCE_YS]
     here = world.track.latest
     assert here is not None
     seen = await world.track.wait_for(lambda s: s.stamp >= here.stamp + 1.0, 20.0)
@@ -103,31 +105,52 @@ def _at_or_after(stamp: float, sample: Sample) -> bool:
     return sample.stamp >= stamp
 
 
-async def _publish_target(world: World, target: str, period: float) -> None:
-    """Put the target's position on ``goal_update`` every ``period`` s of sim time."""
-    updates = world.bus.publisher("goal_update", PoseStamped)
-    due = -math.inf
-    while True:
-        tick = await world.track.wait_for(partial(_at_or_after, due), 10.0)
-        assert tick is not None, "sim time stopped"
-        due = tick.stamp + period
-        where = await world.obstacle(target)
-        updates.put(PoseStamped.from_xy_yaw(where.x, where.y, 0.0, stamp=tick.stamp))
+class TargetFeed:
+    """Puts a moving obstacle's position on ``goal_update`` every ``period`` s of sim time
+    (what a person-tracker would publish) and remembers the last one."""
+
+    def __init__(self, world: World, target: str, period: float) -> None:
+        self.world = world
+        self.target = target
+        self.period = period
+        self.x = -math.inf
+        self.moved = asyncio.Event()
+
+    async def run(self) -> None:
+        updates = self.world.bus.publisher("goal_update", PoseStamped)
+        due = -math.inf
+        while True:
+            tick = await self.world.track.wait_for(partial(_at_or_after, due), 10.0)
+            assert tick is not None, "sim time stopped"
+            due = tick.stamp + self.period
+            where = await self.world.obstacle(self.target)
+            updates.put(PoseStamped.from_xy_yaw(where.x, where.y, 0.0, stamp=tick.stamp))
+            self.x = where.x
+            self.moved.set()
+
+    async def wait_past(self, x: float, timeout: float) -> bool:  # noqa: ASYNC109
+        with contextlib.suppress(TimeoutError):
+            async with asyncio.timeout(timeout):
+                while self.x < x:
+                    self.moved.clear()
+                    await self.moved.wait()
+        return self.x >= x
 
 
 @pytest.mark.timeout(150)
 async def test_follow_point_tree_follows_a_moving_target(world: World, goals: ServerGoals):
     # low (under the lidar plane): the planner plans to it, TruncatePath keeps 1 m back
     target = await world.spawn(4.0, 9.75, shape="cylinder", radius=0.15, height=0.1)
-    await world.move(target, 4.0, 9.75, motion=(11.0, 9.75, 0.25))
-    publishing = asyncio.create_task(_publish_target(world, target, 0.5))
+    await world.move(target, 4.0, 9.75, motion=(11.0, 9.75, 0.2))  # 35 s of sim time out
+    feed = TargetFeed(world, target, 0.5)
+    publishing = asyncio.create_task(feed.run())
     try:
         sent = (await world.start(4.0, 9.75, tree=str(TREES / FOLLOW_POINT))).goal
-        far = await world.track.wait_for(lambda s: s.x > 8.0, 90.0)
-        assert far is not None, f"the robot did not follow: at {world.track.latest}"
+        assert await feed.wait_past(9.0, 90.0), f"the target stays at x {feed.x}"
+        robot = world.track.latest
+        assert robot is not None
+        assert 0.5 < feed.x - robot.x < 2.5, f"target at x {feed.x:.2f}, robot at {robot}"
         assert not sent.done, sent.status  # follow_point runs until canceled
-        ahead = (await world.obstacle(target)).x - far.x
-        assert 0.5 < ahead < 2.5, f"target {ahead:.2f} m ahead of the robot"
         await sent.cancel(timeout=10.0)
         assert sent.status is GoalState.CANCELED
     finally:
