@@ -72,6 +72,7 @@ from aiobt.msgs.nav import (
     WaypointState,
     WaypointStatus,
 )
+from aiobt.msgs.route import Route, RouteEdge, RouteNode
 from aiobt.msgs.services import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -82,7 +83,7 @@ from aiobt.msgs.services import (
     ReinitializeGlobalLocalization,
 )
 from aiobt.msgs.sim import Clock
-from aiobt.msgs.std import String
+from aiobt.msgs.std import String, Trigger
 from aiobt.msgs.strings import (
     goals_from_string,
     goals_to_string,
@@ -150,12 +151,16 @@ __all__ = [
     "PowerSupplyStatus",
     "Quaternion",
     "ReinitializeGlobalLocalization",
+    "Route",
+    "RouteEdge",
+    "RouteNode",
     "SmoothPath",
     "SmoothPathError",
     "Spin",
     "SpinError",
     "String",
     "TrackingFeedback",
+    "Trigger",
     "Twist",
     "Vector3",
     "Wait",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import json
-from typing import Any, ClassVar, Self
+from typing import Any, ClassVar, Self, TypeAlias
 
 from aiobt.msgs._base import Msg
 
@@ -35,3 +35,19 @@ class String(Msg):
         if isinstance(value, str):
             return cls(data=value)
         return cls.model_validate(value)
+
+
+class _TriggerRequest(Msg):
+    """``std_srvs/Trigger`` request: empty."""
+
+
+class _TriggerResponse(Msg):
+    success: bool = False
+    message: str = ""
+
+
+class Trigger:
+    """``std_srvs/Trigger``: do something, say whether it worked (PauseResumeController)."""
+
+    Request: TypeAlias = _TriggerRequest
+    Response: TypeAlias = _TriggerResponse

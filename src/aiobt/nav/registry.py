@@ -12,6 +12,7 @@ from aiobt.core.node import TreeNode
 from aiobt.nav.actions import ACTION_NODES
 from aiobt.nav.cancel import CANCEL_NODES
 from aiobt.nav.context import NavContext, NavNode
+from aiobt.nav.control import CONTROL_NODES
 from aiobt.nav.decorators import DECORATOR_NODES
 from aiobt.nav.path import PATH_NODES
 from aiobt.nav.selectors import SELECTOR_NODES
@@ -33,6 +34,7 @@ NAV2_NODES: tuple[type[TreeNode], ...] = (
     *STATE_NODES,
     *PATH_NODES,
     *DECORATOR_NODES,
+    *CONTROL_NODES,
 )
 
 # Registered under an ID other than the class name (e.g. Nav2 aliases).

@@ -53,3 +53,12 @@ def aggregate_error(blackboard: Blackboard, prefixes: Iterable[str]) -> tuple[in
             message = blackboard.get(f"{prefix}_error_msg", "")
             found = (code, str(message) if message is not None else "")
     return found
+
+
+def clear_error_codes(blackboard: Blackboard, prefixes: Iterable[str]) -> None:
+    """Every ``{prefix}_error_code`` 0 and ``{prefix}_error_msg`` empty, as bt_navigator
+    leaves them between goals (conditions such as WouldAControllerRecoveryHelp read
+    them before the action that writes them has run)."""
+    for prefix in prefixes:
+        blackboard.set(f"{prefix}_error_code", 0)
+        blackboard.set(f"{prefix}_error_msg", "")

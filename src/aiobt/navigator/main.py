@@ -102,6 +102,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
         default_to_pose_tree=args.default_tree,
         default_through_poses_tree=args.default_through_tree,
         bt_loop_duration=args.bt_loop_duration,
+        clock_timeout=args.clock_timeout if args.sim_time else None,
         btlog_dir=args.btlog_dir,
     )
     stream = TreeStatusStream(BusStatusSink(bus))

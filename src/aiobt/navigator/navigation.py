@@ -15,11 +15,12 @@ import logging
 from typing import TYPE_CHECKING, Protocol
 
 from aiobt.core.blackboard import Blackboard
+from aiobt.core.errors import BehaviorTreeError
 from aiobt.core.status import FAILURE, SUCCESS, Status
 from aiobt.core.tree import Tree
 from aiobt.loggers.btlog import BtlogLogger
 from aiobt.msgs import ActionResult, Msg, NavigateThroughPoses, NavigateToPose, Path
-from aiobt.navigator.errors import aggregate_error
+from aiobt.navigator.errors import aggregate_error, clear_error_codes
 from aiobt.navigator.goals import NavRequest
 from aiobt.navigator.progress import PathProgress, time_remaining
 from aiobt.navigator.trees import TreeLoadFailure
@@ -59,6 +60,7 @@ class Navigation:
         self._stop: ActionResult | None = None
         self._progress = PathProgress()
         self._btlog: BtlogLogger | None = None
+        self._stalled = False
 
     # -- control from outside ----------------------------------------------------------
     def stop(self, reason: str) -> None:
@@ -101,7 +103,11 @@ class Navigation:
         while True:
             tree = self.tree
             assert tree is not None
-            status = await tree.tick_once()
+            try:
+                status = await tree.tick_once()
+            except BehaviorTreeError as exc:  # a node's error: this goal fails, we go on
+                log.error("goal %s: %s", self.request.goal_id, exc)
+                return ActionResult(error_code=error_codes(self.request)[0], error_msg=str(exc))
             self.ticks += 1
             self.navigator.stream.flush()
             if status is SUCCESS or status is FAILURE:
@@ -110,9 +116,23 @@ class Navigation:
                 return self._stop
             await self._take_newer_goal()
             self.channel.publish_feedback(self._feedback())
-            await tree.wait_for_wake_up(period)
+            await self._wait(tree, period)
             if self._stop is not None:
                 return self._stop
+
+    async def _wait(self, tree: Tree, period: float) -> None:
+        """The loop period on the clock, or a wake-up; a clock that stalls (a simulation
+        that stopped) for ``clock_timeout`` wall seconds lets the loop go on anyway,
+        so that cancel and preemption are still served."""
+        bound = self.navigator.options.clock_timeout
+        try:
+            await asyncio.wait_for(tree.wait_for_wake_up(period), bound)
+        except TimeoutError:
+            if not self._stalled:
+                log.warning(
+                    "goal %s: the clock has not moved for %g s", self.request.goal_id, bound
+                )
+            self._stalled = True
 
     def _result(self, status: Status | ActionResult, unknown: int) -> ActionResult:
         if status is SUCCESS:
@@ -172,6 +192,7 @@ class Navigation:
         blackboard.set(key, value)
         blackboard.set("path", Path())
         blackboard.set("number_recoveries", 0)
+        clear_error_codes(blackboard, self.navigator.options.error_code_prefixes)
         tree = self.navigator.library.load(source, blackboard, self.navigator.clock)
         self.tree, self.tree_source = tree, source
         self.navigator.stream.attach(tree, action=request.action, source=source)

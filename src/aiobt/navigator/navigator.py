@@ -40,11 +40,16 @@ class RobotState(Protocol):
 
 @dataclass(slots=True)
 class NavigatorOptions:
-    """bt_navigator's parameters: default trees, loop period, error-code prefixes, logs."""
+    """bt_navigator's parameters: default trees, loop period, error-code prefixes, logs.
+
+    ``clock_timeout``: wall seconds the tick loop waits for a clock that does not
+    move (a stopped simulation) before it ticks anyway.
+    """
 
     default_to_pose_tree: str = str(DEFAULT_TO_POSE_TREE)
     default_through_poses_tree: str = str(DEFAULT_THROUGH_POSES_TREE)
     bt_loop_duration: float = DEFAULT_BT_LOOP_DURATION
+    clock_timeout: float | None = None  # wall s; None: wait for the clock however long
     error_code_prefixes: tuple[str, ...] = ERROR_CODE_PREFIXES
     btlog_dir: Path | None = None
 

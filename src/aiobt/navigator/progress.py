@@ -53,7 +53,7 @@ class PathProgress:
         assert self._steps is not None
         start = self._index
         ahead = np.cumsum(self._steps[start:])
-        stop = start + int(np.searchsorted(ahead, self.search_window)) + 1
+        stop = min(start + int(np.searchsorted(ahead, self.search_window)) + 1, len(self._steps))
         a, b = self._points[start:stop], self._points[start + 1 : stop + 1]
         robot = np.array((pose.pose.position.x, pose.pose.position.y))
         seg = b - a

@@ -47,12 +47,17 @@ def to_request(action: str, goal_id: str, goal: Any) -> NavRequest:
     return NavRequest(action, goal_id, poses, goal.behavior_tree)
 
 
+def _keep_latest(message: Msg) -> None:
+    """A subscription callback that does nothing: the subscription keeps ``latest``."""
+
+
 class BusRobotState:
     """The robot's map pose (``{ns}/pose``) and speed (``{ns}/odom``), latest values."""
 
     def __init__(self, bus: Bus) -> None:
-        self._pose = bus.subscribe("pose", PoseStamped, queue_size=1)
-        self._odom = bus.subscribe("odom", Odometry, queue_size=1)
+        # a callback keeps ``latest`` and queues nothing
+        self._pose = bus.subscribe("pose", PoseStamped, _keep_latest)
+        self._odom = bus.subscribe("odom", Odometry, _keep_latest)
 
     def current_pose(self) -> PoseStamped | None:
         return self._pose.latest

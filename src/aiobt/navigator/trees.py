@@ -56,10 +56,14 @@ class TreeLibrary:
         except BehaviorTreeError as exc:
             log.warning("skipping tree file %s: %s", file, exc)
             return
+        if not ids:  # e.g. a <TreeNodesModel> file
+            log.debug("skipping %s: no BehaviorTree", file)
+            return
         taken = [tree_id for tree_id in ids if tree_id in self.factory.definitions]
-        if not ids or taken:
-            why = f"ID(s) {', '.join(taken)} already registered" if taken else "no BehaviorTree"
-            log.warning("skipping tree file %s: %s", file, why)
+        if taken:
+            log.warning(
+                "skipping tree file %s: ID(s) %s already registered", file, ", ".join(taken)
+            )
             return
         self.factory.register_behavior_tree_from_file(file)
 

@@ -7,7 +7,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from aiobt.core.clock import SystemClock
+from aiobt.core.clock import Clock, SystemClock
 from aiobt.core.leaves import AsyncActionNode
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
@@ -153,7 +153,13 @@ class Rig:
     tree_dir: Path
 
 
-def make_rig(tmp_path: Path, trees: dict[str, str], btlog_dir: Path | None = None) -> Rig:
+def make_rig(
+    tmp_path: Path,
+    trees: dict[str, str],
+    btlog_dir: Path | None = None,
+    clock: Clock | None = None,
+    clock_timeout: float | None = None,
+) -> Rig:
     """A navigator whose trees (by ID; files in ``tmp_path/trees``) run Gate leaves.
 
     The default trees are ``ToPose`` and ``ThroughPoses`` (both must be in ``trees``).
@@ -166,7 +172,8 @@ def make_rig(tmp_path: Path, trees: dict[str, str], btlog_dir: Path | None = Non
         default_to_pose_tree="ToPose",
         default_through_poses_tree="ThroughPoses",
         btlog_dir=btlog_dir,
+        clock_timeout=clock_timeout,
     )
     stream = TreeStatusStream(sink)
-    navigator = Navigator(library, robot, SystemClock(), stream, settings)
+    navigator = Navigator(library, robot, clock or SystemClock(), stream, settings)
     return Rig(navigator, gates, sink, robot, tree_dir)

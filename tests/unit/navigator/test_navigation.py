@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import asyncio
+import logging
 from pathlib import Path
 
 import pytest
 
+from aiobt.core.clock import ManualClock
 from aiobt.core.status import Status
 from aiobt.msgs import ActionResult, OccupancyGrid, Point, Pose, PoseStamped
 from aiobt.navigator import NAVIGATE_TO_POSE, MapBounds, NavRequest
@@ -221,3 +223,45 @@ async def test_a_btlog_per_navigation(tmp_path: Path) -> None:
         "navigate_to_pose_b.btlog",
     ]
     assert all(f.read_bytes().startswith(b"BTCPP4-FileLogger2") for f in files)
+
+
+async def test_a_stalled_clock_does_not_stall_the_loop(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    rig = make_rig(tmp_path, TREES, clock=ManualClock(), clock_timeout=0.1)
+    channel = FakeChannel()
+    task = start(rig, to_pose("first"), channel)
+    await rig.gates.wait_started("drive")
+    navigation = rig.navigator.current
+    assert navigation is not None
+    channel.newer.append(to_pose("second", 4.0, 4.0))  # no wake-up: seen on the next loop
+    with caplog.at_level(logging.WARNING, "aiobt.navigator.navigation"):
+        await channel.next_feedback()
+        await channel.next_feedback()
+    assert navigation.request.goal_id == "second"
+    assert "the clock has not moved for 0.1 s" in caplog.text
+    rig.gates.open("drive")
+    assert (await asyncio.wait_for(task, WAIT)).error_code == 0
+
+
+async def test_error_codes_start_cleared_and_a_node_error_fails_only_that_goal(
+    tmp_path: Path,
+) -> None:
+    reads_codes = (
+        '<Fallback><WouldAControllerRecoveryHelp error_code="{follow_path_error_code}"/>'
+        '<Gate name="drive"/></Fallback>'
+    )
+    broken = '<WouldAControllerRecoveryHelp error_code="{never_set}"/>'
+    rig = make_rig(tmp_path, {**TREES, "Reads": reads_codes, "Broken": broken})
+    task = start(rig, to_pose("reads", tree="Reads"))
+    await rig.gates.wait_started("drive")  # the condition read 0: no recovery would help
+    rig.gates.open("drive")
+    assert (await asyncio.wait_for(task, WAIT)).error_code == 0
+    result = await asyncio.wait_for(start(rig, to_pose("broken", tree="Broken")), WAIT)
+    assert result.error_code == 9000
+    assert "WouldAControllerRecoveryHelp" in result.error_msg
+    assert "never_set" in result.error_msg
+    task = start(rig, to_pose("after"))
+    await rig.gates.wait_started("drive")
+    rig.gates.open("drive")
+    assert (await asyncio.wait_for(task, WAIT)).error_code == 0

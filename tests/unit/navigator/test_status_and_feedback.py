@@ -111,6 +111,10 @@ def test_path_progress_follows_the_robot_and_restarts_on_a_new_path() -> None:
     assert progress.distance_remaining(path, pose(0.5, 0.0)) == pytest.approx(2.0)
     assert progress.distance_remaining(straight_path(0, 1, 2), pose(0.2, 0.0)) == pytest.approx(2.0)
     assert progress.distance_remaining(straight_path(7), pose(4.0, 4.0)) == pytest.approx(5.0)
+    # a path shorter than the search window: every segment is searched
+    short = straight_path(0, 0.5, 1.0)
+    assert progress.distance_remaining(short, pose(0.9, 0.0)) == pytest.approx(0.5)
+    assert progress.distance_remaining(short, pose(1.5, 0.0)) == pytest.approx(0.5)
     assert progress.distance_remaining(PathMsg(), pose(0, 0)) is None
     assert progress.distance_remaining(None, pose(0, 0)) is None
 

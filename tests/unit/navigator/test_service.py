@@ -1,0 +1,102 @@
+"""The navigator service on an in-process bus: actions, goal_pose, the status stream."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+from pathlib import Path
+
+import pytest
+
+from aiobt.core.clock import SystemClock
+from aiobt.msgs import BtSnapshot, BtTree, GoalState, NavigateThroughPoses, NavigateToPose
+from aiobt.navigator.service import BusStatusSink, NavigatorService
+from aiobt.transport import Bus
+
+from .harness import WAIT, Rig, make_rig, pose
+
+TREES = {"ToPose": '<Gate name="drive"/>', "ThroughPoses": '<Gate name="tour"/>'}
+
+
+async def serve(rig: Rig, bus: Bus) -> NavigatorService:
+    rig.navigator.stream.sink = BusStatusSink(bus)
+    service = NavigatorService(bus, rig.navigator, SystemClock())
+    service.start(snapshot_period=0.2)
+    return service
+
+
+@pytest.mark.timeout(60)
+async def test_navigate_to_pose_over_the_bus(local_bus: Bus, tmp_path: Path) -> None:
+    rig = make_rig(tmp_path, TREES)
+    service = await serve(rig, local_bus)
+    try:
+        trees = local_bus.subscribe("bt/tree", BtTree, latched=True)
+        snapshots = local_bus.subscribe("bt/snapshot", BtSnapshot)
+        client = local_bus.action_client("navigate_to_pose", NavigateToPose)
+        goal = await client.send_goal(NavigateToPose.Goal(pose=pose(1, 2)), server_timeout=WAIT)
+        await rig.gates.wait_started("drive")
+        feedback = await asyncio.wait_for(anext(goal.feedback()), WAIT)
+        assert feedback.navigation_time >= 0.0
+        structure = await trees.next(timeout=WAIT)
+        assert structure.tree_id == "ToPose"
+        snapshot = await snapshots.next(timeout=WAIT)
+        while snapshot.state != "navigating":
+            snapshot = await snapshots.next(timeout=WAIT)
+        assert snapshot.goal_id == goal.goal_id
+        rig.gates.open("drive")
+        result = await goal.result(timeout=WAIT)
+        assert result.error_code == 0
+    finally:
+        await service.aclose()
+
+
+@pytest.mark.timeout(60)
+async def test_goal_pose_starts_a_navigation_and_cancel_stops_it(
+    local_bus: Bus, tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    rig = make_rig(tmp_path, TREES)
+    service = await serve(rig, local_bus)
+    key = local_bus.keys.topic("goal_pose")
+    try:
+        with caplog.at_level(logging.WARNING):
+            local_bus.session.put(key, b'{"x": "twelve", "y": 4, "yaw": 0}')
+            local_bus.session.put(key, b'{"x": 3.5, "y": -1, "yaw": 0.5}')
+            await rig.gates.wait_started("drive")
+        assert "PoseStamped field 'x'" in caplog.text
+        navigation = rig.navigator.current
+        assert navigation is not None
+        assert navigation.request.poses[0].pose.position.x == 3.5
+        assert navigation.request.poses[0].pose.position.y == -1
+        client = local_bus.action_client("navigate_to_pose", NavigateToPose)
+        canceled = await client.cancel_all(timeout=WAIT)
+        assert canceled == [navigation.request.goal_id]
+        for _ in range(200):
+            if rig.gates.halts.get("drive"):
+                break
+            await asyncio.sleep(0.02)
+        assert rig.gates.halts["drive"] == 1
+    finally:
+        await service.aclose()
+
+
+@pytest.mark.timeout(60)
+async def test_a_second_goal_of_the_same_action_takes_the_navigation_over(
+    local_bus: Bus, tmp_path: Path
+) -> None:
+    rig = make_rig(tmp_path, TREES)
+    service = await serve(rig, local_bus)
+    try:
+        client = local_bus.action_client("navigate_through_poses", NavigateThroughPoses)
+        poses = {"goals": [pose(1, 1).model_dump(), pose(2, 2).model_dump()]}
+        make = NavigateThroughPoses.Goal.model_validate
+        first = await client.send_goal(make({"poses": poses}), server_timeout=WAIT)
+        await rig.gates.wait_started("tour")
+        second = await client.send_goal(make({"poses": poses}), server_timeout=WAIT)
+        old = await first.result(timeout=WAIT)
+        assert "preempted" in old.error_msg
+        assert (await client.fetch_result(first.goal_id))[0] is GoalState.ABORTED
+        rig.gates.open("tour")
+        assert (await second.result(timeout=WAIT)).error_code == 0
+        assert rig.gates.halts.get("tour", 0) == 0  # the same tree went on
+    finally:
+        await service.aclose()
