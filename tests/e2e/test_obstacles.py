@@ -17,7 +17,6 @@ from pathlib import Path
 import pytest
 
 from aiobt.msgs import (
-    ComputePathToPoseError,
     FollowPathError,
     GoalState,
     PoseStamped,
@@ -35,10 +34,11 @@ FOLLOW_POINT = "nav2/follow_point.xml"
 PAUSE_NEAR_GOAL = "nav_to_pose_and_pause_near_goal_obstacle.xml"
 CORRIDOR_EAST = (18.5, 9.75, 0.0)
 EAST_DOOR = (16.5, 8.5)  # the south-east room's door
-EAST_ROOM = (16.5, 7.2, -math.pi / 2)  # 1.3 m inside it: the long way round is ~17 m
+EAST_ROOM = (16.5, 7.3, -math.pi / 2)  # 1.2 m inside it: the long way round is ~17 m
 SOUTH_MIDDLE_ROOM = (10.0, 6.0, 0.0)
 FENCE_YS = (8.95, 9.75, 10.55)  # three 0.9 m boxes: wall to wall across the corridor
 RECOVERY_CYCLE = ("ClearingActions", "Spin", "Wait", "BackUp")  # Nav2's RoundRobin order
+COUNTED_AS_RECOVERY = ("ClearEntireCostmap", "Spin", "Wait", "BackUp")  # by node ID
 LEAVES = ("compute_path_to_pose", "follow_path", "spin", "backup", "wait")
 
 
@@ -67,7 +67,7 @@ async def test_replans_around_a_corridor_blocked_after_planning(world: World, go
     assert not [c for c in contacts if c.pressed], contacts
 
 
-@pytest.mark.timeout(150)
+@pytest.mark.timeout(240)
 async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_navigates(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
@@ -78,18 +78,18 @@ async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_na
     seen = await world.track.wait_for(lambda s: s.stamp >= here.stamp + 1.0, 20.0)
     assert seen is not None  # a second of sim time: ten scans saw the boxes
 
-    done = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=120.0)
+    done = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=200.0)
 
     assert done.state is GoalState.ABORTED, done.result
     codes = [goals.last_code.get(leaf, 0) for leaf in LEAVES]
     assert done.result.error_code == min(c for c in codes if c), (done.result, codes)
-    known = {int(c) for c in (*ComputePathToPoseError, *FollowPathError)}
-    assert done.result.error_code in known, done.result
+    assert done.result.error_code in {int(c) for c in FollowPathError}, done.result
     assert done.result.error_msg
     order = tree.activations(RECOVERY_CYCLE)
     assert len(order) >= len(RECOVERY_CYCLE), order
     assert order == [RECOVERY_CYCLE[i % 4] for i in range(len(order))], order
-    assert done.recoveries >= 3, [f.number_of_recoveries for f in done.feedback]
+    counted = len(tree.activations(COUNTED_AS_RECOVERY))  # Nav2: one per activation of these
+    assert done.recoveries == counted, [f.number_of_recoveries for f in done.feedback]
     for behavior in ("spin", "wait", "backup"):
         assert goals.states[behavior], f"no {behavior} goal was sent"
     assert await goals.wait_idle(5.0), goals.active()
@@ -165,8 +165,8 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
     running = await world.start(*EAST_ROOM, tree=str(TREES / PAUSE_NEAR_GOAL))
-    # the path left is under prox_len (3 m) from here, even planned half a metre back
-    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 1.2, 90.0)
+    # the path left is well under prox_len (3 m) from here, even planned 1 s (0.5 m) back
+    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 0.9, 90.0)
     assert near is not None, f"the robot never came near the door: at {world.track.latest}"
     since = len(world.track.samples)
     door = await world.spawn(*EAST_DOOR, size_x=0.8, size_y=0.3)  # the short way in is shut
