@@ -9,11 +9,14 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
+from collections import deque
 from dataclasses import dataclass
 from enum import Enum
 
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import STOP, Pose2D, Velocity
+
+MAX_LEAD = 2.0  # s: a longer command-to-motion delay is not compensated
 
 
 class Outcome(Enum):
@@ -45,6 +48,7 @@ class Inputs:
     pose_stamp: float = -math.inf
     teleop: Velocity | None = None
     teleop_stamp: float = -math.inf
+    lead: float = 0.0  # clock s from ``pose`` until a command sent now acts on the base
 
 
 @dataclass(slots=True, frozen=True)
@@ -64,11 +68,12 @@ class BehaviorStep:
 
 @dataclass(slots=True)
 class Safety:
-    """Shared knobs: how far ahead to check, and when a pose is too old."""
+    """Shared knobs: how far ahead to check, when a pose is too old, the cycle period."""
 
     simulate_ahead_time: float = 2.0
     pose_timeout: float = 0.5
     initial_pose_wait: float = 1.0  # a goal may arrive before the first odometry does
+    cycle_period: float = 0.05  # s between two steps (the service's rate)
 
 
 def require_finite(name: str, value: float) -> float:
@@ -91,7 +96,7 @@ class TimedBehavior(ABC):
     allowance of 0 means no limit (Nav2's TimedBehavior).
     """
 
-    __slots__ = ("_collision", "_started", "safety", "time_allowance")
+    __slots__ = ("_collision", "_sent", "_started", "safety", "time_allowance")
 
     def __init__(
         self, time_allowance: float, collision: CollisionChecker | None, safety: Safety | None
@@ -100,6 +105,7 @@ class TimedBehavior(ABC):
         self._collision = collision
         self.safety = safety or Safety()
         self._started: float | None = None
+        self._sent: deque[tuple[float, float]] = deque()
 
     def elapsed(self, now: float) -> float:
         return 0.0 if self._started is None else now - self._started
@@ -135,6 +141,37 @@ class TimedBehavior(ABC):
     def progress(self) -> float:
         """The feedback figure (distance, angle or time) so far."""
         return 0.0
+
+    def sent(self, now: float, speed: float) -> None:
+        """Record the speed (m/s or rad/s) commanded at ``now``, for :meth:`in_flight`."""
+        history = self._sent
+        history.append((now, abs(speed)))
+        while len(history) > 1 and history[1][0] <= now - MAX_LEAD:
+            history.popleft()
+
+    def in_flight(self, now: float, lead: float) -> float:
+        """Travel (m or rad) still to come from commands already sent: the base acts on
+        each ``lead`` s late, so it still runs through the commands of the last ``lead`` s."""
+        start, end, total = now - min(lead, MAX_LEAD), now, 0.0
+        for stamp, speed in reversed(self._sent):
+            total += speed * max(0.0, end - max(stamp, start))
+            end = stamp
+            if stamp <= start:
+                break
+        return total
+
+    @staticmethod
+    def approach_floor(minimum: float, lead: float, approach_error: float) -> float:
+        """The lowest speed of the final approach: ``minimum``, but at most
+        ``approach_error / lead``, so a delay off by its whole estimate (a loaded
+        machine under a sim speed-up) misses the stop by at most ``approach_error``."""
+        return minimum if lead <= 0.0 else min(minimum, approach_error / lead)
+
+    def stop_ahead(self, now: float, lead: float, speed: float) -> float:
+        """Travel before a stop sent now acts (:meth:`in_flight`) plus half a cycle at
+        ``speed``: stopping once the rest of the way is within this keeps the error
+        within half a cycle's travel, whatever the loop's delay."""
+        return self.in_flight(now, lead) + 0.5 * abs(speed) * self.safety.cycle_period
 
     def fail(self, outcome: Outcome, message: str) -> BehaviorStep:
         return BehaviorStep(STOP, self.progress(), done=True, outcome=outcome, message=message)

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import STOP, Pose2D, Velocity
 
@@ -16,16 +19,31 @@ from .base import (
 )
 
 
-class DriveOnHeading(TimedBehavior):
-    """Drives ``distance`` m along the current heading at ``speed`` m/s (signs must agree).
+@dataclass(slots=True, frozen=True)
+class DriveParams:
+    """Nav2's behavior-server parameters of drive_on_heading and backup (its defaults)."""
 
+    acceleration_limit: float = 2.5  # m/s^2
+    deceleration_limit: float = 2.5  # m/s^2 (Nav2 writes it negative: -2.5)
+    minimum_speed: float = 0.10  # m/s: slower commands are raised to this
+    approach_error: float = 0.006  # m: bounds the final approach by the delay (not Nav2's)
+
+
+class DriveOnHeading(TimedBehavior):
+    """Drives ``distance`` m along the current heading at ``speed`` m/s (Nav2's rules).
+
+    ``distance`` and ``speed`` must have the same sign (both negative: backwards).
     The distance travelled is the straight-line distance from the pose at the
-    first cycle (Nav2's accounting). Before each cycle the rest of the way (at
-    most ``simulate_ahead_time`` at ``speed``) is checked; a collision fails the
-    goal with COLLISION_AHEAD before the robot gets there.
+    first cycle. The speed ramps within the acceleration limits, slows so that
+    it can stop at the end (``sqrt(2 a d)``) and is never below
+    ``minimum_speed`` (lowered to ``approach_error / lead`` when the loop's delay
+    is long, as under a sim speed-up). The stop is sent where the base, still moving for the
+    loop's ``lead``, ends at the distance. Each cycle the rest of the
+    way (at most ``simulate_ahead_time`` plus the lead at the speed) is checked;
+    a collision fails the goal with COLLISION_AHEAD before the robot gets there.
     """
 
-    __slots__ = ("_start", "_traveled", "distance", "speed")
+    __slots__ = ("_last", "_start", "_traveled", "distance", "params", "speed")
 
     def __init__(
         self,
@@ -34,18 +52,22 @@ class DriveOnHeading(TimedBehavior):
         time_allowance: float = 10.0,
         collision: CollisionChecker | None = None,
         safety: Safety | None = None,
+        params: DriveParams | None = None,
     ) -> None:
         super().__init__(time_allowance, collision, safety)
         self.distance = require_finite("distance", distance)
         self.speed = require_finite("speed", speed)
         if speed == 0.0:
             raise BehaviorInputError("speed must not be 0")
-        if distance * speed < 0.0:
+        if (distance > 0.0) != (speed > 0.0):
             raise BehaviorInputError(
-                f"speed ({speed}) and distance ({distance}) must have the same sign"
+                f"speed ({speed}) and distance ({distance}) must have the same sign "
+                "(both negative to drive backwards)"
             )
+        self.params = params or DriveParams()
         self._start: Pose2D | None = None
         self._traveled = 0.0
+        self._last = 0.0
 
     def progress(self) -> float:
         return self._traveled
@@ -55,19 +77,38 @@ class DriveOnHeading(TimedBehavior):
             self._start = pose
         self._traveled = pose.distance_to(self._start)
         remaining = abs(self.distance) - self._traveled
-        if remaining <= 0.0:
+        coming = self.in_flight(inputs.now, inputs.lead)
+        if remaining <= self.stop_ahead(inputs.now, inputs.lead, self._last):
+            self._last = 0.0
             return BehaviorStep(STOP, self._traveled, done=True)
-        cmd = Velocity(self.speed, 0.0)
+        cmd = Velocity(self._next_speed(max(0.0, remaining - coming), inputs.lead), 0.0)
         checker = self.collision()
         if checker is not None:
-            check = checker.check_arc(pose, cmd, self.safety.simulate_ahead_time, remaining)
+            horizon = self.safety.simulate_ahead_time + inputs.lead
+            check = checker.check_arc(pose, cmd, horizon, remaining)
             if check.collides:
-                ahead = abs(self.speed) * check.time_to_collision
+                away = abs(cmd.v) * check.time_to_collision
                 return self.fail(
                     Outcome.COLLISION_AHEAD,
-                    f"collision ahead: obstacle {ahead:.2f} m away along the drive",
+                    f"collision ahead: obstacle {away:.2f} m away along the drive",
                 )
+        self._last = cmd.v
+        self.sent(inputs.now, cmd.v)
         return BehaviorStep(cmd, self._traveled)
+
+    def _next_speed(self, remaining: float, lead: float) -> float:
+        """Nav2's: the speed (raised to ``minimum_speed``) within the acceleration limits,
+        then slowed to ``sqrt(2 a d)`` to stop at the end, down to the approach floor."""
+        p, period = self.params, self.safety.cycle_period
+        current = abs(self._last)
+        raised = max(abs(self.speed), p.minimum_speed)
+        ramped = min(
+            max(raised, current - p.deceleration_limit * period),
+            current + p.acceleration_limit * period,
+        )
+        floor = self.approach_floor(p.minimum_speed, lead, p.approach_error)
+        stopping = math.sqrt(2.0 * p.deceleration_limit * remaining)
+        return math.copysign(max(min(ramped, stopping), floor), self.speed)
 
 
 def back_up(
@@ -83,4 +124,4 @@ def back_up(
     return DriveOnHeading(-abs(distance), -abs(speed), time_allowance, collision, safety)
 
 
-__all__ = ["DriveOnHeading", "back_up"]
+__all__ = ["DriveOnHeading", "DriveParams", "back_up"]

@@ -58,7 +58,7 @@ async def serve(args: argparse.Namespace) -> None:
         )
         BehaviorService(bus, clock, local_costmap_from(args), options).start()
 
-    await serve_on_clock(args, "behaviors", start)
+    await serve_on_clock(args, "behaviors", start, logger=log)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import IntEnum
 from typing import Any, Protocol
 
@@ -103,7 +103,9 @@ class BehaviorService:
         self.clock = clock
         self.costmap = costmap or LocalCostmap()
         self.options = options or BehaviorOptions()
-        self.safety = self.options.safety or Safety()
+        self.safety = replace(
+            self.options.safety or Safety(), cycle_period=self.options.cycle_period
+        )
         self.tracker = RobotTracker(clock, self.costmap)
         self._shift = FrameShift(self.costmap)
         self.checker = CollisionChecker(self._shift)
@@ -160,11 +162,12 @@ class BehaviorService:
         try:
             result = await self._loop(spec, behavior, run, handle, started)
             log.info(
-                "%s: goal %s ended %d %s",
+                "%s: goal %s ended %d %s (command-to-odometry delay %.3f s)",
                 spec.name,
                 handle.goal_id,
                 result.error_code,
                 result.error_msg,
+                self.tracker.delay.estimate,
             )
             return result
         finally:
@@ -207,6 +210,7 @@ class BehaviorService:
                 return self._result(spec, Outcome.TF_ERROR, message, started)
 
     def _inputs(self) -> Inputs:
+        self.tracker.refresh_costmap()
         states = self.tracker.states
         odom = states.get("odom")
         if odom is not None and "map" in states:
@@ -218,6 +222,7 @@ class BehaviorService:
             pose_stamp=odom.stamp if odom else float("-inf"),
             teleop=teleop,
             teleop_stamp=teleop_stamp,
+            lead=self.tracker.lead("odom"),
         )
 
     def _result(self, spec: ActionSpec, outcome: Outcome, message: str, started: float) -> Any:
@@ -228,3 +233,4 @@ class BehaviorService:
     def _publish(self, cmd: Velocity) -> None:
         if self._cmd is not None:
             self._cmd.put(twist_of(cmd))
+            self.tracker.sent(cmd)

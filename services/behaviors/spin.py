@@ -17,6 +17,7 @@ class SpinParams:
     min_rotational_vel: float = 0.4
     rotational_acc_lim: float = 3.2
     angle_tolerance: float = 0.02
+    approach_error: float = 0.015  # rad: bounds the final approach by the delay (not Nav2's)
 
 
 class SpinBehavior(TimedBehavior):
@@ -24,11 +25,14 @@ class SpinBehavior(TimedBehavior):
 
     The angle turned is accumulated from wrapped yaw differences, so crossing
     +-pi or turning more than 2 pi is counted correctly. Speed follows
-    ``sqrt(2 a remaining)`` clamped to [min, max]. Fails COLLISION_AHEAD when
+    ``sqrt(2 a remaining)`` clamped to [min, max] (min lowered to
+    ``approach_error / lead`` when the loop's delay is long); the stop is sent where the
+    base, still turning for the loop's ``lead``, ends at the
+    target. Fails COLLISION_AHEAD when
     the robot's cell is in collision (a circular robot sweeps nothing new).
     """
 
-    __slots__ = ("_last_yaw", "_turned", "params", "target_yaw")
+    __slots__ = ("_last_w", "_last_yaw", "_turned", "params", "target_yaw")
 
     def __init__(
         self,
@@ -43,6 +47,7 @@ class SpinBehavior(TimedBehavior):
         self.params = params or SpinParams()
         self._turned = 0.0
         self._last_yaw: float | None = None
+        self._last_w = 0.0
 
     def progress(self) -> float:
         return abs(self._turned)
@@ -52,17 +57,25 @@ class SpinBehavior(TimedBehavior):
             self._turned += wrap_angle(pose.yaw - self._last_yaw)
         self._last_yaw = pose.yaw
         direction = math.copysign(1.0, self.target_yaw)
+        p = self.params
         remaining = abs(self.target_yaw) - self._turned * direction
-        if remaining <= self.params.angle_tolerance:
+        ahead = self.stop_ahead(inputs.now, inputs.lead, self._last_w)
+        if remaining <= max(ahead, p.angle_tolerance):
+            self._last_w = 0.0
             return BehaviorStep(STOP, self.progress(), done=True)
         checker = self.collision()
         if checker is not None and checker.pose_collides(pose):
             return self.fail(
                 Outcome.COLLISION_AHEAD, "collision ahead: the robot is in collision while spinning"
             )
-        p = self.params
+        coming = max(0.0, remaining - self.in_flight(inputs.now, inputs.lead))
         speed = min(
-            max(math.sqrt(2.0 * p.rotational_acc_lim * remaining), p.min_rotational_vel),
+            max(
+                math.sqrt(2.0 * p.rotational_acc_lim * coming),
+                self.approach_floor(p.min_rotational_vel, inputs.lead, p.approach_error),
+            ),
             p.max_rotational_vel,
         )
-        return BehaviorStep(Velocity(0.0, direction * speed), self.progress())
+        self._last_w = direction * speed
+        self.sent(inputs.now, speed)
+        return BehaviorStep(Velocity(0.0, self._last_w), self.progress())

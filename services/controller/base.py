@@ -17,6 +17,7 @@ class ControlContext:
     dt: float
     goal_xy_tolerance: float
     collision: CollisionChecker | None
+    lead: float = 0.0  # clock s until a command sent now acts (transport under a speed-up)
 
 
 class Controller(Protocol):

@@ -86,7 +86,7 @@ async def serve(args: argparse.Namespace) -> None:
         options = ServiceOptions(args.clock_timeout)
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 
-    await serve_on_clock(args, "controller", start, f" at {args.rate:g} Hz")
+    await serve_on_clock(args, "controller", start, f" at {args.rate:g} Hz", log)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -87,7 +87,7 @@ class RegulatedPurePursuit(PlanFollower):
             w = math.copysign(self.params.max_angular_vel, w)
             v = abs(w / curvature)
         cmd = Velocity(v, w)
-        self._check_arc(pose, cmd, math.hypot(*carrot), ctx.collision)
+        self._check_arc(pose, cmd, math.hypot(*carrot), ctx)
         self._last_w = w
         return cmd
 
@@ -156,15 +156,16 @@ class RegulatedPurePursuit(PlanFollower):
         return Velocity(0.0, w)
 
     def _check_arc(
-        self, pose: Pose2D, cmd: Velocity, carrot_dist: float, collision: CollisionChecker | None
+        self, pose: Pose2D, cmd: Velocity, carrot_dist: float, ctx: ControlContext
     ) -> None:
-        p = self.params
+        """Up to the carrot, plus the way the robot goes before this command acts (the lead),
+        so the stop keeps its margin under a sim speed-up."""
+        p, collision = self.params, ctx.collision
         if not p.use_collision_detection or collision is None:
             return
-        horizon = p.max_allowed_time_to_collision_up_to_carrot
-        check = collision.check_arc(
-            pose, cmd, horizon, max(carrot_dist, collision.costmap.resolution)
-        )
+        horizon = p.max_allowed_time_to_collision_up_to_carrot + ctx.lead
+        reach = max(carrot_dist, collision.costmap.resolution) + abs(cmd.v) * ctx.lead
+        check = collision.check_arc(pose, cmd, horizon, reach)
         if check.collides:
             raise no_valid_control(
                 f"RegulatedPurePursuit detected collision ahead "

@@ -142,14 +142,17 @@ class ControllerService:
                 )
 
     def _step(self, session: FollowPathSession) -> StepResult:
+        self.tracker.refresh_costmap()
         states = self.tracker.states
         if session.request.path.frame_id == "odom" and {"map", "odom"} <= states.keys():
             self._shift.transform = frame_transform(states["map"].pose, states["odom"].pose)
-        return session.step(self.clock.now(), states)
+        lead = self.tracker.lead(session.request.path.frame_id)
+        return session.step(self.clock.now(), states, lead)
 
     def _publish(self, cmd: Velocity) -> None:
         if self._cmd is not None:
             self._cmd.put(twist_of(cmd))
+            self.tracker.sent(cmd)
 
     def _feedback(self, step: StepResult, handle: Handle, frame_id: str) -> None:
         fb = step.feedback

@@ -161,13 +161,14 @@ class FollowPathSession:
         self._controller.set_plan(request.path)
         self._goal_checker.reset()
 
-    def step(self, now: float, states: Mapping[str, RobotState]) -> StepResult:
+    def step(self, now: float, states: Mapping[str, RobotState], lead: float = 0.0) -> StepResult:
+        """One control cycle; ``lead``: clock seconds until a command sent now takes effect."""
         try:
-            return self._step(now, states)
+            return self._step(now, states, lead)
         except ControllerError as error:
             return StepResult(STOP, error=error)
 
-    def _step(self, now: float, states: Mapping[str, RobotState]) -> StepResult:
+    def _step(self, now: float, states: Mapping[str, RobotState], lead: float) -> StepResult:
         cfg = self._config
         path = self._request.path
         if cfg.time_allowance > 0.0 and now - self._started > cfg.time_allowance:
@@ -185,7 +186,7 @@ class FollowPathSession:
             raise ControllerError(
                 FollowPathError.FAILED_TO_MAKE_PROGRESS, "failed to make progress"
             )
-        return StepResult(self._compute(now, state), feedback)
+        return StepResult(self._compute(now, state, lead), feedback)
 
     def _track(self, path: PlanarPath, pose: Pose2D) -> TrackingFeedback:
         # search forward from the last foot point, so a U-turn's return leg is not taken early
@@ -215,9 +216,12 @@ class FollowPathSession:
             )
         return state
 
-    def _compute(self, now: float, state: RobotState) -> Velocity:
+    def _compute(self, now: float, state: RobotState, lead: float) -> Velocity:
         ctx = ControlContext(
-            self._config.control_period, self._goal_checker.xy_goal_tolerance, self._collision
+            self._config.control_period,
+            self._goal_checker.xy_goal_tolerance,
+            self._collision,
+            lead,
         )
         try:
             cmd = self._controller.compute_velocity(state.pose, state.velocity, ctx)

@@ -79,8 +79,10 @@ from aiobt.msgs.services import (
     ClearCostmapExceptRegion,
     ClearCostmapResponse,
     ClearEntireCostmap,
+    GetCosts,
     IsPathValid,
     ReinitializeGlobalLocalization,
+    Toggle,
 )
 from aiobt.msgs.sim import Clock
 from aiobt.msgs.std import String, Trigger
@@ -129,6 +131,7 @@ __all__ = [
     "Empty",
     "FollowPath",
     "FollowPathError",
+    "GetCosts",
     "GoalState",
     "GoalStatus",
     "Goals",
@@ -159,6 +162,7 @@ __all__ = [
     "Spin",
     "SpinError",
     "String",
+    "Toggle",
     "TrackingFeedback",
     "Trigger",
     "Twist",

@@ -127,6 +127,12 @@ class _DriveGoal(Msg):
     disable_collision_checks: bool = False
 
 
+class _DriveOnHeadingGoal(_DriveGoal):
+    """``target.x`` and ``speed`` signed alike: both negative drive backwards (Nav2's rule)."""
+
+    speed: float = 0.025
+
+
 class _DriveFeedback(Msg):
     distance_traveled: float = 0.0
 
@@ -139,10 +145,10 @@ class BackUp(ActionDef[_DriveGoal, _ElapsedResult, _DriveFeedback]):
     Feedback: TypeAlias = _DriveFeedback
 
 
-class DriveOnHeading(ActionDef[_DriveGoal, _ElapsedResult, _DriveFeedback]):
+class DriveOnHeading(ActionDef[_DriveOnHeadingGoal, _ElapsedResult, _DriveFeedback]):
     name = "drive_on_heading"
     ErrorCode = errors.DriveOnHeadingError
-    Goal: TypeAlias = _DriveGoal
+    Goal: TypeAlias = _DriveOnHeadingGoal
     Result: TypeAlias = _ElapsedResult
     Feedback: TypeAlias = _DriveFeedback
 

@@ -107,3 +107,36 @@ class ReinitializeGlobalLocalization:
     service_name: ClassVar[str] = "reinitialize_global_localization"
     Request: TypeAlias = Empty
     Response: TypeAlias = _Acknowledgement
+
+
+class _GetCostsRequest(Msg):
+    use_footprint: bool = False
+    poses: list[PoseStamped] = Field(default_factory=list)
+
+
+class _GetCostsResponse(Msg):
+    costs: list[float] = Field(default_factory=list, description="one per pose, 0..255")
+    success: bool = True
+
+
+class GetCosts:
+    """The costs of a costmap at some poses (the robot's footprint there, or the point)."""
+
+    @staticmethod
+    def service_name(costmap: str) -> str:
+        """Nav2's default name, e.g. ``global_costmap/get_cost_global_costmap``."""
+        return f"{costmap}/get_cost_{costmap}"
+
+    Request: TypeAlias = _GetCostsRequest
+    Response: TypeAlias = _GetCostsResponse
+
+
+class _ToggleRequest(Msg):
+    enable: bool = True
+
+
+class Toggle:
+    """Switch a component on or off (Nav2's collision monitor ``toggle``)."""
+
+    Request: TypeAlias = _ToggleRequest
+    Response: TypeAlias = ClearCostmapResponse  # success and message, as nav2_msgs/Toggle

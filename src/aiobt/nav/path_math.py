@@ -12,7 +12,7 @@ from collections.abc import Sequence
 import numpy as np
 import numpy.typing as npt
 
-from aiobt.msgs import PoseStamped
+from aiobt.msgs import Path, PoseStamped
 
 
 def distance(a: PoseStamped, b: PoseStamped) -> float:
@@ -79,3 +79,37 @@ class PathGeometry:
                 dtype=np.float64,
             ).reshape(-1, 4)
         return self._quats
+
+
+class ClosestPoseSearch:
+    """Where the robot is along a path, tick after tick (Nav2's IsGoalNearby and
+    TruncatePathLocal): the search for the closest pose restarts at the path's start
+    unless ``limit`` bounds it and the path is the same as on the previous call, in
+    which case it continues from the previous closest pose and looks at most
+    ``limit`` metres further."""
+
+    __slots__ = ("_begin", "_path", "geometry")
+
+    def __init__(self) -> None:
+        self._path: Path | None = None
+        self._begin = 0
+        self.geometry = PathGeometry(())
+
+    def closest(
+        self, path: Path, pose: PoseStamped, limit: float, angular_weight: float = 0.0
+    ) -> int:
+        """Index of the pose of ``path`` closest to ``pose``; ``limit`` < infinity bounds
+        the search (and makes it continue from the previous result)."""
+        bounded = limit < math.inf
+        if path is not self._path:
+            if self._path is None or path != self._path:
+                self._begin = 0
+                self.geometry = PathGeometry(path.poses)
+            self._path = path
+        if not bounded:
+            self._begin = 0
+        end = self.geometry.first_after(self._begin, limit) if bounded else len(self.geometry)
+        found = self.geometry.closest(self._begin, end, pose, angular_weight)
+        if bounded:
+            self._begin = found
+        return found

@@ -57,7 +57,15 @@ class MapBounds:
         return f"x [{self.min_x:g}, {self.max_x:g}), y [{self.min_y:g}, {self.max_y:g})"
 
 
-def pose_problem(poses: Sequence[PoseStamped], bounds: MapBounds | None) -> str | None:
+@dataclass(frozen=True, slots=True)
+class PoseProblem:
+    """Why goal poses cannot be navigated to; ``outside_map``: the planner's GOAL_OUTSIDE_MAP."""
+
+    message: str
+    outside_map: bool = False
+
+
+def pose_problem(poses: Sequence[PoseStamped], bounds: MapBounds | None) -> PoseProblem | None:
     """Why these goal poses cannot be navigated to (naming the pose), or None.
 
     Frames other than ``map`` are refused (aiobt has no TF); a pose outside
@@ -65,13 +73,13 @@ def pose_problem(poses: Sequence[PoseStamped], bounds: MapBounds | None) -> str 
     gets here: the message models refuse it.
     """
     if not poses:
-        return "the goal has no poses"
+        return PoseProblem("the goal has no poses")
     for index, pose in enumerate(poses):
         where = f"pose {index}" if len(poses) > 1 else "the goal pose"
         frame = pose.header.frame_id
         if frame not in ("", GLOBAL_FRAME):
-            return f"{where} is in frame {frame!r}; only {GLOBAL_FRAME!r} is supported"
+            return PoseProblem(f"{where} is in frame {frame!r}; only {GLOBAL_FRAME!r} is supported")
         x, y = pose.pose.position.x, pose.pose.position.y
         if bounds is not None and not bounds.contains(x, y):
-            return f"{where} ({x:g}, {y:g}) is outside the map ({bounds})"
+            return PoseProblem(f"{where} ({x:g}, {y:g}) is outside the map ({bounds})", True)
     return None

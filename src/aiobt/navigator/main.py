@@ -16,7 +16,6 @@ from pathlib import Path
 from aiobt.core.clock import Clock
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.nav import register_nav2_nodes
-from aiobt.nav.context import DEFAULT_SERVER_TIMEOUT
 from aiobt.navigator.navigator import Navigator, NavigatorOptions
 from aiobt.navigator.service import BusRobotState, BusStatusSink, NavigatorService
 from aiobt.navigator.status import TreeStatusStream
@@ -38,6 +37,9 @@ from aiobt_services._cli import (
 from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
 
 log = logging.getLogger("aiobt.navigator.main")
+# s; more than the nodes' own default: a busy or just-started service (numpy warming
+# up, a 2-core machine) took over a second to accept its first goal
+SERVER_TIMEOUT = 5.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -76,9 +78,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add(
         "--server-timeout",
         type=positive,
-        default=DEFAULT_SERVER_TIMEOUT,
+        default=SERVER_TIMEOUT,
         metavar="SECONDS",
-        help="default server_timeout of the action leaves (default: %(default)s)",
+        help="how long an action leaf waits for its server to accept a goal, when the "
+        "tree does not say (default: %(default)s; a server that is gone is noticed "
+        "sooner, by its liveliness token)",
     )
     add(
         "--snapshot-period",

@@ -91,10 +91,10 @@ class Navigator:
         problem = pose_problem(request.poses, self.map_bounds)
         if problem is None:
             return None
-        code = ComputePathToPoseError.GOAL_OUTSIDE_MAP if "outside" in problem else None
+        outside = int(ComputePathToPoseError.GOAL_OUTSIDE_MAP)
         return ActionResult(
-            error_code=int(code) if code is not None else error_codes(request)[0],
-            error_msg=f"{request.action} goal {request.goal_id}: {problem}",
+            error_code=outside if problem.outside_map else error_codes(request)[0],
+            error_msg=f"{request.action} goal {request.goal_id}: {problem.message}",
         )
 
     async def navigate(self, request: NavRequest, channel: GoalChannel) -> ActionResult:

@@ -11,7 +11,7 @@ from aiobt.core.status import Status
 from aiobt.msgs import Wait
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
-from tests.unit.nav.leaf_support import nav_tree, tick_until_true
+from tests.unit.nav.support import nav_tree, tick_until_true
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(60)]
 Spawn = Callable[[Sequence[str]], ServiceProcess]

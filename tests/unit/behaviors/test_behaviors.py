@@ -84,12 +84,95 @@ def test_drive_on_heading_travels_the_distance_along_its_heading():
     robot = Unicycle(Pose2D(1.0, 1.0, math.pi / 4))
     step, now, commands = run(DriveOnHeading(0.5, 0.25), robot)
     assert step.succeeded
-    assert step.feedback == pytest.approx(0.5, abs=0.25 * DT + 1e-9)
-    assert robot.pose.distance_to(Pose2D(1.0, 1.0, 0.0)) == pytest.approx(0.5, abs=0.02)
+    assert step.feedback == pytest.approx(0.5, abs=0.01)
+    assert robot.pose.distance_to(Pose2D(1.0, 1.0, 0.0)) == pytest.approx(0.5, abs=0.01)
     assert robot.pose.x > 1.3
     assert robot.pose.y > 1.3
-    assert now == pytest.approx(2.0, abs=2 * DT)
-    assert all(c.v == 0.25 for c in commands[:-1])
+    assert now == pytest.approx(2.1, abs=3 * DT)
+    speeds = [c.v for c in commands[:-1]]
+    assert speeds[0] == pytest.approx(0.125)  # Nav2's acceleration limit, 2.5 m/s^2
+    assert max(speeds) == 0.25
+    assert min(speeds) >= 0.1  # Nav2's minimum_speed
+    assert speeds[-1] < 0.25  # slowed down to stop at the distance
+
+
+def test_drive_on_heading_backwards_with_negative_speed_and_distance():
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0))
+    step, _, commands = run(DriveOnHeading(-0.4, -0.3), robot)
+    assert step.succeeded
+    assert robot.pose.x == pytest.approx(-0.4, abs=0.01)
+    assert all(c.v < 0.0 for c in commands[:-1])
+
+
+def test_backup_at_nav2_defaults_succeeds_within_its_time_allowance():
+    """backup_speed 0.025 is raised to the 0.10 m/s minimum_speed, as in Nav2: 0.3 m
+    takes about 3 s, not 12 s (which the 10 s allowance would refuse)."""
+    robot = Unicycle(Pose2D(0.0, 0.0, 0.0), max_linear_accel=2.5)
+    step, now, _ = run(back_up(0.3, 0.025, time_allowance=10.0), robot)
+    assert step.succeeded
+    assert robot.pose.x == pytest.approx(-0.3, abs=0.01)
+    assert now < 4.0
+
+
+class DelayedUnicycle(Unicycle):
+    """A base that acts on each command ``delay`` cycles after it was sent."""
+
+    def __init__(
+        self,
+        pose: Pose2D,
+        delay: int,
+        max_linear_accel: float = 2.5,
+        max_angular_accel: float = 6.0,
+    ) -> None:
+        super().__init__(
+            pose, max_linear_accel=max_linear_accel, max_angular_accel=max_angular_accel
+        )
+        self.queue: list[Velocity] = [Velocity()] * delay
+
+    def step(self, cmd: Velocity, dt: float) -> Pose2D:
+        self.queue.append(cmd)
+        return super().step(self.queue.pop(0), dt)
+
+
+def run_delayed(
+    behavior: TimedBehavior, robot: DelayedUnicycle, lead: float
+) -> tuple[BehaviorStep, float]:
+    """Step until done, then let the base act on the commands still on their way."""
+    now = 0.0
+    while now < 30.0:
+        step = behavior.step(Inputs(now, robot.pose, now, lead=lead))
+        robot.step(step.cmd or Velocity(), DT)
+        now += DT
+        if step.done:
+            for _ in range(len(robot.queue) + 10):
+                robot.step(Velocity(), DT)
+            return step, now
+    raise AssertionError("behavior did not finish")
+
+
+@pytest.mark.parametrize("delay", [0, 4, 10])
+def test_spin_stops_on_target_whatever_the_loop_delay(delay):
+    """A base acting 0.2 s or 0.5 s late (what 20-50 ms of transport is at 10x):
+    with the delay as ``lead`` the spin ends within 0.05 rad."""
+    robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), delay, max_angular_accel=6.0)
+    step, _ = run_delayed(SpinBehavior(-math.pi), robot, lead=delay * DT)
+    assert step.succeeded
+    assert abs(wrap_angle(robot.pose.yaw + math.pi)) < 0.05
+
+
+@pytest.mark.parametrize("delay", [0, 4, 10])
+def test_drive_stops_on_target_whatever_the_loop_delay(delay):
+    robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), delay, max_linear_accel=2.5)
+    step, _ = run_delayed(DriveOnHeading(0.4, 0.3), robot, lead=delay * DT)
+    assert step.succeeded
+    assert robot.pose.x == pytest.approx(0.4, abs=0.02)
+
+
+def test_without_the_lead_a_late_base_overshoots():
+    """The counter-check: the same 0.5 s late base told nothing overshoots."""
+    robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), 10, max_angular_accel=6.0)
+    run_delayed(SpinBehavior(-math.pi), robot, lead=0.0)
+    assert abs(wrap_angle(robot.pose.yaw + math.pi)) > 0.15
 
 
 def test_backup_drives_backwards_whatever_the_signs():

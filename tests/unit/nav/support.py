@@ -1,53 +1,61 @@
-"""Helpers of the Nav2 node tests: trees with the Nav2 node set on an in-process bus,
-and publishing a message until the nodes' shared subscription has it."""
+"""Shared by the Nav2 remote-leaf tests: build a tree on a bus, tick it to the end."""
 
 from __future__ import annotations
 
 import asyncio
-from typing import TypeVar
+import contextlib
+from collections.abc import Callable
 
-from aiobt.core.clock import Clock
+from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
-from aiobt.msgs import Msg, Path, PoseStamped
-from aiobt.nav import NavContext, register_nav2_nodes
-from aiobt.nav.shared_topics import shared_topics
-from aiobt.testing.stubs import Stubs, tree_xml
+from aiobt.msgs import Path, PoseStamped
+from aiobt.nav import register_nav2_nodes
+from aiobt.testing.stubs import tree_xml
 from aiobt.transport import Bus
 
-M = TypeVar("M", bound=Msg)
-WAIT = 10.0  # s: generous, the machine is shared
+
+def nav_tree(bus: Bus | None, body: str, **blackboard: object) -> Tree:
+    """A tree of ``body`` with Nav2's nodes bound to ``bus``; ``blackboard`` preset."""
+    factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory, bus)
+    tree = factory.create_tree_from_text(tree_xml(body))
+    for key, value in blackboard.items():
+        tree.root_blackboard[key] = value
+    return tree
 
 
-def nav_tree(
-    bus: Bus | None, body: str, clock: Clock | None = None, stubs: Stubs | None = None
-) -> Tree:
-    """A tree of ``body`` with Nav2's nodes on ``bus`` (and ``stubs``' leaves, if given)."""
-    factory = stubs.factory() if stubs is not None else BehaviorTreeFactory()
-    register_nav2_nodes(factory, bus, clock=clock)
-    return factory.create_tree_from_text(tree_xml(body), clock=clock)
+async def run_to_end(tree: Tree, timeout: float = 10.0) -> Status:  # noqa: ASYNC109
+    async with asyncio.timeout(timeout):
+        return await tree.tick_while_running(period=0.01)
 
 
-async def deliver(bus: Bus, name: str, message: M, *, latched: bool = False) -> None:
-    """Publish ``message`` on ``{ns}/{name}`` and wait until the shared subscription has it."""
-    topic = shared_topics(NavContext(bus=bus), "test").topic(name, type(message), latched=latched)
-    arrived = asyncio.Event()
-    topic.listen(lambda m: arrived.set() if m == message else None)
-    publisher = (
-        bus.latched_publisher(name, type(message))
-        if latched
-        else bus.publisher(name, type(message))
-    )
-    assert await publisher.wait_for_subscribers(WAIT), f"nobody subscribed to {name}"
-    publisher.put(message)
-    await asyncio.wait_for(arrived.wait(), WAIT)
-    publisher.close()
+async def tick_until(tree: Tree, done: asyncio.Event, timeout: float = 10.0) -> Status:  # noqa: ASYNC109
+    """Tick every 10 ms until a tick after ``done`` was set; that tick's status."""
+    async with asyncio.timeout(timeout):
+        while True:
+            seen = done.is_set()
+            status = await tree.tick_once()
+            if seen:
+                return status
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(done.wait(), 0.01)
 
 
-def straight_path(n: int, step: float = 1.0, frame: str = "map") -> Path:
-    """Poses (0, 0), (step, 0) ... along x."""
-    return Path(poses=[PoseStamped.from_xy_yaw(i * step, 0.0, frame_id=frame) for i in range(n)])
+def straight_path(length: float = 1.0, step: float = 0.1, y: float = 0.0) -> Path:
+    count = int(length / step) + 1
+    return Path(poses=[PoseStamped.from_xy_yaw(i * step, y, 0.0) for i in range(count)])
 
 
-def at(x: float, y: float = 0.0, yaw: float = 0.0, stamp: float = 0.0) -> PoseStamped:
-    return PoseStamped.from_xy_yaw(x, y, yaw, stamp=stamp)
+async def tick_until_true(
+    tree: Tree,
+    condition: Callable[[], bool],
+    timeout: float = 10.0,  # noqa: ASYNC109
+) -> Status:
+    """Tick every 10 ms, as a tree runner does, until ``condition()`` holds after a tick."""
+    async with asyncio.timeout(timeout):
+        while True:
+            status = await tree.tick_once()
+            if condition():
+                return status
+            await tree.clock.sleep(0.01)  # the tick period, not a wait for an event

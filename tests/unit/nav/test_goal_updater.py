@@ -8,7 +8,7 @@ from aiobt.core.status import Status
 from aiobt.msgs import Goals
 from aiobt.testing.stubs import Stubs
 from aiobt.transport import Bus
-from tests.unit.nav.support import at, deliver, nav_tree
+from tests.unit.nav.state_support import at, deliver, nav_tree
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 pytestmark = pytest.mark.timeout(60)

@@ -7,7 +7,7 @@ import pytest
 from aiobt.core.status import Status
 from aiobt.msgs import Path
 from aiobt.testing.stubs import Stubs
-from tests.unit.nav.support import at, nav_tree, straight_path
+from tests.unit.nav.state_support import at, nav_tree, straight_path
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 pytestmark = pytest.mark.timeout(30)

@@ -9,7 +9,7 @@ import pytest
 from aiobt.core.status import Status
 from aiobt.msgs import Goals, Path, WaypointState, WaypointStatus
 from aiobt.transport import Bus
-from tests.unit.nav.support import at, deliver, nav_tree, straight_path
+from tests.unit.nav.state_support import at, deliver, nav_tree, straight_path
 
 S, F = Status.SUCCESS, Status.FAILURE
 pytestmark = pytest.mark.timeout(60)

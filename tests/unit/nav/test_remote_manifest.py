@@ -15,13 +15,23 @@ from aiobt.xml.model import read_tree_nodes_model
 
 MANIFEST = {m.id: m for m in read_tree_nodes_model("trees/nav2/nav2_tree_nodes.xml")}
 OURS = [cls.__name__ for cls in (*ACTION_NODES, *SERVICE_NODES, *CANCEL_NODES)]
-NOT_IN_MANIFEST = {"IsPathValid", "CancelCoverage"}  # the catalogue's, not nav2_tree_nodes.xml's
+# the catalogue's (jazzy, opennav_coverage), not nav2_tree_nodes.xml's
+NOT_IN_MANIFEST = {"IsPathValid", "CancelCoverage", "ComputeCoveragePath"}
 
 
 def _registered() -> dict[str, NodeManifest]:
     factory = BehaviorTreeFactory()
     register_nav2_nodes(factory, None, replace=True)
     return factory.manifests
+
+
+def test_every_remote_node_of_the_manifest_is_ours() -> None:
+    remote = {
+        node_id
+        for node_id, model in MANIFEST.items()
+        if {"server_name", "service_name"} & set(model.ports)
+    }
+    assert remote <= set(OURS), sorted(remote - set(OURS))
 
 
 @pytest.mark.parametrize("node_id", sorted(set(OURS) - NOT_IN_MANIFEST))

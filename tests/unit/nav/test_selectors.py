@@ -13,7 +13,7 @@ from aiobt.msgs import String
 from aiobt.nav import NavContext
 from aiobt.nav.shared_topics import shared_topics
 from aiobt.transport import Bus
-from tests.unit.nav.support import WAIT, deliver, nav_tree
+from tests.unit.nav.state_support import WAIT, deliver, nav_tree
 
 S, F = Status.SUCCESS, Status.FAILURE
 PLANNER = (

@@ -21,7 +21,7 @@ from aiobt.msgs import (
 )
 from aiobt.transport import Bus
 
-from .leaf_support import nav_tree, run_to_end, straight_path, tick_until
+from .support import nav_tree, run_to_end, straight_path, tick_until
 
 pytestmark = pytest.mark.timeout(30)
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING

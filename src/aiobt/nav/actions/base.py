@@ -52,6 +52,7 @@ class BtAction(NavNode, AsyncActionNode):
         self._goal: Any = None
         self._watched: list[tuple[Entry, int]] = []
         self._update: asyncio.Future[Any] | None = None
+        self._feedback: Any = None
         self._server = ""
 
     # -- what subclasses provide -----------------------------------------------------------
@@ -67,6 +68,9 @@ class BtAction(NavNode, AsyncActionNode):
         """A watched port changed: the goal to send instead of ``goal``, or None."""
         new = self.make_goal()
         return new if new != goal else None
+
+    def on_feedback(self, feedback: Any) -> None:
+        """Newer feedback than at the previous tick (Nav2's ``on_wait_for_result``)."""
 
     def on_success(self, result: Any) -> Status:
         self.set_error(0, "")
@@ -96,8 +100,14 @@ class BtAction(NavNode, AsyncActionNode):
 
     # -- the tick ----------------------------------------------------------------------------
     def execute_sync(self) -> Status:
-        if self._update is not None and self._watched and self._ports_changed():
-            self._offer_update()
+        handle = self._handle
+        if handle is not None:
+            if self._update is not None and self._watched and self._ports_changed():
+                self._offer_update()
+            feedback = handle.latest_feedback
+            if feedback is not self._feedback and feedback is not None:
+                self._feedback = feedback
+                self.on_feedback(feedback)
         return super().execute_sync()
 
     def halt_sync(self) -> None:

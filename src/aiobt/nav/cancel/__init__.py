@@ -5,9 +5,11 @@ from aiobt.nav.cancel.base import BtCancelAction
 from aiobt.nav.cancel.behaviors import (
     CancelAssistedTeleop,
     CancelBackUp,
+    CancelComputeAndTrackRoute,
     CancelControl,
     CancelCoverage,
     CancelDriveOnHeading,
+    CancelFollowObject,
     CancelSpin,
     CancelWait,
 )
@@ -15,9 +17,11 @@ from aiobt.nav.cancel.behaviors import (
 CANCEL_NODES: tuple[type[TreeNode], ...] = (
     CancelAssistedTeleop,
     CancelBackUp,
+    CancelComputeAndTrackRoute,
     CancelControl,
     CancelCoverage,
     CancelDriveOnHeading,
+    CancelFollowObject,
     CancelSpin,
     CancelWait,
 )

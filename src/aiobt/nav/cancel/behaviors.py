@@ -1,4 +1,4 @@
-"""The cancel leaves of Nav2's controller, behavior and coverage servers."""
+"""The cancel leaves of Nav2's controller, behavior, coverage, route and following servers."""
 
 from __future__ import annotations
 
@@ -11,6 +11,7 @@ from aiobt.msgs import (
     Spin,
     Wait,
 )
+from aiobt.msgs.remote_actions import ComputeAndTrackRoute, FollowObject
 from aiobt.nav.cancel.base import BtCancelAction, cancel_ports
 
 
@@ -61,3 +62,17 @@ class CancelCoverage(BtCancelAction):
 
     ACTION = ComputeCoveragePath
     PORTS = cancel_ports("coverage server", ComputeCoveragePath.name)
+
+
+class CancelComputeAndTrackRoute(BtCancelAction):
+    """``<CancelComputeAndTrackRoute/>``: cancel the route tracker's goals."""
+
+    ACTION = ComputeAndTrackRoute
+    PORTS = cancel_ports("route compute and tracker server", ComputeAndTrackRoute.name)
+
+
+class CancelFollowObject(BtCancelAction):
+    """``<CancelFollowObject/>``: cancel the follow object behavior's goals."""
+
+    ACTION = FollowObject
+    PORTS = cancel_ports("follow object behavior", FollowObject.name)

@@ -60,6 +60,7 @@ class DistanceController(RobotStateNode, DecoratorNode):
         status = self.tick_child()
         if status is RUNNING or status is SKIPPED:
             return status
+        self.reset_child()  # finished: it starts afresh next time
         if status is SUCCESS:
             self._start = current
             return SUCCESS

@@ -74,7 +74,10 @@ class GoalUpdater(NavNode, DecoratorNode):
         goals = self._newer("goals", self.get_input("input_goals", None), update)
         if goals is not None:
             self.set_output("output_goals", goals)
-        return self.tick_child()
+        status = self.tick_child()
+        if status.is_completed:
+            self.reset_child()  # so that it starts afresh on the next tick
+        return status
 
     def _newer(self, what: str, current: Any, update: PoseStamped | Goals | None) -> Any:
         """``update`` if it is stamped and not older than ``current``, else ``current``."""

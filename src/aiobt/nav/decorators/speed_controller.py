@@ -84,7 +84,10 @@ class SpeedController(RobotStateNode, DecoratorNode):
         if elapsed >= self._period:
             self._period = 1.0 / self._rate(*rates)
             self._start = self.clock.now()
-        return self.tick_child()
+        status = self.tick_child()
+        if status.is_completed:
+            self.reset_child()  # finished: it starts afresh next time
+        return status
 
     def _rate(self, min_rate: float, max_rate: float) -> float:
         speed = self.robot.speed() or 0.0

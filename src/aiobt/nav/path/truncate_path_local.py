@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import logging
+import math
 from typing import Any
 
 from aiobt.core.leaves import SyncActionNode
 from aiobt.core.ports import input_port, output_port
 from aiobt.core.status import FAILURE, SUCCESS, Status
 from aiobt.msgs import Path, PoseStamped
-from aiobt.nav.path_math import PathGeometry
+from aiobt.nav.path_math import ClosestPoseSearch
 from aiobt.nav.robot_state import RobotStateNode
 
 log = logging.getLogger("aiobt.nav.truncate_path_local")
@@ -63,27 +64,13 @@ class TruncatePathLocal(RobotStateNode, SyncActionNode):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._path: Path | None = None
-        self._geometry = PathGeometry(())
-        self._begin = 0
-
-    def _track(self, path: Path, pruning: bool) -> None:
-        """Nav2 restarts the search from the path's start unless pruning on the same path."""
-        if path is not self._path:
-            if self._path is None or path != self._path:
-                self._begin = 0
-                self._geometry = PathGeometry(path.poses)
-            self._path = path
-        if not pruning:
-            self._begin = 0
+        self._search = ClosestPoseSearch()
 
     def on_tick(self) -> Status:
         path: Path = self.get_input("input_path")
         forward: float = self.get_input("distance_forward")
         backward: float = self.get_input("distance_backward")
         search: float = self.get_input("max_robot_pose_search_dist")
-        pruning = search < float("inf")
-        self._track(path, pruning)
         pose = self.get_input("pose", None)
         if pose is None:
             pose = self.robot_pose(path.header.frame_id)
@@ -92,13 +79,10 @@ class TruncatePathLocal(RobotStateNode, SyncActionNode):
         if not path.poses:
             self.set_output("output_path", path)
             return SUCCESS
-        geometry = self._geometry
-        end = geometry.first_after(self._begin, search) if pruning else len(geometry)
         weight: float = self.get_input("angular_distance_weight")
-        closest = geometry.closest(self._begin, end, pose, weight)
-        if pruning:
-            self._begin = closest
-        stop = geometry.first_after(closest, forward if forward >= 0.0 else float("inf"))
+        closest = self._search.closest(path, pose, search, weight)
+        geometry = self._search.geometry
+        stop = geometry.first_after(closest, forward if forward >= 0.0 else math.inf)
         start = geometry.first_before(closest, backward)
         poses = path.poses[start:stop]
         self.set_output("output_path", Path.model_construct(header=path.header, poses=poses))

@@ -3,12 +3,13 @@
 from __future__ import annotations
 
 import logging
+import math
 from typing import Any
 
 from aiobt.core.leaves import ConditionNode
 from aiobt.core.ports import input_port
 from aiobt.msgs import Path
-from aiobt.nav.path_math import PathGeometry
+from aiobt.nav.path_math import ClosestPoseSearch
 from aiobt.nav.robot_state import RobotStateNode
 
 log = logging.getLogger("aiobt.nav.is_goal_nearby")
@@ -47,9 +48,7 @@ class IsGoalNearby(RobotStateNode, ConditionNode):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
-        self._path: Path | None = None
-        self._geometry = PathGeometry(())
-        self._begin = 0
+        self._search = ClosestPoseSearch()
         self._empty_reported = False
 
     def check(self) -> bool:
@@ -62,18 +61,8 @@ class IsGoalNearby(RobotStateNode, ConditionNode):
                 log.warning("%s: the path is empty", self.path)
             return False
         self._empty_reported = False
-        pruning = search >= 0.0
-        if path is not self._path:
-            if self._path is None or path != self._path:
-                self._begin = 0
-                self._geometry = PathGeometry(path.poses)
-            self._path = path
-        if not pruning:
-            self._begin = 0
         robot = self.robot_pose(path.header.frame_id)
         if robot is None:
             return False
-        geometry = self._geometry
-        end = geometry.first_after(self._begin, search) if pruning else len(geometry)
-        self._begin = geometry.closest(self._begin, end, robot)
-        return geometry.length(self._begin) < threshold
+        closest = self._search.closest(path, robot, search if search >= 0.0 else math.inf)
+        return self._search.geometry.length(closest) < threshold

@@ -1,0 +1,75 @@
+"""How long, in robot (sim) time, a published command takes to move the base.
+
+Under a sim speed-up every millisecond of wall-clock delay between this
+process and the robot (transport, a loaded machine) becomes ``speed`` times as
+much sim time, so a stop decided "now" takes effect noticeably later in sim
+time. :class:`LoopDelay` measures that delay from the services' own traffic:
+when a command sets a base at rest moving, the time until odometry first shows
+the base moving is one sample (it holds both directions: the command to the
+robot and the odometry back). Controller and behaviors add the estimate to
+their look-ahead (see :attr:`LoopDelay.estimate`).
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+
+from .geometry import Velocity
+
+log = logging.getLogger("aiobt_services.controller.latency")
+
+MOVING = 1e-3  # m/s or rad/s: below this the base counts as at rest
+
+
+def _moving(v: Velocity) -> bool:
+    return abs(v.v) > MOVING or abs(v.w) > MOVING
+
+
+class LoopDelay:
+    """Command-to-odometry delay in clock seconds: the newest samples smoothed.
+
+    ``commanded`` is told every command published with the base's measured
+    velocity; ``observed`` every odometry arrival. A sample starts when a
+    moving command is sent to a base at rest and ends at the first odometry
+    showing motion; samples above ``max_delay`` (a stalled robot, a refused
+    command) are dropped.
+    """
+
+    __slots__ = ("_estimate", "_max_delay", "_sent", "_weight", "samples")
+
+    def __init__(self, max_delay: float = 1.0, weight: float = 0.5) -> None:
+        if not (math.isfinite(max_delay) and max_delay > 0.0):
+            raise ValueError(f"LoopDelay max_delay must be > 0, got {max_delay}")
+        if not 0.0 < weight <= 1.0:
+            raise ValueError(f"LoopDelay weight must be in (0, 1], got {weight}")
+        self._max_delay = max_delay
+        self._weight = weight
+        self._estimate = 0.0
+        self._sent: float | None = None
+        self.samples = 0
+
+    @property
+    def estimate(self) -> float:
+        """Smoothed delay in clock seconds (0 until the first sample)."""
+        return self._estimate
+
+    def commanded(self, now: float, cmd: Velocity, measured: Velocity) -> None:
+        if not _moving(cmd):
+            self._sent = None
+        elif self._sent is None and not _moving(measured):
+            self._sent = now
+
+    def observed(self, now: float, measured: Velocity) -> None:
+        if self._sent is None or not _moving(measured):
+            return
+        sample = now - self._sent
+        self._sent = None
+        if not 0.0 <= sample <= self._max_delay:
+            return
+        first = self.samples == 0
+        self.samples += 1
+        self._estimate = (
+            sample if first else self._estimate + self._weight * (sample - self._estimate)
+        )
+        log.debug("command-to-odometry delay %.3f s (estimate %.3f s)", sample, self._estimate)

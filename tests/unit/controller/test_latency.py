@@ -1,0 +1,72 @@
+"""The command-to-odometry delay estimate, and the tracker's lazy local costmap."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from aiobt.core.clock import ManualClock
+from aiobt.msgs import Odometry, PoseStamped
+from aiobt_services.controller.collision import INSCRIBED
+from aiobt_services.controller.geometry import STOP, Velocity
+from aiobt_services.controller.latency import LoopDelay
+from aiobt_services.controller.local_costmap import LocalCostmap
+from aiobt_services.controller.robot_io import RobotTracker
+
+from .test_local_costmap import _scan_with_wall_ahead
+
+GO = Velocity(0.3, 0.0)
+
+
+def test_no_sample_no_delay():
+    assert LoopDelay().estimate == 0.0
+
+
+def test_delay_from_command_to_first_motion_then_smoothed():
+    delay = LoopDelay(weight=0.5)
+    delay.commanded(1.0, GO, STOP)
+    delay.commanded(1.05, GO, STOP)  # still waiting: the first command counts
+    delay.observed(1.1, STOP)
+    delay.observed(1.2, Velocity(0.02, 0.0))
+    assert delay.estimate == pytest.approx(0.2)
+    delay.commanded(5.0, STOP, Velocity(0.3, 0.0))
+    delay.commanded(6.0, Velocity(0.0, 0.5), STOP)
+    delay.observed(6.4, Velocity(0.0, 0.06))
+    assert delay.estimate == pytest.approx(0.3)
+    assert delay.samples == 2
+
+
+def test_no_sample_when_already_moving_or_cancelled_or_too_long():
+    delay = LoopDelay(max_delay=1.0)
+    delay.commanded(1.0, GO, Velocity(0.3, 0.0))  # moving already: no start of motion
+    delay.observed(1.1, Velocity(0.3, 0.0))
+    delay.commanded(2.0, GO, STOP)
+    delay.commanded(2.05, STOP, STOP)  # stopped before it moved
+    delay.observed(2.2, Velocity(0.01, 0.0))
+    delay.commanded(3.0, GO, STOP)
+    delay.observed(4.5, Velocity(0.01, 0.0))  # 1.5 s: a stalled robot, not a delay
+    assert delay.samples == 0
+    assert delay.estimate == 0.0
+
+
+def test_tracker_lead_is_pose_age_plus_delay():
+    clock = ManualClock(10.0)
+    tracker = RobotTracker(clock)
+    tracker.on_odom(Odometry())
+    tracker.sent(GO)
+    clock.advance(0.1)
+    tracker.on_odom(Odometry.model_validate({"twist": {"linear": {"x": 0.05}}}))
+    clock.advance(0.05)
+    assert tracker.lead("odom") == pytest.approx(0.05 + 0.1)
+    assert tracker.lead("map") == pytest.approx(0.1)  # no pose in map: the delay alone
+
+
+def test_scans_wait_for_a_refresh():
+    costmap = LocalCostmap()
+    tracker = RobotTracker(ManualClock(), costmap)
+    tracker.on_pose(PoseStamped.from_xy_yaw(0.0, 0.0, 0.0))
+    tracker.on_scan(_scan_with_wall_ahead(1.0))
+    ahead = np.array([[1.0, 0.0]])
+    assert costmap.costs_at(ahead)[0] == 0  # kept, not integrated
+    tracker.refresh_costmap()
+    assert costmap.costs_at(ahead)[0] >= INSCRIBED
