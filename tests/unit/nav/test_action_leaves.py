@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 from typing import Any
 
 import pytest
@@ -16,10 +17,11 @@ from aiobt.msgs import (
     Path,
     PoseStamped,
     Spin,
+    TrackingFeedback,
 )
 from aiobt.transport import Bus, GoalHandle
 
-from .support import nav_tree, run_to_end, straight_path, tick_until
+from .support import nav_tree, run_to_end, straight_path, tick_until, tick_until_true
 
 pytestmark = pytest.mark.timeout(30)
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
@@ -273,3 +275,27 @@ async def test_goal_status_on_the_server_is_canceled_after_halt(local_bus: Bus) 
     await tree.halt_tree()
     statuses.append(handle.status)
     assert statuses == [GoalState.CANCELED]
+
+
+async def test_follow_path_writes_the_controllers_tracking_feedback(local_bus: Bus) -> None:
+    finish = asyncio.Event()
+    tracking = TrackingFeedback(cross_track_error=0.12, distance_to_goal=0.8)
+    publisher = local_bus.publisher("tracking_feedback", TrackingFeedback)
+
+    async def execute(goal: Any, handle: GoalHandle[Any, Any, Any]) -> Any:
+        while not finish.is_set():  # as the controller: tracking, then feedback, each cycle
+            publisher.put(tracking)
+            handle.publish_feedback(FollowPath.Feedback(distance_to_goal=0.8))
+            with contextlib.suppress(TimeoutError):
+                await asyncio.wait_for(finish.wait(), 0.02)
+        return FollowPath.Result()
+
+    local_bus.action_server("follow_path", FollowPath, execute)
+    tree = nav_tree(local_bus, '<FollowPath path="{p}" tracking_feedback="{tf}"/>',
+                    p=straight_path())  # fmt: skip
+    seen = await tick_until_true(tree, lambda: "tf" in tree.root_blackboard)
+    assert seen is R
+    assert tree.root_blackboard["tf"] == tracking
+    finish.set()
+    assert await run_to_end(tree) is S
+    assert tree.root_blackboard["tf"] == TrackingFeedback()  # reset when the goal ends
