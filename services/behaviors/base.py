@@ -15,6 +15,7 @@ from enum import Enum
 
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import STOP, Pose2D, Velocity
+from aiobt_services.controller.latency import holding_time
 
 MAX_LEAD = 2.0  # s: a longer command-to-motion delay is not compensated
 
@@ -161,11 +162,12 @@ class TimedBehavior(ABC):
         return total
 
     @staticmethod
-    def approach_floor(minimum: float, lead: float, approach_error: float) -> float:
-        """The lowest speed of the final approach: ``minimum``, but at most
-        ``approach_error / lead``, so a delay off by its whole estimate (a loaded
-        machine under a sim speed-up) misses the stop by at most ``approach_error``."""
-        return minimum if lead <= 0.0 else min(minimum, approach_error / lead)
+    def approach_limit(remaining: float, lead: float, approach_error: float) -> float:
+        """The highest speed at ``remaining`` (what is left once the commands in flight
+        have acted) such that a stall of this loop carries the base at most
+        ``approach_error`` past the target (see :func:`holding_time`)."""
+        holding = holding_time(lead)
+        return math.inf if holding <= 0.0 else (max(0.0, remaining) + approach_error) / holding
 
     def stop_ahead(self, now: float, lead: float, speed: float) -> float:
         """Travel before a stop sent now acts (:meth:`in_flight`) plus half a cycle at

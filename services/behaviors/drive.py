@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.geometry import STOP, Pose2D, Velocity
+from aiobt_services.controller.latency import holding_time
 
 from .base import (
     BehaviorInputError,
@@ -26,7 +27,7 @@ class DriveParams:
     acceleration_limit: float = 2.5  # m/s^2
     deceleration_limit: float = 2.5  # m/s^2 (Nav2 writes it negative: -2.5)
     minimum_speed: float = 0.10  # m/s: slower commands are raised to this
-    approach_error: float = 0.006  # m: bounds the final approach by the delay (not Nav2's)
+    approach_error: float = 0.01  # m: a stall's overshoot bound (not Nav2's; see approach_limit)
 
 
 class DriveOnHeading(TimedBehavior):
@@ -36,10 +37,11 @@ class DriveOnHeading(TimedBehavior):
     The distance travelled is the straight-line distance from the pose at the
     first cycle. The speed ramps within the acceleration limits, slows so that
     it can stop at the end (``sqrt(2 a d)``) and is never below
-    ``minimum_speed`` (lowered to ``approach_error / lead`` when the loop's delay
-    is long, as under a sim speed-up). The stop is sent where the base, still moving for the
-    loop's ``lead``, ends at the distance. Each cycle the rest of the
-    way (at most ``simulate_ahead_time`` plus the lead at the speed) is checked;
+    ``minimum_speed``; under a sim speed-up (a long ``lead``) the approach is
+    slowed so that a stall of the loop cannot carry the base past the distance.
+    The stop is sent where the base, still moving for the loop's ``lead``, ends
+    at the distance. Each cycle the rest of the way (at most
+    ``simulate_ahead_time`` plus the holding time at the speed) is checked;
     a collision fails the goal with COLLISION_AHEAD before the robot gets there.
     """
 
@@ -84,7 +86,7 @@ class DriveOnHeading(TimedBehavior):
         cmd = Velocity(self._next_speed(max(0.0, remaining - coming), inputs.lead), 0.0)
         checker = self.collision()
         if checker is not None:
-            horizon = self.safety.simulate_ahead_time + inputs.lead
+            horizon = self.safety.simulate_ahead_time + holding_time(inputs.lead)
             check = checker.check_arc(pose, cmd, horizon, remaining)
             if check.collides:
                 away = abs(cmd.v) * check.time_to_collision
@@ -98,7 +100,8 @@ class DriveOnHeading(TimedBehavior):
 
     def _next_speed(self, remaining: float, lead: float) -> float:
         """Nav2's: the speed (raised to ``minimum_speed``) within the acceleration limits,
-        then slowed to ``sqrt(2 a d)`` to stop at the end, down to the approach floor."""
+        then slowed to ``sqrt(2 a d)`` to stop at the end, no lower than ``minimum_speed``;
+        last, at most the approach limit (see :meth:`TimedBehavior.approach_limit`)."""
         p, period = self.params, self.safety.cycle_period
         current = abs(self._last)
         raised = max(abs(self.speed), p.minimum_speed)
@@ -106,9 +109,9 @@ class DriveOnHeading(TimedBehavior):
             max(raised, current - p.deceleration_limit * period),
             current + p.acceleration_limit * period,
         )
-        floor = self.approach_floor(p.minimum_speed, lead, p.approach_error)
         stopping = math.sqrt(2.0 * p.deceleration_limit * remaining)
-        return math.copysign(max(min(ramped, stopping), floor), self.speed)
+        limit = self.approach_limit(remaining, lead, p.approach_error)
+        return math.copysign(min(max(min(ramped, stopping), p.minimum_speed), limit), self.speed)
 
 
 def back_up(

@@ -17,7 +17,7 @@ class SpinParams:
     min_rotational_vel: float = 0.4
     rotational_acc_lim: float = 3.2
     angle_tolerance: float = 0.02
-    approach_error: float = 0.015  # rad: bounds the final approach by the delay (not Nav2's)
+    approach_error: float = 0.025  # rad: a stall's overshoot bound (not Nav2's; approach_limit)
 
 
 class SpinBehavior(TimedBehavior):
@@ -25,8 +25,8 @@ class SpinBehavior(TimedBehavior):
 
     The angle turned is accumulated from wrapped yaw differences, so crossing
     +-pi or turning more than 2 pi is counted correctly. Speed follows
-    ``sqrt(2 a remaining)`` clamped to [min, max] (min lowered to
-    ``approach_error / lead`` when the loop's delay is long); the stop is sent where the
+    ``sqrt(2 a remaining)`` clamped to [min, max] (and, under a sim speed-up,
+    slowed so that a stall of the loop cannot carry it past the target); the stop is sent where the
     base, still turning for the loop's ``lead``, ends at the
     target. Fails COLLISION_AHEAD when
     the robot's cell is in collision (a circular robot sweeps nothing new).
@@ -70,11 +70,9 @@ class SpinBehavior(TimedBehavior):
             )
         coming = max(0.0, remaining - self.in_flight(inputs.now, inputs.lead))
         speed = min(
-            max(
-                math.sqrt(2.0 * p.rotational_acc_lim * coming),
-                self.approach_floor(p.min_rotational_vel, inputs.lead, p.approach_error),
-            ),
+            max(math.sqrt(2.0 * p.rotational_acc_lim * coming), p.min_rotational_vel),
             p.max_rotational_vel,
+            self.approach_limit(coming, inputs.lead, p.approach_error),
         )
         self._last_w = direction * speed
         self.sent(inputs.now, speed)

@@ -131,11 +131,9 @@ def to_robot_frame(pose: Pose2D, points: FloatArray) -> FloatArray:
 def integrate_arc(pose: Pose2D, cmd: Velocity, times: FloatArray) -> FloatArray:
     """Poses (T, 3) reached from ``pose`` holding ``cmd`` for each of ``times``."""
     yaw = pose.yaw + cmd.w * times
-    if abs(cmd.w) < 1e-9:
-        x = pose.x + cmd.v * times * math.cos(pose.yaw)
-        y = pose.y + cmd.v * times * math.sin(pose.yaw)
-    else:
-        radius = cmd.v / cmd.w
-        x = pose.x + radius * (np.sin(yaw) - math.sin(pose.yaw))
-        y = pose.y - radius * (np.cos(yaw) - math.cos(pose.yaw))
+    half = 0.5 * cmd.w * times
+    # the chord of the arc: exact for any w and free of the v / w cancellation near w = 0
+    chord = cmd.v * times * np.sinc(half / math.pi)
+    x = pose.x + chord * np.cos(pose.yaw + half)
+    y = pose.y + chord * np.sin(pose.yaw + half)
     return np.column_stack((x, y, yaw))

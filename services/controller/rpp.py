@@ -19,6 +19,7 @@ from .base import ControlContext, PlanFollower
 from .collision import INSCRIBED, NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
 from .geometry import PlanarPath, Pose2D, Velocity, to_robot_frame, turn_rate, wrap_angle
+from .latency import holding_time
 from .tracking import project_onto_path, remaining_length, search_stop
 
 
@@ -158,13 +159,15 @@ class RegulatedPurePursuit(PlanFollower):
     def _check_arc(
         self, pose: Pose2D, cmd: Velocity, carrot_dist: float, ctx: ControlContext
     ) -> None:
-        """Up to the carrot, plus the way the robot goes before this command acts (the lead),
-        so the stop keeps its margin under a sim speed-up."""
+        """Up to the carrot, plus the way the robot may still go on this command before a
+        stop acts (:func:`holding_time` of the lead), so the stop keeps its margin under a
+        sim speed-up."""
         p, collision = self.params, ctx.collision
         if not p.use_collision_detection or collision is None:
             return
-        horizon = p.max_allowed_time_to_collision_up_to_carrot + ctx.lead
-        reach = max(carrot_dist, collision.costmap.resolution) + abs(cmd.v) * ctx.lead
+        holding = holding_time(ctx.lead)
+        horizon = p.max_allowed_time_to_collision_up_to_carrot + holding
+        reach = max(carrot_dist, collision.costmap.resolution) + abs(cmd.v) * holding
         check = collision.check_arc(pose, cmd, horizon, reach)
         if check.collides:
             raise no_valid_control(

@@ -21,12 +21,9 @@ class Unicycle:
         v = _approach(self.velocity.v, cmd.v, self.max_linear_accel * dt)
         w = _approach(self.velocity.w, cmd.w, self.max_angular_accel * dt)
         p = self.pose
-        if abs(w) < 1e-9:
-            x, y = p.x + v * dt * math.cos(p.yaw), p.y + v * dt * math.sin(p.yaw)
-        else:
-            yaw_end = p.yaw + w * dt
-            x = p.x + v / w * (math.sin(yaw_end) - math.sin(p.yaw))
-            y = p.y - v / w * (math.cos(yaw_end) - math.cos(p.yaw))
+        half = 0.5 * w * dt
+        chord = v * dt * (math.sin(half) / half if half else 1.0)  # exact arc, stable near w = 0
+        x, y = p.x + chord * math.cos(p.yaw + half), p.y + chord * math.sin(p.yaw + half)
         self.pose = Pose2D(x, y, math.atan2(math.sin(p.yaw + w * dt), math.cos(p.yaw + w * dt)))
         self.velocity = Velocity(v, w)
         return self.pose

@@ -23,10 +23,14 @@ async def start(
     service: str,
     *extra: str,
     world: str = "small",
+    speed: str = SPEED,
+    robot_args: Sequence[str] = (),
 ) -> ServiceProcess:
-    """The robot (``world``, --speed) and one of our services on sim time; returns the robot."""
+    """The robot (``world``, ``speed``) and one of our services on sim time; returns the robot."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
-    robot = spawn(["-m", "aiobt_services.robot", "--world", world, "--speed", SPEED, *common])
+    robot = spawn(
+        ["-m", "aiobt_services.robot", "--world", world, "--speed", speed, *robot_args, *common]
+    )
     ours = spawn(["-m", f"aiobt_services.{service}", "--sim-time", *common, *extra])
     for name, proc in (("robot", robot), (service, ours)):
         if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):

@@ -168,6 +168,30 @@ def test_drive_stops_on_target_whatever_the_loop_delay(delay):
     assert robot.pose.x == pytest.approx(0.4, abs=0.02)
 
 
+@pytest.mark.parametrize("stall_from", [0.3, 0.15, 0.05])
+def test_a_stalled_loop_near_the_target_overshoots_by_at_most_the_approach_error(stall_from):
+    """At 10x (lead 0.2 s) the loop stalls 0.5 s of sim time (the robot's command timeout)
+    once the spin is ``stall_from`` rad from its target; the base keeps the last command."""
+    robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), 4, max_angular_accel=6.0)
+    spin = SpinBehavior(1.0)
+    now, last, stalled = 0.0, Velocity(), False
+    while now < 30.0:
+        if not stalled and robot.pose.yaw > 1.0 - stall_from:
+            stalled = True
+            for _ in range(10):
+                robot.step(last, DT)
+                now += DT
+        step = spin.step(Inputs(now, robot.pose, now, lead=4 * DT))
+        last = step.cmd or Velocity()
+        robot.step(last, DT)
+        now += DT
+        if step.done:
+            break
+    for _ in range(10):
+        robot.step(Velocity(), DT)
+    assert robot.pose.yaw - 1.0 <= spin.params.approach_error + 0.01
+
+
 def test_without_the_lead_a_late_base_overshoots():
     """The counter-check: the same 0.5 s late base told nothing overshoots."""
     robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), 10, max_angular_accel=6.0)
