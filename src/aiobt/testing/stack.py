@@ -37,18 +37,21 @@ class StackError(RuntimeError):
 
 @dataclass(slots=True)
 class StackConfig:
-    """What the stack runs: world, speed-up, seed and extra flags per service."""
+    """What the stack runs: world, speed-up, seed, Zenoh lease and extra flags per service."""
 
     world: str = "office"
     speed: float = 4.0
     seed: int = 7
+    # a starved process (2 loaded cores) must not be taken for a hung one; a killed one is
+    # still noticed at once (its connection closes)
+    lease_ms: int = 5000
     services: Sequence[str] = SERVICES
     extra: dict[str, list[str]] = field(default_factory=dict)
 
     def command(self, service: str, endpoint: str, namespace: str) -> list[str]:
         """The argv (after ``python``) that starts ``service``."""
         args = ["-m", "aiobt.cli.main", service, "--connect", endpoint]
-        args += ["--namespace", namespace]
+        args += ["--namespace", namespace, "--lease-ms", str(self.lease_ms)]
         if service == "robot":
             args += ["--world", self.world, "--speed", str(self.speed), "--seed", str(self.seed)]
         if service in SIM_TIME:
@@ -87,6 +90,7 @@ class NavStack:
             "connect": (self.endpoint,),
             "namespace": self.namespace,
             "connect_timeout": 10.0,
+            "lease_ms": self.config.lease_ms,
         }
         values.update(overrides)
         return BusSettings(**values)  # type: ignore[arg-type]
