@@ -165,8 +165,9 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
     running = await world.start(*EAST_ROOM, tree=str(TREES / PAUSE_NEAR_GOAL))
-    # the path left is well under prox_len (3 m) from here, even planned 1 s (0.5 m) back
-    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 0.9, 90.0)
+    # 2 m from the door, 3.2 m from the goal: under the tree's prox_len (4 m) even for a path
+    # planned 1 s (0.5 m) back, beyond the controller's collision look-ahead (~1 m)
+    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 2.0, 90.0)
     assert near is not None, f"the robot never came near the door: at {world.track.latest}"
     since = len(world.track.samples)
     door = await world.spawn(*EAST_DOOR, size_x=0.8, size_y=0.3)  # the short way in is shut
@@ -181,4 +182,4 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     assert done.state is GoalState.SUCCEEDED, done.result
     world.assert_at(*EAST_ROOM)
     strayed = max(math.dist((s.x, s.y), EAST_DOOR) for s in world.track.samples[since:])
-    assert strayed < 2.0, f"it went {strayed:.1f} m from the door: took the long way round"
+    assert strayed < 2.5, f"it went {strayed:.1f} m from the door: took the long way round"

@@ -13,6 +13,8 @@ import math
 
 from aiobt.msgs import (
     BackUp,
+    ClearCostmapResponse,
+    ClearEntireCostmap,
     ComputePathThroughPoses,
     ComputePathToPose,
     DriveOnHeading,
@@ -92,13 +94,20 @@ class World:
         return found[0]
 
     async def clear(self) -> None:
-        """No goal on any navigator, no obstacle, the robot standing at the start."""
+        """No goal on any navigator, no obstacle (nor its mark in a costmap), the robot
+        standing at the start."""
         for client in (self.to_pose, self.through):
             with contextlib.suppress(ServiceError, ActionError, TimeoutError):
                 await client.cancel_all(timeout=5.0)
         listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
         for obstacle in listing.obstacles:
             await self.remove(obstacle.id)
+        for costmap in ("global_costmap", "local_costmap"):  # no mark of a removed obstacle
+            name = ClearEntireCostmap.service_name(costmap)
+            cleared = await self.bus.call(
+                name, ClearEntireCostmap.Request(), ClearCostmapResponse, timeout=10.0
+            )
+            assert cleared.success, f"{name}: {cleared.message}"
         start = PoseStamped.from_xy_yaw(*START)
         ack = await self.bus.call("reset_pose", start, Ack, timeout=10.0)
         assert ack.ok, f"reset_pose: {ack.message}"
