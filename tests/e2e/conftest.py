@@ -21,9 +21,8 @@ from collections.abc import AsyncIterator, Iterator
 
 import pytest
 
-from aiobt.testing.bus import running_router
 from aiobt.testing.navwatch import RobotTrack, ServerGoals
-from aiobt.testing.stack import NavStack, StackConfig
+from aiobt.testing.stack import NavStack, StackConfig, running_stack
 from aiobt.testing.treewatch import TreeWatch
 from aiobt.transport import Bus, open_bus
 from tests.integration.conftest import pytest_runtest_makereport
@@ -42,13 +41,13 @@ def _config() -> StackConfig:
 
 @pytest.fixture(scope="module")
 def _module_stack() -> Iterator[NavStack]:
-    with running_router() as (_, endpoint), NavStack.launch(endpoint, _config()) as stack:
+    with running_stack(_config()) as stack:
         yield stack
 
 
 @pytest.fixture
 def own_stack() -> Iterator[NavStack]:
-    with running_router() as (_, endpoint), NavStack.launch(endpoint, _config()) as stack:
+    with running_stack(_config()) as stack:
         yield stack
 
 

@@ -7,7 +7,7 @@ at a speed-up. Readiness is each service's liveliness token
 ``{ns}/nodes/<service>`` (and the navigator's action servers), never a fixed
 sleep; processes are stopped and killed by PID.
 
-    with NavStack.launch(endpoint, speed=4.0) as stack:   # processes started
+    with running_stack(StackConfig(speed=4.0)) as stack:   # router and processes started
         async with open_bus(stack.settings()) as bus:
             await stack.wait_ready(bus, timeout=60.0)
             stack.kill("planner")        # SIGKILL, a crash
@@ -22,7 +22,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from aiobt.testing.bus import ServiceProcess, spawn_service
+from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
 
 if TYPE_CHECKING:
     from aiobt.transport import Bus, BusSettings
@@ -139,3 +139,16 @@ class NavStack:
         with contextlib.ExitStack() as cleanups:  # every process is stopped, even if one fails to
             for proc in [*self._retired, *self.processes.values()]:
                 cleanups.callback(proc.cleanup)
+
+
+@contextlib.contextmanager
+def running_stack(config: StackConfig | None = None) -> Iterator[NavStack]:
+    """A router (with the stack's lease: a starved router is not taken for a hung one
+    either) and the stack on it; everything stopped by PID on exit."""
+    config = config or StackConfig()
+    lease = ("--lease-ms", str(config.lease_ms))
+    with (
+        running_router(extra_args=lease) as (_, endpoint),
+        NavStack.launch(endpoint, config) as stack,
+    ):
+        yield stack
