@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from aiobt.msgs import NavigateToPose, PoseStamped
 from aiobt.testing.navwatch import NavClient, RobotTrack, navigate
-from aiobt.testing.stack import NavStack, StackConfig
+from aiobt.testing.stack import NavStack, StackConfig, running_stack
 from aiobt.transport import ActionError, ServiceError, open_bus
 
 from .goals import Optimum, pick_goals, static_grid
