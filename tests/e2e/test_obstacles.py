@@ -71,12 +71,16 @@ async def test_replans_around_a_corridor_blocked_after_planning(world: World, go
 async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_navigates(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
-    # two fences across the corridor, 0.65 m behind and 0.95 m ahead of the robot
-    boxes = [await world.spawn(x, y, size_x=0.3, size_y=0.9) for x in (1.2, 3.1) for y in FENCE_YS]
-    here = world.track.latest
-    assert here is not None
-    seen = await world.track.wait_for(lambda s: s.stamp >= here.stamp + 1.0, 20.0)
-    assert seen is not None  # a second of sim time: ten scans saw the boxes
+    # Two fences across the corridor, 0.45 m from the robot's centre either way, lower than
+    # the lidar: every plan goes through them and every follow fails to make progress, so
+    # each retry ends in the recovery branch. (Visible ones are planned through right after
+    # the global costmap is cleared, and the race between that path and the next failed
+    # replan decides whether the recoveries run at all, in Nav2 as here.)
+    boxes = [
+        await world.spawn(x, y, size_x=0.3, size_y=0.9, height=0.1)
+        for x in (1.4, 2.6)
+        for y in FENCE_YS
+    ]
 
     done = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=200.0)
 
@@ -175,7 +179,8 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     paused = await tree.wait_for(lambda: tree.find("PauseNearGoal", "RUNNING"), 30.0)
     assert paused, "the tree did not pause near the goal"
     assert await world.track.wait_still(0.5, timeout=10.0), "the robot did not stop"
-    assert goals.ended("follow_path", GoalState.CANCELED) >= 1  # CancelControl
+    stopped = await goals.wait_for(lambda: goals.ended("follow_path", GoalState.CANCELED) >= 1, 5.0)
+    assert stopped, goals.states["follow_path"]  # CancelControl, or the halt it causes
     await world.remove(door)
 
     done = await running.end(90.0)
