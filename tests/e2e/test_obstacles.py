@@ -21,7 +21,7 @@ from aiobt.msgs import (
     GoalState,
     PoseStamped,
 )
-from aiobt.testing.navwatch import Sample, ServerGoals
+from aiobt.testing.navwatch import Sample, ServerGoals, wait_until
 from aiobt.testing.treewatch import TreeWatch
 from aiobt_services.robot.messages import BumperEvent
 
@@ -133,12 +133,7 @@ class TargetFeed:
             self.moved.set()
 
     async def wait_past(self, x: float, timeout: float) -> bool:  # noqa: ASYNC109
-        with contextlib.suppress(TimeoutError):
-            async with asyncio.timeout(timeout):
-                while self.x < x:
-                    self.moved.clear()
-                    await self.moved.wait()
-        return self.x >= x
+        return await wait_until(self.moved, lambda: self.x >= x, timeout)
 
 
 @pytest.mark.timeout(150)

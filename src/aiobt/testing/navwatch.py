@@ -29,6 +29,21 @@ M = TypeVar("M", bound=Msg)
 TELEPORT = 0.5  # m between two poses (at 50 Hz): a reset, not driving
 
 
+async def wait_until(
+    changed: asyncio.Event,
+    predicate: Callable[[], object],
+    timeout: float,  # noqa: ASYNC109
+) -> bool:
+    """True once ``predicate()`` is truthy, checked now and each time ``changed`` is set
+    (the waiter clears it); False if ``timeout`` s pass first."""
+    with contextlib.suppress(TimeoutError):
+        async with asyncio.timeout(timeout):
+            while not predicate():
+                changed.clear()
+                await changed.wait()
+    return bool(predicate())
+
+
 @dataclass(frozen=True, slots=True)
 class Sample:
     stamp: float
@@ -81,12 +96,11 @@ class RobotTrack:
         timeout: float,  # noqa: ASYNC109
     ) -> Sample | None:
         """The first pose (the latest included) that satisfies ``predicate``; None on timeout."""
-        with contextlib.suppress(TimeoutError):
-            async with asyncio.timeout(timeout):
-                while self.latest is None or not predicate(self.latest):
-                    self._changed.clear()
-                    await self._changed.wait()
-        return self.latest if self.latest is not None and predicate(self.latest) else None
+
+        def holds() -> bool:
+            return self.latest is not None and predicate(self.latest)
+
+        return self.latest if await wait_until(self._changed, holds, timeout) else None
 
     async def wait_still(self, seconds: float, timeout: float, tolerance: float = 0.01) -> bool:  # noqa: ASYNC109
         """True once the robot moved less than ``tolerance`` m over ``seconds`` of sim time."""
@@ -158,12 +172,7 @@ class ServerGoals:
 
     async def wait_for(self, predicate: Callable[[], bool], timeout: float) -> bool:  # noqa: ASYNC109
         """True once ``predicate()`` holds (checked on every status change)."""
-        with contextlib.suppress(TimeoutError):
-            async with asyncio.timeout(timeout):
-                while not predicate():
-                    self._changed.clear()
-                    await self._changed.wait()
-        return predicate()
+        return await wait_until(self._changed, predicate, timeout)
 
     async def wait_idle(self, timeout: float) -> bool:  # noqa: ASYNC109
         """True once no server has an active goal."""

@@ -10,12 +10,12 @@ of the kill?" or "in which order did the recovery actions start?".
 from __future__ import annotations
 
 import asyncio
-import contextlib
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
 from aiobt.msgs import BtTransitions, BtTree
+from aiobt.testing.navwatch import wait_until
 from aiobt.transport import Bus
 
 
@@ -89,12 +89,7 @@ class TreeWatch:
 
     async def wait_for(self, predicate: Callable[[], object], timeout: float) -> bool:  # noqa: ASYNC109
         """True once ``predicate()`` is truthy (checked on every transition batch)."""
-        with contextlib.suppress(TimeoutError):
-            async with asyncio.timeout(timeout):
-                while not predicate():
-                    self._changed.clear()
-                    await self._changed.wait()
-        return bool(predicate())
+        return await wait_until(self._changed, predicate, timeout)
 
     def close(self) -> None:
         self._transitions_sub.close()
