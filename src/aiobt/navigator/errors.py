@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Iterable
-from typing import Any
+from typing import Any, NamedTuple
 
 from aiobt.core.blackboard import Blackboard
+from aiobt.msgs import NavigateThroughPoses, NavigateToPose
+from aiobt.navigator.goals import NavRequest
 
 log = logging.getLogger("aiobt.navigator.errors")
 
@@ -62,3 +64,18 @@ def clear_error_codes(blackboard: Blackboard, prefixes: Iterable[str]) -> None:
     for prefix in prefixes:
         blackboard.set(f"{prefix}_error_code", 0)
         blackboard.set(f"{prefix}_error_msg", "")
+
+
+class NavigatorCodes(NamedTuple):
+    """The navigator's own result codes for one action (9000s: to pose, 9100s: through)."""
+
+    unknown: int
+    failed_to_load: int
+    tf_error: int
+
+
+def navigator_codes(request: NavRequest) -> NavigatorCodes:
+    codes = NavigateThroughPoses.ErrorCode if request.through_poses else NavigateToPose.ErrorCode
+    return NavigatorCodes(
+        int(codes.UNKNOWN), int(codes.FAILED_TO_LOAD_BEHAVIOR_TREE), int(codes.TF_ERROR)
+    )

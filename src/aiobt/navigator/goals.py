@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from aiobt.msgs import Goals, OccupancyGrid, PoseStamped
+from aiobt.msgs import Goals, OccupancyGrid, PoseStamped, WaypointStatus
 
 NAVIGATE_TO_POSE = "navigate_to_pose"
 NAVIGATE_THROUGH_POSES = "navigate_through_poses"
@@ -28,11 +28,16 @@ class NavRequest:
     def through_poses(self) -> bool:
         return self.action == NAVIGATE_THROUGH_POSES
 
-    def blackboard_goal(self) -> tuple[str, PoseStamped | Goals]:
-        """The blackboard entry Nav2's navigator sets: ``goal``, or ``goals``."""
-        if self.through_poses:
-            return "goals", Goals(goals=list(self.poses))
-        return "goal", self.poses[0]
+    def blackboard_entries(self) -> dict[str, object]:
+        """The blackboard entries Nav2's navigator sets for this goal: ``goal``; or
+        ``goals`` and ``waypoint_statuses`` (one PENDING status per pose)."""
+        if not self.through_poses:
+            return {"goal": self.poses[0]}
+        statuses = [
+            WaypointStatus(waypoint_index=index, waypoint_pose=pose)
+            for index, pose in enumerate(self.poses)
+        ]
+        return {"goals": Goals(goals=list(self.poses)), "waypoint_statuses": statuses}
 
 
 @dataclass(frozen=True, slots=True)

@@ -17,7 +17,7 @@ from aiobt.core.clock import Clock
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.nav import register_nav2_nodes
 from aiobt.navigator.navigator import Navigator, NavigatorOptions
-from aiobt.navigator.service import BusRobotState, BusStatusSink, NavigatorService
+from aiobt.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 from aiobt.navigator.status import TreeStatusStream
 from aiobt.navigator.trees import (
     DEFAULT_THROUGH_POSES_TREE,
@@ -98,7 +98,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
     """The navigator with Nav2's nodes on ``bus``; :class:`TreeLoadFailure` if a default
     tree or a tree directory is not there."""
     factory = BehaviorTreeFactory()
-    register_nav2_nodes(factory, bus, clock=clock, server_timeout=args.server_timeout)
+    nav = register_nav2_nodes(factory, bus, clock=clock, server_timeout=args.server_timeout)
     library = TreeLibrary(factory, args.tree_dir or [TREES_DIR])
     library.check(args.default_tree)
     library.check(args.default_through_tree)
@@ -110,7 +110,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
         btlog_dir=args.btlog_dir,
     )
     stream = TreeStatusStream(BusStatusSink(bus))
-    return Navigator(library, BusRobotState(bus), clock, stream, options)
+    return Navigator(library, NavRobotState(nav), clock, stream, options)
 
 
 async def serve(args: argparse.Namespace) -> int:

@@ -20,7 +20,7 @@ from aiobt.core.status import FAILURE, SUCCESS, Status
 from aiobt.core.tree import Tree
 from aiobt.loggers.btlog import BtlogLogger
 from aiobt.msgs import ActionResult, Msg, NavigateThroughPoses, NavigateToPose, Path
-from aiobt.navigator.errors import aggregate_error, clear_error_codes
+from aiobt.navigator.errors import aggregate_error, clear_error_codes, navigator_codes
 from aiobt.navigator.goals import NavRequest
 from aiobt.navigator.progress import PathProgress, time_remaining
 from aiobt.navigator.trees import TreeLoadFailure
@@ -36,12 +36,6 @@ class GoalChannel(Protocol):
 
     def take_new_request(self) -> NavRequest | None: ...
     def publish_feedback(self, feedback: Msg) -> None: ...
-
-
-def error_codes(request: NavRequest) -> tuple[int, int]:
-    """The action's (UNKNOWN, FAILED_TO_LOAD_BEHAVIOR_TREE) codes."""
-    codes = NavigateThroughPoses.ErrorCode if request.through_poses else NavigateToPose.ErrorCode
-    return int(codes.UNKNOWN), int(codes.FAILED_TO_LOAD_BEHAVIOR_TREE)
 
 
 class Navigation:
@@ -65,7 +59,9 @@ class Navigation:
     # -- control from outside ----------------------------------------------------------
     def stop(self, reason: str) -> None:
         """End the navigation ABORTED with ``reason`` (a goal of the other action took over)."""
-        self._end_with(ActionResult(error_code=error_codes(self.request)[0], error_msg=reason))
+        self._end_with(
+            ActionResult(error_code=navigator_codes(self.request).unknown, error_msg=reason)
+        )
 
     def _end_with(self, result: ActionResult) -> None:
         self._stop = result
@@ -80,21 +76,26 @@ class Navigation:
 
     # -- the loop ------------------------------------------------------------------------
     async def run(self) -> ActionResult:
-        unknown, failed_to_load = error_codes(self.request)
+        codes = navigator_codes(self.request)
         problem = self.navigator.goal_problem(self.request)
         if problem is not None:
             log.error("goal %s refused: %s", self.request.goal_id, problem.error_msg)
             return problem
+        # bt_navigator: "Initial robot pose is not available." (TF_ERROR)
+        if self.navigator.robot.current_pose() is None:
+            message = "the robot pose is not available (nothing received on pose yet)"
+            log.error("goal %s: %s", self.request.goal_id, message)
+            return ActionResult(error_code=codes.tf_error, error_msg=message)
         try:
             self._start_tree(self.request)
         except TreeLoadFailure as exc:
             log.error("goal %s: %s", self.request.goal_id, exc)
-            return ActionResult(error_code=failed_to_load, error_msg=str(exc))
+            return ActionResult(error_code=codes.failed_to_load, error_msg=str(exc))
         reason = "canceled"
         try:
             status = await self._tick_until_done()
             reason = "navigation ended"
-            return self._result(status, unknown)
+            return self._result(status, codes.unknown)
         finally:
             await self._end_tree(reason)
 
@@ -107,16 +108,18 @@ class Navigation:
                 status = await tree.tick_once()
             except BehaviorTreeError as exc:  # a node's error: this goal fails, we go on
                 log.error("goal %s: %s", self.request.goal_id, exc)
-                return ActionResult(error_code=error_codes(self.request)[0], error_msg=str(exc))
+                return ActionResult(
+                    error_code=navigator_codes(self.request).unknown, error_msg=str(exc)
+                )
             self.ticks += 1
             self.navigator.stream.flush()
             if status is SUCCESS or status is FAILURE:
                 return status
             if self._stop is not None:
                 return self._stop
-            await self._take_newer_goal()
+            await self._take_newer_goal()  # may start another tree
             self.channel.publish_feedback(self._feedback())
-            await self._wait(tree, period)
+            await self._wait(self.tree or tree, period)
             if self._stop is not None:
                 return self._stop
 
@@ -174,13 +177,15 @@ class Navigation:
         try:
             self._start_tree(newer)
         except TreeLoadFailure as exc:
-            self._end_with(ActionResult(error_code=error_codes(newer)[1], error_msg=str(exc)))
+            self._end_with(
+                ActionResult(error_code=navigator_codes(newer).failed_to_load, error_msg=str(exc))
+            )
 
     def _set_goal(self, request: NavRequest) -> None:
         assert self.tree is not None
-        key, value = request.blackboard_goal()
         blackboard = self.tree.root_blackboard
-        blackboard.set(key, value)
+        for key, value in request.blackboard_entries().items():
+            blackboard.set(key, value)
         blackboard.set("number_recoveries", 0)
         self.tree.emit_wake_up()
 
@@ -188,8 +193,8 @@ class Navigation:
     def _start_tree(self, request: NavRequest) -> None:
         source = self.navigator.tree_of(request)
         blackboard = Blackboard.create()
-        key, value = request.blackboard_goal()
-        blackboard.set(key, value)
+        for key, value in request.blackboard_entries().items():
+            blackboard.set(key, value)
         blackboard.set("path", Path())
         blackboard.set("number_recoveries", 0)
         clear_error_codes(blackboard, self.navigator.options.error_code_prefixes)

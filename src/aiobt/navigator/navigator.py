@@ -22,9 +22,9 @@ from aiobt.loggers.btlog import BtlogLogger
 from aiobt.msgs import ActionResult, BtSnapshot, ComputePathToPoseError, PoseStamped
 from aiobt.msgs.bt import NavigationState
 from aiobt.nav.context import DEFAULT_BT_LOOP_DURATION
-from aiobt.navigator.errors import ERROR_CODE_PREFIXES
+from aiobt.navigator.errors import ERROR_CODE_PREFIXES, navigator_codes
 from aiobt.navigator.goals import MapBounds, NavRequest, pose_problem
-from aiobt.navigator.navigation import GoalChannel, Navigation, error_codes
+from aiobt.navigator.navigation import GoalChannel, Navigation
 from aiobt.navigator.status import TreeStatusStream
 from aiobt.navigator.trees import DEFAULT_THROUGH_POSES_TREE, DEFAULT_TO_POSE_TREE, TreeLibrary
 
@@ -93,7 +93,7 @@ class Navigator:
             return None
         outside = int(ComputePathToPoseError.GOAL_OUTSIDE_MAP)
         return ActionResult(
-            error_code=outside if problem.outside_map else error_codes(request)[0],
+            error_code=outside if problem.outside_map else navigator_codes(request).unknown,
             error_msg=f"{request.action} goal {request.goal_id}: {problem.message}",
         )
 
@@ -106,7 +106,7 @@ class Navigator:
         async with self._lock:
             if self._latest_goal != request.goal_id:
                 return ActionResult(
-                    error_code=error_codes(request)[0],
+                    error_code=navigator_codes(request).unknown,
                     error_msg=f"preempted by goal {self._latest_goal} before it started",
                 )
             return await self._run(Navigation(self, request, channel))

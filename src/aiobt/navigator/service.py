@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import math
 from typing import Any
 
 from aiobt.core.clock import Clock
@@ -24,10 +23,12 @@ from aiobt.msgs import (
     NavigateThroughPoses,
     NavigateToPose,
     OccupancyGrid,
-    Odometry,
     PoseStamped,
 )
+from aiobt.nav.context import NavContext
+from aiobt.nav.robot_state import ODOM, POSE, robot_state
 from aiobt.navigator.goals import (
+    GLOBAL_FRAME,
     NAVIGATE_THROUGH_POSES,
     NAVIGATE_TO_POSE,
     MapBounds,
@@ -47,26 +48,19 @@ def to_request(action: str, goal_id: str, goal: Any) -> NavRequest:
     return NavRequest(action, goal_id, poses, goal.behavior_tree)
 
 
-def _keep_latest(message: Msg) -> None:
-    """A subscription callback that does nothing: the subscription keeps ``latest``."""
+class NavRobotState:
+    """The robot as the navigator sees it, from the Nav2 nodes' shared robot state
+    (one subscription per key in the process): map pose, smoothed speed."""
 
-
-class BusRobotState:
-    """The robot's map pose (``{ns}/pose``) and speed (``{ns}/odom``), latest values."""
-
-    def __init__(self, bus: Bus) -> None:
-        # a callback keeps ``latest`` and queues nothing
-        self._pose = bus.subscribe("pose", PoseStamped, _keep_latest)
-        self._odom = bus.subscribe("odom", Odometry, _keep_latest)
+    def __init__(self, nav: NavContext) -> None:
+        self._robot = robot_state(nav, "navigator")
+        self._robot.prepare(POSE, ODOM)  # subscribed now: data before the first goal
 
     def current_pose(self) -> PoseStamped | None:
-        return self._pose.latest
+        return self._robot.pose_in(GLOBAL_FRAME)
 
     def linear_speed(self) -> float:
-        odom = self._odom.latest
-        if odom is None:
-            return 0.0
-        return math.hypot(odom.twist.linear.x, odom.twist.linear.y)
+        return self._robot.speed() or 0.0
 
 
 class BusStatusSink:

@@ -68,18 +68,6 @@ def gate_factory(gates: Gates) -> BehaviorTreeFactory:
 
 
 @dataclass
-class FakeRobot:
-    pose: PoseStamped | None = None
-    speed: float = 0.0
-
-    def current_pose(self) -> PoseStamped | None:
-        return self.pose
-
-    def linear_speed(self) -> float:
-        return self.speed
-
-
-@dataclass
 class ListSink:
     trees: list[BtTree] = field(default_factory=list)
     batches: list[BtTransitions] = field(default_factory=list)
@@ -134,6 +122,18 @@ def write_trees(directory: Path, trees: dict[str, str]) -> Iterator[Path]:
 
 def pose(x: float, y: float) -> PoseStamped:
     return PoseStamped.model_validate({"x": x, "y": y, "yaw": 0.0})
+
+
+@dataclass
+class FakeRobot:
+    pose: PoseStamped | None = field(default_factory=lambda: pose(0.0, 0.0))
+    speed: float = 0.0
+
+    def current_pose(self) -> PoseStamped | None:
+        return self.pose
+
+    def linear_speed(self) -> float:
+        return self.speed
 
 
 def to_pose(goal_id: str, x: float = 1.0, y: float = 2.0, tree: str = "") -> NavRequest:

@@ -47,6 +47,9 @@ async def test_the_goal_is_on_the_blackboard(tmp_path: Path) -> None:
     goals = navigation.tree.root_blackboard.get("goals")
     assert [(g.pose.position.x, g.pose.position.y) for g in goals.goals] == [(1, 2), (3, 4)]
     assert navigation.tree.root_blackboard.get("number_recoveries") == 0
+    statuses = navigation.tree.root_blackboard.get("waypoint_statuses")
+    assert [(s.waypoint_index, s.waypoint_status) for s in statuses] == [(0, 0), (1, 0)]
+    assert statuses[1].waypoint_pose == goals.goals[1]
     rig.gates.open("drive")
     assert (await asyncio.wait_for(task, WAIT)).error_code == 0
 

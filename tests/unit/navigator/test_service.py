@@ -9,8 +9,18 @@ from pathlib import Path
 import pytest
 
 from aiobt.core.clock import SystemClock
-from aiobt.msgs import BtSnapshot, BtTree, GoalState, NavigateThroughPoses, NavigateToPose
-from aiobt.navigator.service import BusStatusSink, NavigatorService
+from aiobt.factory import BehaviorTreeFactory
+from aiobt.msgs import (
+    BtSnapshot,
+    BtTree,
+    GoalState,
+    NavigateThroughPoses,
+    NavigateToPose,
+    Odometry,
+    PoseStamped,
+)
+from aiobt.nav import register_nav2_nodes
+from aiobt.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 from aiobt.transport import Bus
 
 from .harness import WAIT, Rig, make_rig, pose
@@ -100,3 +110,24 @@ async def test_a_second_goal_of_the_same_action_takes_the_navigation_over(
         assert rig.gates.halts.get("tour", 0) == 0  # the same tree went on
     finally:
         await service.aclose()
+
+
+@pytest.mark.timeout(60)
+async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus: Bus) -> None:
+    nav = register_nav2_nodes(BehaviorTreeFactory(), local_bus)
+    robot = NavRobotState(nav)
+    assert robot.current_pose() is None
+    assert robot.linear_speed() == 0.0
+    poses = local_bus.publisher("pose", PoseStamped)
+    odometry = local_bus.publisher("odom", Odometry)
+    moving = Odometry.model_validate({"twist": {"linear": {"x": 0.3, "y": 0.4}}})
+    for _ in range(500):
+        poses.put(pose(1.0, 2.0))
+        odometry.put(moving)
+        if robot.current_pose() is not None and robot.linear_speed() > 0.0:
+            break
+        await asyncio.sleep(0.01)
+    current = robot.current_pose()
+    assert current is not None
+    assert current.pose.position.x == 1.0
+    assert robot.linear_speed() == pytest.approx(0.5)

@@ -86,7 +86,18 @@ async def test_feedback_distance_time_recoveries_and_poses_remaining(tmp_path: P
     await asyncio.wait_for(task, WAIT)
 
 
-async def test_to_pose_feedback_without_a_pose_leaves_the_distance_out(tmp_path: Path) -> None:
+async def test_a_goal_before_any_robot_pose_fails_with_tf_error(tmp_path: Path) -> None:
+    rig = make_rig(tmp_path, TREES)
+    rig.robot.pose = None
+    result = await rig.navigator.navigate(to_pose("early"), FakeChannel())
+    assert result.error_code == 9002
+    assert "robot pose is not available" in result.error_msg
+    result = await rig.navigator.navigate(through("early", (1, 1)), FakeChannel())
+    assert result.error_code == 9102
+    assert rig.sink.trees == []
+
+
+async def test_feedback_without_a_path_has_no_distance(tmp_path: Path) -> None:
     rig = make_rig(tmp_path, TREES)
     channel = FakeChannel()
     task = asyncio.create_task(rig.navigator.navigate(to_pose("g"), channel))
@@ -94,6 +105,7 @@ async def test_to_pose_feedback_without_a_pose_leaves_the_distance_out(tmp_path:
     assert isinstance(feedback, NavigateToPose.Feedback)
     assert feedback.distance_remaining == 0.0
     assert feedback.estimated_time_remaining == 0.0
+    assert feedback.current_pose == rig.robot.pose
     task.cancel()
     with pytest.raises(asyncio.CancelledError):
         await task
