@@ -15,10 +15,12 @@ from aiobt.testing.stubs import tree_xml
 from aiobt.transport import Bus
 
 
-def nav_tree(bus: Bus | None, body: str, **blackboard: object) -> Tree:
+def nav_tree(
+    bus: Bus | None, body: str, server_timeout: float | None = None, **blackboard: object
+) -> Tree:
     """A tree of ``body`` with Nav2's nodes bound to ``bus``; ``blackboard`` preset."""
     factory = BehaviorTreeFactory()
-    register_nav2_nodes(factory, bus)
+    register_nav2_nodes(factory, bus, server_timeout=server_timeout)
     tree = factory.create_tree_from_text(tree_xml(body))
     for key, value in blackboard.items():
         tree.root_blackboard[key] = value

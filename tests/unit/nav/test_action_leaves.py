@@ -299,3 +299,12 @@ async def test_follow_path_writes_the_controllers_tracking_feedback(local_bus: B
     finish.set()
     assert await run_to_end(tree) is S
     assert tree.root_blackboard["tf"] == TrackingFeedback()  # reset when the goal ends
+
+
+async def test_watching_goal_ports_creates_no_blackboard_entries(local_bus: Bus) -> None:
+    controller = Controller(local_bus)
+    tree = nav_tree(local_bus, '<FollowPath path="{p}"/>', p=straight_path())
+    assert await tick_until(tree, controller.got_goal) is R
+    assert sorted(tree.root_blackboard.keys()) == ["p"]  # no controller_id & co.
+    controller.finish.set()
+    assert await run_to_end(tree) is S

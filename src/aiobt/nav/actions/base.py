@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from collections.abc import Callable
 from typing import Any, ClassVar
 
 from pydantic import ValidationError
 
-from aiobt.core.blackboard import Entry
 from aiobt.core.errors import LogicError, PortError
 from aiobt.core.leaves import AsyncActionNode
 from aiobt.core.status import FAILURE, RUNNING, SUCCESS, Status
@@ -17,7 +17,10 @@ from aiobt.nav import remote
 from aiobt.nav.context import NavNode
 from aiobt.transport import ActionClient, ClientGoal, GoalLost, GoalRejected, ServerUnavailable
 
-CANCEL_TIMEOUT = 1.5  # s a halted leaf waits for its goal's cancel (the tree's halt budget is 2)
+CANCEL_SHARE = 0.8  # of the tree's halt_timeout, for a halted leaf's cancel of its goal
+_ASYNC_EXECUTE = AsyncActionNode.execute_sync
+# Goal ports that Nav2 reads from the blackboard entry of their own name when unset
+BLACKBOARD_FALLBACK = frozenset({"goal", "goals", "path"})
 
 
 class BtAction(NavNode, AsyncActionNode):
@@ -28,10 +31,11 @@ class BtAction(NavNode, AsyncActionNode):
     - RUNNING until the result: SUCCEEDED -> :meth:`on_success` (SUCCESS),
       ABORTED -> :meth:`on_aborted` (FAILURE, the server's ``error_code_id`` /
       ``error_msg``), CANCELED by someone else -> :meth:`on_cancelled` (SUCCESS);
-    - a goal port in ``WATCHED`` changed while RUNNING (checked in the tick, by
-      the blackboard entry's sequence id): :meth:`goal_update` builds the new
+    - a goal port in ``WATCHED`` written while RUNNING (a blackboard watcher
+      flags it; the next tick sees the flag): :meth:`goal_update` builds the new
       goal, which is sent to the server (it preempts); the leaf stays RUNNING;
-    - halted while RUNNING: the goal is canceled and the cancel awaited (bounded);
+    - halted while RUNNING: the goal is canceled and the cancel awaited (within
+      most of the tree's ``halt_timeout``);
     - the server gone mid-goal (its liveliness): FAILURE within about 1.2 s.
 
     Subclasses set ``ACTION`` (the action type; its ``name`` is the default
@@ -50,7 +54,10 @@ class BtAction(NavNode, AsyncActionNode):
         super().__init__(*args, **kwargs)
         self._handle: ClientGoal[Any, Any, Any] | None = None
         self._goal: Any = None
-        self._watched: list[tuple[Entry, int]] = []
+        self._unwatch: list[Callable[[], None]] = []
+        self._written = self._attention = False
+        wants_feedback = type(self).on_feedback is not BtAction.on_feedback
+        self._listener = self._on_feedback_arrived if wants_feedback else None
         self._update: asyncio.Future[Any] | None = None
         self._feedback: Any = None
         self._server = ""
@@ -100,38 +107,53 @@ class BtAction(NavNode, AsyncActionNode):
 
     # -- the tick ----------------------------------------------------------------------------
     def execute_sync(self) -> Status:
-        handle = self._handle
-        if handle is not None:
-            if self._update is not None and self._watched and self._ports_changed():
-                self._offer_update()
-            feedback = handle.latest_feedback
-            if feedback is not self._feedback and feedback is not None:
-                self._feedback = feedback
-                self.on_feedback(feedback)
-        return super().execute_sync()
+        if self._attention:  # one flag on the RUNNING tick's path: a port write or feedback
+            self._attend()
+        return _ASYNC_EXECUTE(self)
+
+    def _attend(self) -> None:
+        self._attention = False
+        if self._written and self._update is not None:
+            self._offer_update()
+        feedback = self._feedback
+        if feedback is not None:
+            self._feedback = None
+            self.on_feedback(feedback)
 
     def halt_sync(self) -> None:
         if self._status is RUNNING:
             self.on_cancelled(None)
         super().halt_sync()
 
-    def _ports_changed(self) -> bool:
-        return any(entry.sequence_id != sequence_id for entry, sequence_id in self._watched)
-
     def _watch(self) -> None:
-        """Remember the sequence ids of the watched ports' blackboard entries."""
-        watched = []
+        """Flag writes of the watched ports' blackboard entries (literals never change)."""
+        if self._unwatch:
+            return
         for port in self.WATCHED:
             binding = self.config.inputs.get(port)
-            if binding is not None and binding.key is None:
-                continue  # a literal never changes
-            key = binding.key if binding is not None and binding.key is not None else port
-            entry = self.blackboard.create_entry(key)
-            watched.append((entry, entry.sequence_id))
-        self._watched = watched
+            if binding is not None:
+                key = binding.key
+            else:
+                key = port if port in BLACKBOARD_FALLBACK else None
+            if key is not None:
+                self._unwatch.append(self.blackboard.watch(key, self._on_port_written))
+
+    def _on_port_written(self) -> None:
+        self._written = self._attention = True
+
+    def _on_feedback_arrived(self, feedback: Any) -> None:
+        self._feedback = feedback
+        self._attention = True
+
+    def _stop_watching(self) -> None:
+        for undo in self._unwatch:
+            undo()
+        self._unwatch.clear()
+        self._written = self._attention = False
+        self._feedback = None
 
     def _offer_update(self) -> None:
-        self._watch()
+        self._written = False
         try:
             new = self.goal_update(self._goal)
         except (PortError, ValidationError, ValueError) as exc:
@@ -162,13 +184,14 @@ class BtAction(NavNode, AsyncActionNode):
             await self._cancel_goal()
             raise
         finally:
+            self._stop_watching()
             self._handle = None
             self._update = None
 
     async def _send(self, client: ActionClient[Any, Any, Any], goal: Any, wait: float) -> bool:
         self._watch()
         try:
-            handle = await client.send_goal(goal, server_timeout=wait)
+            handle = await client.send_goal(goal, server_timeout=wait, on_feedback=self._listener)
         except ServerUnavailable as exc:
             self.log.warning("%s: %s (server_timeout)", self.path, exc)
             self.on_timeout(f"{exc} (server_timeout)")
@@ -177,6 +200,8 @@ class BtAction(NavNode, AsyncActionNode):
             self._no_result(self._code("GOAL_REJECTED", "UNKNOWN"), str(exc))
             return False
         self._handle, self._goal = handle, goal
+        if self._listener is not None and handle.latest_feedback is not None:
+            self._listener(handle.latest_feedback)  # came with the acceptance
         return True
 
     async def _follow(self, client: ActionClient[Any, Any, Any], wait: float) -> Status:
@@ -185,8 +210,8 @@ class BtAction(NavNode, AsyncActionNode):
             handle = self._handle
             assert handle is not None
             update = self._update = asyncio.get_running_loop().create_future()
-            if self._watched and self._ports_changed():
-                self._offer_update()  # changed while the goal was being accepted
+            if self._written:
+                self._offer_update()  # written while the goal was being accepted
             result = asyncio.ensure_future(handle.result())
             try:
                 await asyncio.wait((result, update), return_when=asyncio.FIRST_COMPLETED)
@@ -226,16 +251,17 @@ class BtAction(NavNode, AsyncActionNode):
         handle = self._handle
         if handle is None or handle.done:
             return
+        budget = self._ctx.halt_timeout * CANCEL_SHARE
         try:
-            async with asyncio.timeout(CANCEL_TIMEOUT):
-                await handle.cancel(timeout=CANCEL_TIMEOUT)
+            async with asyncio.timeout(budget):
+                await handle.cancel(timeout=budget)
         except TimeoutError:
             self.log.warning(
                 "%s: %s did not confirm the cancel of goal %s within %.1f s",
                 self.path,
                 self._server,
                 handle.goal_id,
-                CANCEL_TIMEOUT,
+                budget,
             )
 
     def _no_result(self, code: int | None, message: str) -> None:
