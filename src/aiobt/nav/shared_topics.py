@@ -11,9 +11,9 @@ sees it and never raises because of it.
 from __future__ import annotations
 
 import logging
+import weakref
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
-from weakref import WeakKeyDictionary
 
 from aiobt.core.errors import LogicError
 from aiobt.msgs import Msg
@@ -60,10 +60,17 @@ class SharedTopics:
     """The shared subscriptions (and shared helpers) of one bus and namespace."""
 
     def __init__(self, bus: Bus, namespace: str) -> None:
-        self.bus = bus
+        self._bus = weakref.ref(bus)  # weak: the registry below is keyed by the bus
         self.namespace = namespace
         self._topics: dict[str, SharedTopic[Any]] = {}
         self._shared: dict[str, Any] = {}
+
+    @property
+    def bus(self) -> Bus:
+        bus = self._bus()
+        if bus is None:
+            raise LogicError(f"the bus of namespace {self.namespace!r} is gone")
+        return bus
 
     def topic(self, name: str, model: type[M], *, latched: bool = False) -> SharedTopic[M]:
         """The shared reader of ``{ns}/{name}``, subscribed on the first call."""
@@ -95,7 +102,7 @@ class SharedTopics:
         return value
 
 
-_BY_BUS: WeakKeyDictionary[Bus, dict[str, SharedTopics]] = WeakKeyDictionary()
+_BY_BUS: weakref.WeakKeyDictionary[Bus, dict[str, SharedTopics]] = weakref.WeakKeyDictionary()
 
 
 def shared_topics(nav: NavContext, who: str) -> SharedTopics:

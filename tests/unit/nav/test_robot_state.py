@@ -108,3 +108,15 @@ async def test_transform_between_map_and_odom(local_bus: Bus) -> None:
     assert moved.x == pytest.approx(6.0)
     assert (moved.y, moved.header.frame_id) == (5.0, "map")
     assert transform_pose(in_odom, "earth", robot) is None
+
+
+async def test_a_closed_bus_is_not_kept_alive_by_its_shared_topics() -> None:
+    import gc
+    import weakref
+
+    async with open_local_bus() as bus:
+        nav_tree(bus, POSE_READERS)
+        gone = weakref.ref(bus)
+    del bus
+    gc.collect()
+    assert gone() is None
