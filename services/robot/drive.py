@@ -50,7 +50,7 @@ def _approach(current: float, target: float, max_delta: float) -> float:
 class DriveController:
     """Holds the commanded and the current base velocity (body frame)."""
 
-    __slots__ = ("_cmd", "_cmd_time", "_timed_out", "angular", "limits", "linear")
+    __slots__ = ("_cmd", "_cmd_time", "_interval", "_timed_out", "angular", "limits", "linear")
 
     def __init__(self, limits: DriveLimits | None = None) -> None:
         self.limits = limits or DriveLimits()
@@ -59,6 +59,7 @@ class DriveController:
         self._cmd = (0.0, 0.0)
         self._cmd_time = -math.inf
         self._timed_out = True
+        self._interval: float | None = None  # smoothed time between commands of a stream
 
     def command(self, linear: float, angular: float, now: float) -> CommandVerdict:
         """Take a command at sim time ``now``: NaN/inf dropped, excess clamped."""
@@ -70,10 +71,29 @@ class DriveController:
         ang = max(-lim.max_angular, min(lim.max_angular, angular))
         clamped = (lin, ang) != (linear, angular)
         self._cmd = (lin, ang)
+        gap = now - self._cmd_time
+        if 0.0 < gap <= lim.cmd_timeout:  # a stream: learn its period
+            self._interval = gap if self._interval is None else 0.8 * self._interval + 0.2 * gap
+        elif gap > lim.cmd_timeout:
+            self._interval = None
         self._cmd_time = now
         self._timed_out = False
         reason = "clamped to the base limits" if clamped else ""
         return CommandVerdict(True, lin, ang, clamped, reason)
+
+    @property
+    def command_time(self) -> float:
+        """Sim time of the latest command taken (-inf before the first)."""
+        return self._cmd_time
+
+    def overdue(self, now: float) -> bool:
+        """Is a stream driving the base late with its next command? True while the last
+        command moves the base, the stream's next one is more than two of its periods
+        late (at least 0.05 s) and the command timeout has not yet run out."""
+        if self._interval is None or self._cmd == (0.0, 0.0):
+            return False
+        age = now - self._cmd_time
+        return max(2.0 * self._interval, 0.05) < age <= self.limits.cmd_timeout
 
     def stop(self) -> None:
         """Forget the command and the current velocity at once (teleport, reset)."""

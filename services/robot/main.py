@@ -105,6 +105,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             BusOutputs(bus),
             speed=args.speed,
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
+            command_wait=args.command_wait,
         )
         _wire(bus, service)
         bus.declare_token("nodes/robot")

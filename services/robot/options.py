@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from aiobt_services._cli import positive
+from aiobt_services._cli import non_negative, positive
 
 from .drive import DriveLimits
 from .pacing import parse_speed
@@ -55,6 +55,15 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
         type=positive,
         default=0.5,
         help="stop when no cmd_vel for this long, s of sim time (default: %(default)s)",
+    )
+    add(
+        "--command-wait",
+        type=non_negative,
+        default=0.5,
+        metavar="SECONDS",
+        help="when a client driving the base sends its next cmd_vel late (a stalled "
+        "process on a loaded machine), wait for it up to this many wall seconds instead "
+        "of driving on blind; 0: never wait (default: %(default)s)",
     )
     add("--scan-hz", type=positive, default=10.0, help="lidar rate (default: %(default)s)")
     add("--odom-hz", type=positive, default=50.0, help="odom and pose rate (default: %(default)s)")

@@ -8,7 +8,8 @@ now). Sim time runs ``speed`` times as fast as wall time; ``speed`` infinite
 burst (the robot would run ahead of its commands): the target is moved to now
 and the sim time given up is counted. :meth:`Pacer.report` returns, at most
 once per ``report_every`` wall seconds, how far behind the simulation fell and
-how often, or (``--speed max``) the speed-up achieved.
+how often, or (``--speed max``) the speed-up achieved, and how often the
+runner waited for a late command (:meth:`Pacer.held`).
 """
 
 from __future__ import annotations
@@ -25,6 +26,8 @@ class _Window:
     sim: float
     lost: float = 0.0  # sim seconds given up by moving the target
     events: int = 0  # times the target was moved
+    holds: int = 0  # times the sim waited for a late command
+    held: float = 0.0  # wall seconds waited in all
 
 
 def parse_speed(text: str) -> float:
@@ -91,6 +94,13 @@ class Pacer:
         due = self._wall0 + (sim + self._dt - self._sim0) / self.speed
         return max(0.0, due - wall)
 
+    def held(self, wall: float, sim: float, seconds: float) -> None:
+        """The sim waited ``seconds`` of wall time for a late command: counted for the
+        report, and the target restarts from now (the wait is not lag to catch up)."""
+        self._window.holds += 1
+        self._window.held += seconds
+        self._wall0, self._sim0 = wall, sim
+
     def report(self, wall: float, sim: float) -> str | None:
         """A line on the last ``report_every`` s: lag (how far, how often) or achieved speed."""
         window = self._window
@@ -99,12 +109,17 @@ class Pacer:
             return None
         achieved = (sim - window.sim) / span if span > 0.0 else 0.0
         self._window = _Window(wall, sim)
+        holds = (
+            f"; waited {window.holds} time(s), {window.held:.2f} s in all, for a late cmd_vel"
+            if window.holds
+            else ""
+        )
         if self.unpaced:
-            return f"running as fast as possible: x{achieved:.1f} over the last {span:.1f} s"
-        if window.events == 0:
+            return f"running as fast as possible: x{achieved:.1f} over the last {span:.1f} s{holds}"
+        if window.events == 0 and window.holds == 0:
             return None
         return (
             f"simulation behind --speed {self.speed:g}: achieved x{achieved:.1f} over the "
             f"last {span:.1f} s; fell more than {self._max_lag:g} s behind {window.events} "
-            f"time(s), {window.lost:.2f} s of sim time given up"
+            f"time(s), {window.lost:.2f} s of sim time given up{holds}"
         )

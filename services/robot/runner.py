@@ -27,6 +27,7 @@ from .sim import Simulation
 log = logging.getLogger("aiobt_services.robot.runner")
 
 TOPICS = ("odom", "pose", "scan", "battery", "clock", "bumper")
+COMMAND_POLL = 0.001  # wall s between looks for a late command
 
 
 class Outputs(Protocol):
@@ -66,10 +67,13 @@ class SimRunner:
         publish_clock: bool = True,
         max_lag: float = 0.25,
         report_every: float = 5.0,
+        command_wait: float = 0.5,
     ) -> None:
         self.sim = sim
         self.speed = speed
         self._pacer = Pacer(speed, sim.config.dt, max_lag=max_lag, report_every=report_every)
+        self._command_wait = command_wait
+        self._given_up = -math.inf  # the command after which waiting ran out
         self.wall: Clock = wall or SystemClock()
         self._outputs = outputs
         rates = rates or Rates()
@@ -112,6 +116,8 @@ class SimRunner:
         The event loop runs between every two steps, so the latest ``cmd_vel``
         (and any service request) is applied before the next step whatever the
         speed-up, and a command timeout measured in sim time means what it says.
+        When a client driving the base stalls (its command stream is late) the sim
+        waits for it, at most ``command_wait`` wall seconds per command.
         """
         pacer = self._pacer
         pacer.start(self.wall.now(), self.sim.time)
@@ -119,10 +125,32 @@ class SimRunner:
             wait = pacer.delay(self.wall.now(), self.sim.time)
             if wait > 0.0:
                 await self.wall.sleep(wait)
-                if stop.is_set():
-                    break
+            if self._command_late():
+                await self._wait_for_command(stop)
+            if stop.is_set():
+                break
             self.tick()
             await asyncio.sleep(0)  # commands and requests in, before the next step
             line = pacer.report(self.wall.now(), self.sim.time)
             if line is not None:
                 log.log(logging.INFO if pacer.unpaced else logging.WARNING, "%s", line)
+
+    def _command_late(self) -> bool:
+        drive = self.sim.drive
+        return (
+            self._command_wait > 0.0
+            and drive.overdue(self.sim.time)
+            and drive.command_time != self._given_up
+        )
+
+    async def _wait_for_command(self, stop: asyncio.Event) -> None:
+        """A client driving the base fell behind (its next command is late): wait for it,
+        at most ``command_wait`` wall seconds, rather than drive on blind. Once that runs
+        out the sim goes on (the command timeout, in sim time, then stops the base)."""
+        wall0, drive = self.wall.now(), self.sim.drive
+        while drive.overdue(self.sim.time) and not stop.is_set():
+            if self.wall.now() - wall0 >= self._command_wait:
+                self._given_up = drive.command_time
+                break
+            await self.wall.sleep(COMMAND_POLL)
+        self._pacer.held(self.wall.now(), self.sim.time, self.wall.now() - wall0)

@@ -10,6 +10,8 @@ from __future__ import annotations
 import asyncio
 import math
 import time
+from collections.abc import Awaitable
+from typing import Any
 
 import pytest
 
@@ -124,24 +126,24 @@ async def test_behaviours_reach_their_targets_at_10x(
         error = yaw_error((await settled()).yaw, before.yaw + target)
         errors.append(f"spin {target:+.2f}: {error:.3f} rad")
         assert error <= 0.05, errors
-    drives = [
-        ("backup", BackUp, BackUp.Goal(target=Point(x=0.3))),  # Nav2's default speed, 0.025
-        ("drive_on_heading", DriveOnHeadingAction, DriveOnHeadingAction.Goal(
-            target=Point(x=-0.4), speed=-0.3)),
-        ("drive_on_heading", DriveOnHeadingAction, DriveOnHeadingAction.Goal(
-            target=Point(x=0.4), speed=0.3)),
-    ]  # fmt: skip
-    for name, action, drive_goal in drives:
+    backup = bus.action_client("backup", BackUp)
+    drive = bus.action_client("drive_on_heading", DriveOnHeadingAction)
+
+    async def drive_by(sending: Awaitable[Any], distance: float) -> None:
         before = await settled()
-        client = bus.action_client(name, action)
-        goal = await client.send_goal(drive_goal, server_timeout=10.0)
+        goal = await sending
         result = await goal.result(timeout=60.0)
         assert result.error_code == 0, result
         after = await settled()
-        moved = math.hypot(after.x - before.x, after.y - before.y)
-        backwards = (after.x - before.x) * math.cos(before.yaw) < 0.0
-        miss = moved - abs(drive_goal.target.x)
-        errors.append(f"{name} {drive_goal.target.x:+.2f}: {1000 * miss:+.0f} mm")
-        assert backwards == (name == "backup" or drive_goal.speed < 0.0)
-        assert abs(miss) <= 0.02, errors
+        heading = (math.cos(before.yaw), math.sin(before.yaw))
+        along = (after.x - before.x) * heading[0] + (after.y - before.y) * heading[1]
+        errors.append(f"drive {distance:+.2f}: {1000 * (along - distance):+.0f} mm")
+        assert abs(along - distance) <= 0.02, errors
+
+    # Nav2's default backup speed (0.025 m/s); drive_on_heading backwards; forwards
+    await drive_by(backup.send_goal(BackUp.Goal(target=Point(x=0.3)), server_timeout=10.0), -0.3)
+    await drive_by(
+        drive.send_goal(DriveOnHeadingAction.Goal(target=Point(x=-0.4), speed=-0.3)), -0.4
+    )
+    await drive_by(drive.send_goal(DriveOnHeadingAction.Goal(target=Point(x=0.4), speed=0.3)), 0.4)
     print(f"at x{speed.achieved():.1f} achieved: " + "; ".join(errors))

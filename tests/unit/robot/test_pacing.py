@@ -226,3 +226,64 @@ async def test_speed_max_never_sleeps_and_reports_the_speed_up(
     assert wall.sleeps == 0
     assert sim.time == pytest.approx(10.0, abs=0.02)
     assert "running as fast as possible: x10.0" in caplog.text
+
+
+class StreamingClient:
+    """Commands every ``period`` s of sim time, as a controller does; from sim time
+    ``pause_at`` it sends nothing for ``pause`` s of wall time (its process descheduled;
+    inf: gone). It runs in the loop pass between two steps, as a Zenoh callback would."""
+
+    def __init__(self, sim: Simulation, pause_at: float, pause: float) -> None:
+        self.sim = sim
+        self.pause_at = pause_at
+        self.pause = pause
+        self.last = -math.inf
+        self.paused: tuple[float, float] | None = None  # (wall, sim) when the pause began
+        self.resumed_sim: float | None = None
+
+    async def run(self, wall: FakeWall) -> None:
+        while not wall.stop.is_set():
+            if self.paused is None and self.sim.time >= self.pause_at:
+                self.paused = (wall.time, self.sim.time)
+            paused = self.paused
+            if paused and self.resumed_sim is None and wall.time - paused[0] >= self.pause:
+                self.resumed_sim = self.sim.time
+            sending = self.paused is None or self.resumed_sim is not None
+            if sending and self.sim.time - self.last >= 0.05 - 1e-9:
+                self.sim.command(0.3, 0.0)
+                self.last = self.sim.time
+            await asyncio.sleep(0)
+
+
+async def test_the_sim_waits_for_a_stalled_command_stream(sim: Simulation) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
+    client = StreamingClient(sim, pause_at=1.0, pause=0.3)
+    await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
+    assert client.paused is not None
+    assert client.resumed_sim is not None
+    assert client.resumed_sim - client.paused[1] <= 0.1 + 0.02  # 2 periods late: it waited
+    assert sim.drive.linear == pytest.approx(0.3)  # never timed out
+    assert sim.time > 5.0
+
+
+async def test_a_client_gone_is_waited_for_once_then_the_command_timeout_stops_the_base(
+    sim: Simulation, caplog: pytest.LogCaptureFixture
+) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, report_every=0.5)
+    client = StreamingClient(sim, pause_at=1.0, pause=math.inf)
+    with caplog.at_level(logging.WARNING, logger="aiobt_services.robot.runner"):
+        await asyncio.gather(run_until(runner, wall, 1.5), client.run(wall))
+    assert sim.drive.linear == 0.0  # stopped by the command timeout
+    assert sim.time > 5.0  # one wait of 0.5 s, not one per step
+    assert "waited 1 time(s), 0.50 s in all, for a late cmd_vel" in caplog.text
+
+
+async def test_command_wait_zero_never_waits(sim: Simulation) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, command_wait=0.0)
+    client = StreamingClient(sim, pause_at=1.0, pause=math.inf)
+    await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
+    assert sim.time == pytest.approx(10.0, abs=0.05)
+    assert sim.drive.linear == 0.0
