@@ -36,7 +36,7 @@ CORRIDOR_EAST = (18.5, 9.75, 0.0)
 EAST_DOOR = (16.5, 8.5)  # the south-east room's door
 EAST_ROOM = (16.5, 7.3, -math.pi / 2)  # 1.2 m inside it: the long way round is ~17 m
 SOUTH_MIDDLE_ROOM = (10.0, 6.0, 0.0)
-FENCE_YS = (8.95, 9.75, 10.55)  # three 0.9 m boxes: wall to wall across the corridor
+FENCE_YS = (8.75, 9.25, 9.75, 10.25, 10.75)  # five 0.5 m boxes: wall to wall across the corridor
 RECOVERY_CYCLE = ("ClearingActions", "Spin", "Wait", "BackUp")  # Nav2's RoundRobin order
 COUNTED_AS_RECOVERY = ("ClearEntireCostmap", "Spin", "Wait", "BackUp")  # by node ID
 LEAVES = ("compute_path_to_pose", "follow_path", "spin", "backup", "wait")
@@ -71,14 +71,14 @@ async def test_replans_around_a_corridor_blocked_after_planning(world: World, go
 async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_navigates(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
-    # Two fences across the corridor, 0.45 m from the robot's centre either way, lower than
+    # Two fences across the corridor, 0.4 m from the robot's centre either way, lower than
     # the lidar: every plan goes through them and every follow fails to make progress, so
     # each retry ends in the recovery branch. (Visible ones are planned through right after
     # the global costmap is cleared, and the race between that path and the next failed
     # replan decides whether the recoveries run at all, in Nav2 as here.)
     boxes = [
-        await world.spawn(x, y, size_x=0.3, size_y=0.9, height=0.1)
-        for x in (1.4, 2.6)
+        await world.spawn(x, y, size_x=0.3, size_y=0.5, height=0.1)
+        for x in (1.45, 2.55)
         for y in FENCE_YS
     ]
 
@@ -164,9 +164,10 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     world: World, goals: ServerGoals, tree: TreeWatch
 ):
     running = await world.start(*EAST_ROOM, tree=str(TREES / PAUSE_NEAR_GOAL))
-    # 2 m from the door, 3.2 m from the goal: under the tree's prox_len (4 m) even for a path
-    # planned 1 s (0.5 m) back, beyond the controller's collision look-ahead (~1 m)
-    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 2.0, 90.0)
+    # 1.6 m from the door, about 3 m of path from the goal: under the tree's prox_len (4 m)
+    # even for a path planned 1 s (0.5 m) back; the box stays beyond the controller's
+    # collision look-ahead (~1 m) until the next plan (at 1 Hz) sees it
+    near = await world.track.wait_for(lambda s: math.dist((s.x, s.y), EAST_DOOR) < 1.6, 90.0)
     assert near is not None, f"the robot never came near the door: at {world.track.latest}"
     since = len(world.track.samples)
     door = await world.spawn(*EAST_DOOR, size_x=0.8, size_y=0.3)  # the short way in is shut

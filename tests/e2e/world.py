@@ -105,7 +105,7 @@ class World:
         for costmap in ("global_costmap", "local_costmap"):  # no mark of a removed obstacle
             name = ClearEntireCostmap.service_name(costmap)
             cleared = await self.bus.call(
-                name, ClearEntireCostmap.Request(), ClearCostmapResponse, timeout=10.0
+                name, ClearEntireCostmap.Request(), ClearCostmapResponse, timeout=30.0
             )
             assert cleared.success, f"{name}: {cleared.message}"
         start = PoseStamped.from_xy_yaw(*START)

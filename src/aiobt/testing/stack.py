@@ -22,7 +22,7 @@ from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
-from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
+from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
 
 if TYPE_CHECKING:
     from aiobt.transport import Bus, BusSettings
@@ -45,6 +45,9 @@ class StackConfig:
     # a starved process (2 loaded cores) must not be taken for a hung one; a killed one is
     # still noticed at once (its connection closes)
     lease_ms: int = 5000
+    # wall s without sim-clock progress before a sim-time service gives up on a goal (the
+    # services' 2 s default: a robot process descheduled that long is not a dead sim here)
+    clock_timeout: float = 10.0
     services: Sequence[str] = SERVICES
     extra: dict[str, list[str]] = field(default_factory=dict)
 
@@ -55,7 +58,7 @@ class StackConfig:
         if service == "robot":
             args += ["--world", self.world, "--speed", str(self.speed), "--seed", str(self.seed)]
         if service in SIM_TIME:
-            args.append("--sim-time")
+            args += ["--sim-time", "--clock-timeout", str(self.clock_timeout)]
         return args + self.extra.get(service, [])
 
 
@@ -144,11 +147,12 @@ class NavStack:
 @contextlib.contextmanager
 def running_stack(config: StackConfig | None = None) -> Iterator[NavStack]:
     """A router (with the stack's lease: a starved router is not taken for a hung one
-    either) and the stack on it; everything stopped by PID on exit."""
+    either; given a minute to start on a loaded machine) and the stack on it; everything
+    stopped by PID on exit."""
     config = config or StackConfig()
-    lease = ("--lease-ms", str(config.lease_ms))
-    with (
-        running_router(extra_args=lease) as (_, endpoint),
-        NavStack.launch(endpoint, config) as stack,
-    ):
-        yield stack
+    router, endpoint = start_router(extra_args=("--lease-ms", str(config.lease_ms)), timeout=60.0)
+    try:
+        with NavStack.launch(endpoint, config) as stack:
+            yield stack
+    finally:
+        router.cleanup()
