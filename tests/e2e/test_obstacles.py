@@ -148,7 +148,10 @@ async def test_follow_point_tree_follows_a_moving_target(world: World, goals: Se
         assert await feed.wait_past(9.0, 90.0), f"the target stays at x {feed.x}"
         robot = world.track.latest
         assert robot is not None
-        assert 0.5 < feed.x - robot.x < 2.5, f"target at x {feed.x:.2f}, robot at {robot}"
+        # behind it: 1 m of truncated path, plus up to a second of replanning at 1 Hz and
+        # the goal checker's tolerance, plus the stop-and-go of re-sent follows
+        assert 0.5 < feed.x - robot.x < 3.0, f"target at x {feed.x:.2f}, robot at {robot}"
+        assert world.track.driven > 3.0, f"drove {world.track.driven:.2f} m"
         assert not sent.done, sent.status  # follow_point runs until canceled
         await sent.cancel(timeout=10.0)
         assert sent.status is GoalState.CANCELED
