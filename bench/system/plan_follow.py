@@ -28,7 +28,7 @@ import numpy as np
 
 from aiobt.msgs import Clock, ComputePathToPose, FollowPath, PoseStamped
 from aiobt.testing.bus import running_router, spawn_service
-from aiobt.transport import Bus, BusSettings, open_bus
+from aiobt.transport import ActionError, Bus, BusSettings, open_bus
 from aiobt_services.robot.mapfile import MapInfo, load_map
 from aiobt_services.robot.worlds import OFFICE
 
@@ -58,12 +58,12 @@ def seeded_goals(
     last = world.start[:2]
     goals: list[tuple[float, float, float]] = []
     while len(goals) < count:
-        x, y = x0 + rng.uniform(0, width), y0 + rng.uniform(0, height)
+        x, y = round(x0 + rng.uniform(0, width), 2), round(y0 + rng.uniform(0, height), 2)
         if not world.contains(x, y, CLEARANCE) or world.disc_blocked(x, y, CLEARANCE):
             continue
         if math.hypot(x - last[0], y - last[1]) < spacing:
             continue
-        goals.append((round(x, 2), round(y, 2), round(float(rng.uniform(-math.pi, math.pi)), 2)))
+        goals.append((x, y, round(float(rng.uniform(-math.pi, math.pi)), 2)))
         last = (x, y)
     return goals
 
@@ -109,16 +109,43 @@ class Tracker:
 async def plan_and_follow(
     bus: Bus, tracker: Tracker, goal: tuple[float, float, float], patience: float
 ) -> Outcome:
-    """Plan from the robot's pose to ``goal`` and follow the plan; how it ended."""
+    """Plan from the robot's pose to ``goal`` and follow the plan; how it ended (a goal
+    lost, refused or not answered in ``patience`` s counts as not arrived, with why)."""
     sim0, wall0 = tracker.time, time.monotonic()
+    try:
+        return await _plan_and_follow(bus, tracker, goal, patience, sim0, wall0)
+    except (ActionError, TimeoutError) as exc:
+        return _outcome(tracker, goal, (False, -1, -1), sim0, wall0, f"{type(exc).__name__}: {exc}")
+
+
+def _outcome(
+    tracker: Tracker,
+    goal: tuple[float, float, float],
+    codes: tuple[bool, int, int],
+    sim0: float,
+    wall0: float,
+    message: str = "",
+) -> Outcome:
+    arrived, plan, follow = codes
+    pose = tracker.pose
+    distance = math.inf if pose is None else math.hypot(pose.x - goal[0], pose.y - goal[1])
+    return Outcome(
+        goal, arrived and distance <= ARRIVED_WITHIN, plan, follow, distance,
+        tracker.time - sim0, time.monotonic() - wall0, message,
+    )  # fmt: skip
+
+
+async def _plan_and_follow(
+    bus: Bus,
+    tracker: Tracker,
+    goal: tuple[float, float, float],
+    patience: float,
+    sim0: float,
+    wall0: float,
+) -> Outcome:
 
     def outcome(arrived: bool, plan: int, follow: int, message: str = "") -> Outcome:
-        pose = tracker.pose
-        distance = math.inf if pose is None else math.hypot(pose.x - goal[0], pose.y - goal[1])
-        return Outcome(
-            goal, arrived and distance <= ARRIVED_WITHIN, plan, follow, distance,
-            tracker.time - sim0, time.monotonic() - wall0, message,
-        )  # fmt: skip
+        return _outcome(tracker, goal, (arrived, plan, follow), sim0, wall0, message)
 
     here = tracker.pose
     if here is None:
@@ -175,7 +202,11 @@ def report(label: str, outcomes: Sequence[Outcome], achieved: float, robot_log: 
             + (f"  {o.message}" if o.message else "")
         )
     timeouts = robot_log.count("no velocity command for")
-    lags = [line.split(": ", 1)[-1] for line in robot_log.splitlines() if "behind --speed" in line]
+    lags = [
+        line.split(": ", 1)[-1]
+        for line in robot_log.splitlines()
+        if "simulation behind --speed" in line or "simulation at --speed" in line
+    ]
     print(f"robot: {timeouts} command timeout(s), {len(lags)} lag report(s)")
     for line in lags:
         print(f"  {line}")

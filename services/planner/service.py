@@ -13,6 +13,7 @@ from aiobt.msgs import (
     ComputeCoveragePath,
     ComputePathThroughPoses,
     ComputePathToPose,
+    GetCosts,
     IsPathValid,
     LaserScan,
     OccupancyGrid,
@@ -23,7 +24,7 @@ from aiobt.transport import Bus
 
 from .actions import PlannerActions
 from .state import MAP_FRAMES, GlobalCostmap
-from .validity import invalid_poses
+from .validity import invalid_poses, pose_costs
 
 log = logging.getLogger("aiobt_services.planner.service")
 COSTMAP = "global_costmap"
@@ -51,6 +52,8 @@ class PlannerService:
         self._serve_clearing()
         bus.serve(IsPathValid.service_name, IsPathValid.Request, IsPathValid.Response,
                   self.is_path_valid)  # fmt: skip
+        bus.serve(GetCosts.service_name(COSTMAP), GetCosts.Request, GetCosts.Response,
+                  self.get_costs)  # fmt: skip
         bus.declare_token("nodes/planner")
 
     def _serve_clearing(self) -> None:
@@ -111,3 +114,12 @@ class PlannerService:
             grid, poses, req.max_cost, req.consider_unknown_as_obstacle, self.world.robot_xy()
         )
         return IsPathValid.Response(is_valid=not bad, invalid_pose_indices=bad)
+
+    def get_costs(self, req: GetCosts.Request) -> GetCosts.Response:
+        """``global_costmap/get_cost_global_costmap`` (CheckPoseOccupancy,
+        RemoveInCollisionGoals): unsuccessful without a map or off the map frame."""
+        grid = self.world.snapshot()
+        if grid is None or any(p.header.frame_id not in MAP_FRAMES for p in req.poses):
+            return GetCosts.Response(costs=[255.0] * len(req.poses), success=False)
+        costs, on_map = pose_costs(grid, [(p.x, p.y) for p in req.poses])
+        return GetCosts.Response(costs=costs, success=on_map)

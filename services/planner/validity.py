@@ -43,3 +43,15 @@ def invalid_poses(
     if consider_unknown_as_obstacle:
         bad |= unknown
     return (np.flatnonzero(bad) + first).tolist()
+
+
+def pose_costs(grid: CostGrid, xy: Sequence[tuple[float, float]]) -> tuple[list[float], bool]:
+    """Nav2's GetCosts: the cost of the cell under each position (the robot is round,
+    so the inflation layer's cost there is its footprint's); a position off the map
+    costs NO_INFORMATION and makes the answer unsuccessful."""
+    if not xy:
+        return [], True
+    points = np.array(xy, dtype=np.float64)
+    cols, rows, inside = grid.geometry.world_to_cells(points[:, 0], points[:, 1])
+    costs = np.where(inside, grid.costs[rows, cols], NO_INFORMATION).astype(np.float64)
+    return costs.tolist(), bool(inside.all())

@@ -118,8 +118,11 @@ class Pacer:
             return f"running as fast as possible: x{achieved:.1f} over the last {span:.1f} s{holds}"
         if window.events == 0 and window.holds == 0:
             return None
+        head = f"achieved x{achieved:.1f} over the last {span:.1f} s"
+        if window.events == 0:
+            return f"simulation at --speed {self.speed:g}: {head}{holds}"
         return (
-            f"simulation behind --speed {self.speed:g}: achieved x{achieved:.1f} over the "
-            f"last {span:.1f} s; fell more than {self._max_lag:g} s behind {window.events} "
-            f"time(s), {window.lost:.2f} s of sim time given up{holds}"
+            f"simulation behind --speed {self.speed:g}: {head}; fell more than "
+            f"{self._max_lag:g} s behind {window.events} time(s), {window.lost:.2f} s of sim "
+            f"time given up{holds}"
         )

@@ -95,10 +95,13 @@ def action_client(node: NavNode, name: str, action: type[ActionDef[Any, Any, Any
 
 
 def increment_recoveries(node: NavNode) -> None:
-    """Nav2's ``increment_recovery_count``: +1 on the ``number_recoveries`` entry."""
+    """Nav2's ``increment_recovery_count``: +1 on ``number_recoveries``, the entry the
+    node's blackboard sees, else the root's (a SubTree without remapping still counts
+    where the navigator reads it)."""
     blackboard = getattr(node, "blackboard")  # noqa: B009 (a TreeNode's property)
-    count = blackboard.get(RECOVERIES_KEY, 0)
-    blackboard.set(RECOVERIES_KEY, (count if isinstance(count, int) else 0) + 1)
+    key = RECOVERIES_KEY if blackboard.entry(RECOVERIES_KEY) is not None else f"@{RECOVERIES_KEY}"
+    count = blackboard.get(key, 0)
+    blackboard.set(key, (count if isinstance(count, int) else 0) + 1)
 
 
 def error_code(table: type[IntEnum], *names: str) -> int | None:

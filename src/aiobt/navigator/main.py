@@ -91,6 +91,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="SECONDS",
         help="period of {ns}/bt/snapshot (default: %(default)s)",
     )
+    add(
+        "--pose-timeout",
+        type=positive,
+        default=2.0,
+        metavar="SECONDS",
+        help="wall seconds a goal waits for a first robot pose before it fails with "
+        "TF_ERROR (default: %(default)s)",
+    )
     add("--btlog-dir", type=Path, metavar="DIR", help="write a .btlog per navigation in DIR")
 
 
@@ -107,6 +115,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
         default_through_poses_tree=args.default_through_tree,
         bt_loop_duration=args.bt_loop_duration,
         clock_timeout=args.clock_timeout if args.sim_time else None,
+        pose_timeout=args.pose_timeout,
         btlog_dir=args.btlog_dir,
     )
     stream = TreeStatusStream(BusStatusSink(bus))

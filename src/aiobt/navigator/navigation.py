@@ -82,8 +82,9 @@ class Navigation:
             log.error("goal %s refused: %s", self.request.goal_id, problem.error_msg)
             return problem
         # bt_navigator: "Initial robot pose is not available." (TF_ERROR)
-        if self.navigator.robot.current_pose() is None:
-            message = "the robot pose is not available (nothing received on pose yet)"
+        pose_timeout = self.navigator.options.pose_timeout
+        if not await self.navigator.robot.wait_for_pose(pose_timeout):
+            message = f"the robot pose is not available (nothing on pose within {pose_timeout:g} s)"
             log.error("goal %s: %s", self.request.goal_id, message)
             return ActionResult(error_code=codes.tf_error, error_msg=message)
         try:

@@ -36,6 +36,9 @@ class RobotState(Protocol):
 
     def current_pose(self) -> PoseStamped | None: ...
     def linear_speed(self) -> float: ...
+    async def wait_for_pose(self, timeout: float) -> bool:  # noqa: ASYNC109
+        """Wait up to ``timeout`` wall seconds for a first pose; True once there is one."""
+        ...
 
 
 @dataclass(slots=True)
@@ -50,6 +53,7 @@ class NavigatorOptions:
     default_through_poses_tree: str = str(DEFAULT_THROUGH_POSES_TREE)
     bt_loop_duration: float = DEFAULT_BT_LOOP_DURATION
     clock_timeout: float | None = None  # wall s; None: wait for the clock however long
+    pose_timeout: float = 2.0  # wall s a goal waits for a first robot pose (then TF_ERROR)
     error_code_prefixes: tuple[str, ...] = ERROR_CODE_PREFIXES
     btlog_dir: Path | None = None
 

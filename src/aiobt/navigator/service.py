@@ -55,9 +55,20 @@ class NavRobotState:
     def __init__(self, nav: NavContext) -> None:
         self._robot = robot_state(nav, "navigator")
         self._robot.prepare(POSE, ODOM)  # subscribed now: data before the first goal
+        self._pose_seen = asyncio.Event()
+        self._robot.topics.topic(POSE, PoseStamped).listen(lambda _: self._pose_seen.set())
 
     def current_pose(self) -> PoseStamped | None:
         return self._robot.pose_in(GLOBAL_FRAME)
+
+    async def wait_for_pose(self, timeout: float) -> bool:  # noqa: ASYNC109
+        if self.current_pose() is not None:
+            return True
+        try:
+            await asyncio.wait_for(self._pose_seen.wait(), timeout)
+        except TimeoutError:
+            return False
+        return self.current_pose() is not None
 
     def linear_speed(self) -> float:
         return self._robot.speed() or 0.0

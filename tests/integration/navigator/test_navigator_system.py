@@ -39,7 +39,7 @@ async def start_system(spawn: Spawn, bus: Bus, settings: BusSettings) -> None:
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     started = [(name, spawn([*args, *common])) for name, args in SERVICES]
     for name, proc in started:
-        if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(60.0):
+        if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(120.0):
             pytest.fail(f"{name} did not come up:\n{proc.output()}")
 
 
@@ -47,7 +47,7 @@ def goal_to(x: float, y: float, yaw: float = 0.0, tree: str = "") -> NavigateToP
     return NavigateToPose.Goal(pose=PoseStamped.from_xy_yaw(x, y, yaw), behavior_tree=tree)
 
 
-@pytest.mark.timeout(180)
+@pytest.mark.timeout(300)
 async def test_a_goal_in_the_small_world_is_reached_and_bad_goals_are_refused(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
@@ -93,7 +93,7 @@ async def test_a_goal_in_the_small_world_is_reached_and_bad_goals_are_refused(
     assert back.status is GoalState.SUCCEEDED, result
 
 
-@pytest.mark.timeout(180)
+@pytest.mark.timeout(300)
 async def test_navigate_through_poses_in_the_small_world(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:

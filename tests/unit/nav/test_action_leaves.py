@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 
 from aiobt.core.status import Status
+from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import (
     ComputePathToPose,
     ComputePathToPoseError,
@@ -19,6 +20,8 @@ from aiobt.msgs import (
     Spin,
     TrackingFeedback,
 )
+from aiobt.nav import register_nav2_nodes
+from aiobt.testing.stubs import tree_xml
 from aiobt.transport import Bus, GoalHandle
 
 from .support import nav_tree, run_to_end, straight_path, tick_until, tick_until_true
@@ -308,3 +311,18 @@ async def test_watching_goal_ports_creates_no_blackboard_entries(local_bus: Bus)
     assert sorted(tree.root_blackboard.keys()) == ["p"]  # no controller_id & co.
     controller.finish.set()
     assert await run_to_end(tree) is S
+
+
+async def test_a_recovery_in_a_subtree_counts_on_the_root(local_bus: Bus) -> None:
+    async def execute(goal: Any, handle: Any) -> Any:
+        return Spin.Result()
+
+    local_bus.action_server("spin", Spin, execute)
+    factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory, local_bus)
+    text = tree_xml('<SubTree ID="Recover"/>', "MainTree",
+                    '<BehaviorTree ID="Recover"><Spin/></BehaviorTree>')  # fmt: skip
+    tree = factory.create_tree_from_text(text)
+    tree.root_blackboard["number_recoveries"] = 4
+    assert await run_to_end(tree) is S
+    assert tree.root_blackboard["number_recoveries"] == 5

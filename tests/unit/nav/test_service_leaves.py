@@ -9,6 +9,7 @@ import pytest
 
 from aiobt.core.errors import NodeError
 from aiobt.core.status import Status
+from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapResponse,
@@ -19,6 +20,8 @@ from aiobt.msgs import (
     PoseStamped,
     ReinitializeGlobalLocalization,
 )
+from aiobt.nav import register_nav2_nodes
+from aiobt.testing.stubs import tree_xml
 from aiobt.transport import Bus
 
 from .support import nav_tree, run_to_end, straight_path, tick_until
@@ -184,3 +187,11 @@ async def test_a_cancel_without_a_server_fails_after_server_timeout(local_bus: B
     started = loop.time()
     assert await run_to_end(tree) is F
     assert 0.14 <= loop.time() - started < 3.0
+
+
+async def test_a_factory_for_another_namespace_than_its_bus_is_refused(local_bus: Bus) -> None:
+    factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory, local_bus, namespace="robot7")
+    tree = factory.create_tree_from_text(tree_xml("<CancelSpin/>"))
+    with pytest.raises(NodeError, match="robot7"):
+        await run_to_end(tree)

@@ -135,6 +135,9 @@ class FakeRobot:
     def linear_speed(self) -> float:
         return self.speed
 
+    async def wait_for_pose(self, timeout: float) -> bool:  # noqa: ASYNC109
+        return self.pose is not None
+
 
 def to_pose(goal_id: str, x: float = 1.0, y: float = 2.0, tree: str = "") -> NavRequest:
     return NavRequest(NAVIGATE_TO_POSE, goal_id, (pose(x, y),), tree)

@@ -118,6 +118,8 @@ async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus
     robot = NavRobotState(nav)
     assert robot.current_pose() is None
     assert robot.linear_speed() == 0.0
+    assert not await robot.wait_for_pose(0.05)
+    waiting = asyncio.create_task(robot.wait_for_pose(WAIT))
     poses = local_bus.publisher("pose", PoseStamped)
     odometry = local_bus.publisher("odom", Odometry)
     moving = Odometry.model_validate({"twist": {"linear": {"x": 0.3, "y": 0.4}}})
@@ -131,3 +133,31 @@ async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus
     assert current is not None
     assert current.pose.position.x == 1.0
     assert robot.linear_speed() == pytest.approx(0.5)
+    assert await asyncio.wait_for(waiting, WAIT)
+
+
+@pytest.mark.timeout(60)
+async def test_a_goal_with_nan_is_refused_naming_the_field(local_bus: Bus, tmp_path: Path) -> None:
+    rig = make_rig(tmp_path, TREES)
+    service = await serve(rig, local_bus)
+    key = local_bus.keys.action("navigate_to_pose").goal
+    payload = b'{"pose": {"pose": {"position": {"x": NaN, "y": 1.0}}}}'
+
+    def ask() -> list[str]:
+        replies = local_bus.session.get(f"{key}?id=nan1", payload=payload, timeout=10.0)
+        answers = []
+        for reply in replies:
+            answer = reply.err if reply.err is not None else reply.ok
+            assert answer is not None
+            answers.append(answer.payload.to_string())
+        return answers
+
+    try:
+        answers = await asyncio.wait_for(asyncio.to_thread(ask), WAIT)
+        assert len(answers) == 1
+        assert "pose.pose.position.x" in answers[0]
+        assert "finite number" in answers[0]
+        assert rig.navigator.current is None
+        assert rig.sink.trees == []
+    finally:
+        await service.aclose()

@@ -8,6 +8,7 @@ from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapExceptRegion,
     ClearEntireCostmap,
+    GetCosts,
     IsPathValid,
     LaserScan,
     Path,
@@ -97,3 +98,19 @@ def test_is_path_valid_sees_a_new_obstacle_and_refuses_other_frames() -> None:
     assert not reply.is_valid
     assert reply.invalid_pose_indices == list(range(20))
     assert not service(GlobalCostmap()).is_path_valid(IsPathValid.Request(path=path)).is_valid
+
+
+def test_get_costs_answers_the_cell_costs_and_fails_off_the_map() -> None:
+    grid = world()
+    srv = service(grid)
+    free, ahead = PoseStamped.from_xy_yaw(1.0, 1.0), PoseStamped.from_xy_yaw(1.5, 1.0)
+    reply = srv.get_costs(GetCosts.Request(poses=[free, ahead]))
+    assert reply.success
+    assert reply.costs[1] < LETHAL
+    see(grid, 0.5, 5.0 + 1.0, 5.0 + 1.0)  # an obstacle 0.5 m ahead
+    assert srv.get_costs(GetCosts.Request(poses=[ahead])).costs[0] >= LETHAL
+    off = PoseStamped.from_xy_yaw(-50.0, 1.0)
+    reply = srv.get_costs(GetCosts.Request(poses=[free, off]))
+    assert not reply.success
+    assert reply.costs[1] == 255.0
+    assert not service(GlobalCostmap()).get_costs(GetCosts.Request(poses=[free])).success

@@ -97,6 +97,18 @@ def test_pacer_gives_up_lag_instead_of_catching_up_and_counts_it() -> None:
     assert pacer.report(10.0, 54.0) is None  # a period without lag says nothing
 
 
+def test_pacer_counts_waits_for_late_commands_apart_from_lag() -> None:
+    pacer = Pacer(10.0, DT, report_every=5.0)
+    pacer.start(0.0, 0.0)
+    pacer.held(1.0, 5.0, 0.5)  # waited 0.5 s: the target restarts, no lag counted
+    assert pacer.delay(1.0, 5.0) == pytest.approx(0.001)
+    line = pacer.report(5.0, 45.0)
+    assert line == (
+        "simulation at --speed 10: achieved x9.0 over the last 5.0 s; "
+        "waited 1 time(s), 0.50 s in all, for a late cmd_vel"
+    )
+
+
 def test_pacer_max_never_waits_and_reports_the_speed_achieved() -> None:
     pacer = Pacer(math.inf, DT, report_every=2.0)
     pacer.start(0.0, 0.0)
