@@ -22,15 +22,19 @@ log = logging.getLogger("aiobt_services.controller.latency")
 MOVING = 1e-3  # m/s or rad/s: below this the base counts as at rest
 STALL_LEADS = 3.0  # a stall of a control loop: up to this many times the lead...
 STALL_CAP = 0.5  # ... and at most this long (s): the robot's default --cmd-timeout
+LEAD_CAP = 0.3  # s: a longer lead (a machine far over its capacity) is taken as this, so
+# the holding time, and the slow approach it asks of the behaviors, stay bounded
 
 
 def holding_time(lead: float) -> float:
     """How long the base may keep the last command sent: a stall of the loop (up to
     ``STALL_LEADS`` leads, at most ``STALL_CAP``, after which the robot's own command
     timeout stops it), then the ``lead`` of the stop sent after the stall. Under a sim
-    speed-up both grow with it; at 1x (a lead of a few ms) it is a few cycles at most."""
+    speed-up both grow with it; at 1x (a lead of a few ms) it is a few cycles at most.
+    The lead counts up to ``LEAD_CAP``: at most 0.8 s in all."""
     if lead <= 0.0:
         return 0.0
+    lead = min(lead, LEAD_CAP)
     return min(STALL_CAP, STALL_LEADS * lead) + lead
 
 
