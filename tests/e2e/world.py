@@ -1,0 +1,140 @@
+"""What the scenarios do to the world and ask of the navigator.
+
+:class:`World` resets the robot, spawns/moves/removes obstacles (the robot
+service's ``srv/obstacles/...``) and sends navigation goals, recording their
+feedback. The office world: a corridor at y 8.5..11, three rooms south (doors on
+y 8.5 at x 3.5, 10, 16.5), an open plan and a room north; start (2.0, 9.75, 0).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+
+from aiobt.msgs import (
+    BackUp,
+    ClearCostmapResponse,
+    ClearEntireCostmap,
+    ComputePathThroughPoses,
+    ComputePathToPose,
+    DriveOnHeading,
+    Empty,
+    FollowPath,
+    NavigateThroughPoses,
+    NavigateToPose,
+    PoseStamped,
+    SmoothPath,
+    Spin,
+    Wait,
+)
+from aiobt.testing.navwatch import Navigation, RobotTrack, Running, navigate, start_navigation
+from aiobt.transport import ActionError, Bus, ServiceError
+from aiobt_services.robot.messages import (
+    Ack,
+    MoveObstacle,
+    ObstacleList,
+    ObstacleMotion,
+    ObstacleState,
+    RemoveObstacle,
+    SpawnObstacle,
+)
+
+START = (2.0, 9.75, 0.0)
+Request = SpawnObstacle | MoveObstacle | RemoveObstacle
+NAVIGATORS = (NavigateToPose.name, NavigateThroughPoses.name)
+ACTIONS = (
+    NavigateToPose,
+    NavigateThroughPoses,
+    ComputePathToPose,
+    ComputePathThroughPoses,
+    FollowPath,
+    SmoothPath,
+    Spin,
+    BackUp,
+    DriveOnHeading,
+    Wait,
+)
+ARRIVED = 0.3  # m: the goal checker's 0.25 plus the last pose's lag
+YAW_TOLERANCE = 0.3  # rad: the goal checker's 0.25 plus the last pose's lag
+
+
+class World:
+    """The robot service's controls and the navigator's clients, for one test."""
+
+    def __init__(self, bus: Bus, track: RobotTrack) -> None:
+        self.bus = bus
+        self.track = track
+        self.to_pose = bus.action_client(NavigateToPose.name, NavigateToPose)
+        self.through = bus.action_client(NavigateThroughPoses.name, NavigateThroughPoses)
+
+    async def _ack(self, service: str, request: Request) -> str:
+        ack = await self.bus.call(f"obstacles/{service}", request, Ack, timeout=10.0)
+        assert ack.ok, f"obstacles/{service} {request}: {ack.message}"
+        return ack.id
+
+    async def spawn(self, x: float, y: float, **shape: float | str) -> str:
+        """A box (default 0.5 x 0.5 x 1 m) at (x, y); returns its id."""
+        return await self._ack("spawn", SpawnObstacle(x=x, y=y, **shape))
+
+    async def move(
+        self, oid: str, x: float, y: float, motion: tuple[float, float, float] | None = None
+    ) -> None:
+        """Move obstacle ``oid`` to (x, y); ``motion`` (to_x, to_y, speed): back and forth."""
+        moving = ObstacleMotion(to_x=motion[0], to_y=motion[1], speed=motion[2]) if motion else None
+        await self._ack("move", MoveObstacle(id=oid, x=x, y=y, motion=moving))
+
+    async def remove(self, oid: str) -> None:
+        await self._ack("remove", RemoveObstacle(id=oid))
+
+    async def obstacle(self, oid: str) -> ObstacleState:
+        """Where obstacle ``oid`` is now."""
+        listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
+        found = [o for o in listing.obstacles if o.id == oid]
+        assert found, f"no obstacle {oid!r}: {listing}"
+        return found[0]
+
+    async def clear(self) -> None:
+        """No goal on any navigator, no obstacle (nor its mark in a costmap), the robot
+        standing at the start."""
+        for client in (self.to_pose, self.through):
+            with contextlib.suppress(ServiceError, ActionError, TimeoutError):
+                await client.cancel_all(timeout=5.0)
+        listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
+        for obstacle in listing.obstacles:
+            await self.remove(obstacle.id)
+        for costmap in ("global_costmap", "local_costmap"):  # no mark of a removed obstacle
+            name = ClearEntireCostmap.service_name(costmap)
+            cleared = await self.bus.call(
+                name, ClearEntireCostmap.Request(), ClearCostmapResponse, timeout=30.0
+            )
+            assert cleared.success, f"{name}: {cleared.message}"
+        start = PoseStamped.from_xy_yaw(*START)
+        ack = await self.bus.call("reset_pose", start, Ack, timeout=10.0)
+        assert ack.ok, f"reset_pose: {ack.message}"
+        there = await self.track.wait_for(lambda s: math.dist((s.x, s.y), START[:2]) < 0.05, 10.0)
+        assert there is not None, f"the robot is not at the start after reset: {self.track.latest}"
+        self.track.restart()
+
+    async def navigate(
+        self,
+        x: float,
+        y: float,
+        yaw: float = 0.0,
+        tree: str = "",
+        timeout: float = 90.0,  # noqa: ASYNC109
+    ) -> Navigation:
+        """NavigateToPose to (x, y, yaw); waits for the end (bounded)."""
+        return await navigate(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree, timeout)
+
+    async def start(self, x: float, y: float, yaw: float = 0.0, tree: str = "") -> Running:
+        """Send NavigateToPose to (x, y, yaw) and return at once (``.end(timeout)`` waits)."""
+        return await start_navigation(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree)
+
+    def assert_at(self, x: float, y: float, yaw: float | None = None) -> None:
+        """The robot stands within ARRIVED m (and YAW_TOLERANCE rad) of the pose."""
+        here = self.track.latest
+        assert here is not None, "no pose from the robot"
+        assert math.dist((here.x, here.y), (x, y)) <= ARRIVED, f"at {here}, not ({x}, {y})"
+        if yaw is not None:
+            error = abs((here.yaw - yaw + math.pi) % (2 * math.pi) - math.pi)
+            assert error <= YAW_TOLERANCE, f"heading {here.yaw:.2f}, wanted {yaw:.2f}"
