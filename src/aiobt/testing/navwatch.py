@@ -137,7 +137,13 @@ class ServerGoals:
     def _watch(self, bus: Bus, key: str, model: type[M], record: Callable[[M], None]) -> None:
         self._subs.append(
             declare_subscription(
-                bus.session, bus.bridge, key, model, callback_fn=record, latched=False, queue_size=0
+                bus.session,
+                bus.bridge,
+                key,
+                model,
+                callback_fn=record,
+                latched=False,
+                queue_size=1000,
             )
         )
 
@@ -165,6 +171,13 @@ class ServerGoals:
             if live:
                 found[server] = live
         return found
+
+    def forget_unfinished(self, server: str) -> None:
+        """``server``'s process died: the goals it had not ended went with it (no status
+        will ever end them), so they are no longer counted as active."""
+        goals = self.states[server]
+        for goal in [goal for goal, state in goals.items() if not state.is_terminal]:
+            del goals[goal]
 
     def ended(self, server: str, state: GoalState) -> int:
         """How many goals of ``server`` ended in ``state``."""

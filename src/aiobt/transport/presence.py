@@ -21,6 +21,7 @@ class Presence:
     def __init__(self, session: zenoh.Session, bridge: LoopBridge, key: str) -> None:
         self.key = key
         self._alive: set[str] = set()
+        self.seen = False  # a token was alive at some point
         self._event = asyncio.Event()
         self._listeners: list[Callable[[bool], None]] = []
         self._bridge = bridge  # before declaring: history samples may arrive at once
@@ -36,6 +37,7 @@ class Presence:
         was = self.present
         if alive:
             self._alive.add(token)
+            self.seen = True
         else:
             self._alive.discard(token)
         if self.present:
@@ -49,6 +51,11 @@ class Presence:
     @property
     def present(self) -> bool:
         return bool(self._alive)
+
+    @property
+    def lost(self) -> bool:
+        """Seen alive before, and no token alive now (killed, stopped, restarting)."""
+        return self.seen and not self._alive
 
     async def wait(self, timeout: float | None) -> bool:  # noqa: ASYNC109
         """True once present (at once if already), False if ``timeout`` passes first."""

@@ -107,6 +107,28 @@ async def test_without_a_server_it_fails_after_server_timeout_naming_the_server(
     assert "0.3 s" in bb["msg"]
 
 
+async def test_a_server_that_is_not_running_fails_the_leaf_before_a_long_server_timeout(
+    local_bus: Bus,
+) -> None:
+    """server_timeout (5 s here, as the navigator's) is for a busy server to accept; a
+    server with no liveliness token (killed, restarting) fails the leaf after
+    wait_for_service_timeout (1 s), so the tree's recoveries run."""
+    tree = nav_tree(
+        local_bus,
+        '<ComputePathToPose goal="{goal}" server_name="dead_planner" '
+        'error_code_id="{code}" error_msg="{msg}"/>',
+        server_timeout=5.0,
+        goal=GOAL,
+    )
+    loop = asyncio.get_running_loop()
+    started = loop.time()
+    assert await run_to_end(tree) is F
+    assert loop.time() - started < 4.0  # the 5 s server_timeout was not waited out
+    bb = tree.root_blackboard
+    assert bb["code"] == ComputePathToPoseError.TIMEOUT
+    assert "dead_planner is not running" in bb["msg"]
+
+
 class SlowSpin:
     """A spin server whose goals run until canceled; records what happened."""
 

@@ -17,6 +17,7 @@ from aiobt.nav import remote
 from aiobt.nav.context import NavNode
 from aiobt.transport import ActionClient, ClientGoal, GoalLost, GoalRejected, ServerUnavailable
 
+GONE_GRACE = 0.25  # s a leaf waits for a server whose liveliness token ended to come back
 CANCEL_SHARE = 0.8  # of the tree's halt_timeout, for a halted leaf's cancel of its goal
 _ASYNC_EXECUTE = AsyncActionNode.execute_sync
 _NOTHING = object()
@@ -210,11 +211,20 @@ class BtAction(NavNode, AsyncActionNode):
 
     async def _send(self, client: ActionClient[Any, Any, Any], goal: Any, wait: float) -> bool:
         self._watch()
+        absent = self._absent_timeout(client, wait)
         try:
-            handle = await client.send_goal(goal, server_timeout=wait, on_feedback=self._listener)
+            handle = await client.send_goal(
+                goal, server_timeout=wait, on_feedback=self._listener, absent_timeout=absent
+            )
         except ServerUnavailable as exc:
-            self.log.warning("%s: %s (server_timeout)", self.path, exc)
-            self.on_timeout(f"{exc} (server_timeout)")
+            message = f"{exc} (server_timeout)"
+            if not client.server_present:
+                message = (
+                    f"action server {self._server} is not running "
+                    f"(no liveliness token within {absent:g} s)"
+                )
+            self.log.warning("%s: %s", self.path, message)
+            self.on_timeout(message)
             return False
         except GoalRejected as exc:
             self._no_result(self._code("GOAL_REJECTED", "UNKNOWN"), str(exc))
@@ -223,6 +233,14 @@ class BtAction(NavNode, AsyncActionNode):
         if self._listener is not None and handle.latest_feedback is not None:
             self._listener(handle.latest_feedback)  # came with the acceptance
         return True
+
+    def _absent_timeout(self, client: ActionClient[Any, Any, Any], wait: float) -> float:
+        """How long to wait for a server with no liveliness token: Nav2's
+        ``wait_for_service_timeout`` (for one coming up), ``GONE_GRACE`` for one whose token
+        ended (killed, restarting); never the whole ``server_timeout``, which is meant for a
+        busy server to accept. So a dead server fails the leaf at once and recoveries run."""
+        absent = min(wait, self.nav.wait_for_service_timeout)
+        return min(absent, GONE_GRACE) if client.server_lost else absent
 
     async def _follow(self, client: ActionClient[Any, Any, Any], wait: float) -> Status:
         """Wait for the result; send each updated goal the tick offers meanwhile."""

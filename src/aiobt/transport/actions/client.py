@@ -85,6 +85,11 @@ class ActionClient(Generic[G, R, F]):
     def server_present(self) -> bool:
         return self._presence.present
 
+    @property
+    def server_lost(self) -> bool:
+        """The server was seen, and its liveliness token has ended since."""
+        return self._presence.lost
+
     async def wait_for_server(self, timeout: float | None) -> bool:  # noqa: ASYNC109
         return await self._presence.wait(timeout)
 
@@ -95,8 +100,12 @@ class ActionClient(Generic[G, R, F]):
         server_timeout: float = 1.0,
         on_feedback: Callable[[F], object] | None = None,
         goal_id: str | None = None,
+        absent_timeout: float | None = None,
     ) -> ClientGoal[G, R, F]:
-        """Send ``goal``; returns once accepted. ``server_timeout`` bounds the whole wait.
+        """Send ``goal``; returns once accepted. ``server_timeout`` bounds the whole wait;
+        ``absent_timeout`` (default: the same) bounds each wait for a server with no
+        liveliness token (not started, or gone mid-send), so a dead server is given up on
+        sooner than a busy one.
 
         Raises :class:`ServerUnavailable` (no answer in time) or :class:`GoalRejected`.
         """
@@ -104,17 +113,25 @@ class ActionClient(Generic[G, R, F]):
             raise TypeError(f"{self.keys.base}: expected {self._goal_model.__name__}")
         payload = goal.to_json()
         self._bridge.check_size(self.keys.goal, payload)
-        handle = await self._send(goal, payload, goal_id, server_timeout)
+        absent = server_timeout if absent_timeout is None else absent_timeout
+        handle = await self._send(goal, payload, goal_id, server_timeout, absent)
         handle.on_feedback = on_feedback
         return handle
 
     async def _send(
-        self, goal: G, payload: bytes, given_id: str | None, server_timeout: float
+        self,
+        goal: G,
+        payload: bytes,
+        given_id: str | None,
+        server_timeout: float,
+        absent_timeout: float,
     ) -> ClientGoal[G, R, F]:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + server_timeout
         goal_id = given_id or p.new_goal_id()
-        while self._presence.present or await self._presence.wait(deadline - loop.time()):
+        while self._presence.present or await self._presence.wait(
+            min(absent_timeout, deadline - loop.time())
+        ):
             handle = ClientGoal(self, goal_id, goal)
             self._goals[goal_id] = handle
             stream = _Stream(self, handle)
