@@ -138,7 +138,7 @@ class TargetFeed:
 
 @pytest.mark.xfail(
     strict=False,  # intermittent: it passes when no goal update meets a running plan
-    reason="defect outside e2e (open at 21:45 UTC): when GoalUpdater changes ComputePathToPose's "
+    reason="open defect (issue 13): when GoalUpdater changes ComputePathToPose's "
     "goal while the leaf's goal runs, the leaf sometimes ends FAILURE with the old goal's "
     "result 'aborted the goal: 0 preempted by goal <new id>' (nav/actions/base.py BtAction), "
     "and follow_point fails with 9000; also seen: 207 'did not accept the goal within 5.0 s'",

@@ -73,6 +73,9 @@ async def up(config: SystemConfig, sink: ConsoleSink, health_timeout: float) -> 
 
 
 def run(args: argparse.Namespace) -> int:
+    # up's own session only watches tokens: where it connects is not the user's concern
+    # (each service logs where it listens), and its failures reach stderr in one line
+    logging.getLogger("aiobt.transport.session").setLevel(logging.WARNING)
     try:
         config = config_from_args(args)
     except ConfigError as exc:

@@ -40,7 +40,8 @@ async def test_backup_and_spin_move_the_robot_as_asked(
     assert result.error_code == 0, result
     # 2 s at 0.25 m/s, plus Nav2's ramp and slow-down and, under the sim speed-up, the
     # slower approach that keeps a stall from carrying the robot past the distance
-    assert 1.8 <= result.total_elapsed_time <= 3.5
+    # (3.84 s seen in a quiet fresh-clone CI run after the merge of the lead look-ahead)
+    assert 1.8 <= result.total_elapsed_time <= 4.5
     after_backup = await pose.wait_latest(2.0)
     assert after_backup.x == pytest.approx(-0.5, abs=0.07)
     assert abs(after_backup.y) < 0.05
