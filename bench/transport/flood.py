@@ -10,13 +10,19 @@ publishes 10,000 messages/s on the topic from another process (flooded):
 
 - robot, ``initialpose`` and ``cmd_vel``: ``obstacles/list`` service replies and
   the sim speed-up (sim seconds on ``{ns}/clock`` per wall second);
-- planner, ``pose``: ``is_path_valid`` replies.
+- planner, ``pose``: ``is_path_valid`` replies;
+- control: the same flood on ``flood_sink``, a key only a third process
+  (``bench.transport.flood_sink``) subscribes to, while the robot is measured:
+  what the flood costs the robot through the machine alone (flooder, router
+  and sink on the same 2 cores), not through its subscriptions.
 
 Reports per flood the ratios flooded / calm of the speed-up and of the median
-reply, the largest reply, the RSS growth of the flooded process, and the
-messages sent; the target (issue 14) is the other work within 10 % of normal
-and memory flat. The flooder and the router are on the same 2 cores as the
-service: their CPU is part of what a flood costs the machine.
+reply, the median reply against the same service's under the control flood
+(flooded / control: what the subscription itself costs), the largest reply,
+the RSS growth of the flooded process, and the messages sent; the target
+(issue 14) is the other work within 10 % of normal and memory flat. The
+flooder and the router are on the same 2 cores as the service: their CPU is
+part of what a flood costs the machine, hence the control.
 """
 
 from __future__ import annotations
@@ -35,6 +41,7 @@ from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt_services.robot.messages import ObstacleList
 
 POSE = '{"x": 0.5, "y": 0.5, "yaw": 0.0}'
+SINK = Flood("flood_sink", "PoseStamped", POSE)
 
 
 @contextlib.contextmanager
@@ -55,12 +62,15 @@ async def start(spawn: list[ServiceProcess], bus: Bus, argv: Sequence[str], name
     return proc.pid
 
 
-def row(name: str, calm: Figures, flooded: Figures, sent: int) -> str:
+def row(name: str, calm: Figures, flooded: Figures, sent: int, control: float) -> str:
+    """A table row; ``control``: the median reply of the same service under the control
+    flood (0 for the control itself)."""
     speed = f"{flooded.speed / calm.speed:.2f}" if calm.speed else "-"
+    versus = f"{flooded.reply_median / control:.2f}" if control else "-"
     return (
         f"| {name} | {sent} | {speed} | {calm.reply_median * 1e3:.1f} | "
         f"{flooded.reply_median * 1e3:.1f} | {flooded.reply_median / calm.reply_median:.2f} | "
-        f"{flooded.reply_max * 1e3:.0f} | {flooded.rss_growth / MIB:.1f} |"
+        f"{versus} | {flooded.reply_max * 1e3:.0f} | {flooded.rss_growth / MIB:.1f} |"
     )
 
 
@@ -80,6 +90,9 @@ async def run(args: argparse.Namespace) -> list[str]:
             robot = await start(started, bus, [*robot_argv, "--speed", str(args.speed)], "robot")
             planner = await start(started, bus, ["-m", "aiobt_services.planner", *where], "planner")
             clock = bus.subscribe("clock", Clock, queue_size=1)
+            sink = spawn(["-m", "bench.transport.flood_sink", *where])
+            if not await asyncio.to_thread(sink.wait_for_output, "ready", 30.0):
+                raise SystemExit(f"the flood sink did not start:\n{sink.output()}")
 
             async def obstacles() -> object:
                 return await bus.call("obstacles/list", Empty(), ObstacleList, timeout=20.0)
@@ -94,17 +107,24 @@ async def run(args: argparse.Namespace) -> list[str]:
                 return await bus.call(name, request, IsPathValid.Response, timeout=20.0)
 
             cases: list[tuple[str, Flood, Call, bool, int]] = [
+                ("control: robot, flood on flood_sink", SINK, obstacles, True, robot),
+                ("control: planner, flood on flood_sink", SINK, valid, False, planner),
                 ("robot, initialpose", Flood("initialpose", "PoseStamped", POSE), obstacles, True,
                  robot),
                 ("robot, cmd_vel", Flood("cmd_vel", "Twist", "{}"), obstacles, True, robot),
                 ("planner, pose", Flood("pose", "PoseStamped", POSE), valid, False, planner),
             ]  # fmt: skip
             for _ in range(args.repeat):
+                control: dict[int, float] = {}  # pid -> median reply under the control flood
                 for name, flood, call, sim, pid in cases:
-                    figures = await flood_and_measure(
+                    calm, flooded, sent = await flood_and_measure(
                         spawn, settings, flood, call, clock if sim else None, pid, args.seconds
                     )
-                    rows.append(row(name, *figures))
+                    if flood is SINK:
+                        control[pid] = flooded.reply_median
+                    rows.append(
+                        row(name, calm, flooded, sent, control[pid] if flood is not SINK else 0.0)
+                    )
                     print(rows[-1], flush=True)
     return rows
 
@@ -118,8 +138,8 @@ def main() -> None:
     before = os.getloadavg()
     print(
         "| flood (10,000 msg/s) | sent | speed-up flooded/calm | reply calm ms | "
-        "reply flooded ms | flooded/calm | reply max ms | RSS growth MiB |\n"
-        "|---|---|---|---|---|---|---|---|",
+        "reply flooded ms | flooded/calm | flooded/control | reply max ms | RSS growth MiB |\n"
+        "|---|---|---|---|---|---|---|---|---|",
         flush=True,
     )
     asyncio.run(run(args))
