@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import shutil
 import subprocess
 import sys
 import zipfile
@@ -41,8 +42,14 @@ LOOKUP = (
 def test_a_non_editable_install_finds_its_trees(tmp_path: Path) -> None:
     """A wheel of this checkout, unpacked into a fresh folder (pip install --target,
     no editable hooks on its path), resolves the default trees inside that folder."""
+    source = tmp_path / "source"  # setuptools builds in the source folder: a copy
+    skip = shutil.ignore_patterns("__pycache__", "*.egg-info")
+    for folder in ("src", "services"):
+        shutil.copytree(REPO / folder, source / folder, ignore=skip)
+    for file in ("pyproject.toml", "setup.py", "README.md"):
+        shutil.copy(REPO / file, source / file)
     build = [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation"]
-    subprocess.run([*build, "-q", "-w", str(tmp_path), str(REPO)], check=True, timeout=240)
+    subprocess.run([*build, "-q", "-w", str(tmp_path), str(source)], check=True, timeout=240)
     [wheel] = tmp_path.glob("aiobt_runtime-*.whl")
     names = zipfile.ZipFile(wheel).namelist()
     assert "aiobt/navigator/default_trees/navigate_to_pose_w_replanning_and_recovery.xml" in names
