@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import logging
+import os
 import sys
 from collections.abc import Sequence
 
@@ -40,6 +41,10 @@ def _load(module_name: str) -> object:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if "AIOBT_SUPERVISOR_PID" in os.environ:  # a child of aiobt up/demo: dies with it
+        from aiobt.system.lifeline import die_with_supervisor  # only then: a heavy import
+
+        die_with_supervisor()
     args = _full_parser(argv).parse_args(argv)
     logging.basicConfig(
         level=logging.DEBUG if args.verbose > 1 else logging.INFO,
