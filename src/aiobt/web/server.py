@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 from importlib import resources
 from typing import Any
 
-from aiohttp import WSMsgType, web
+from aiohttp import WSCloseCode, WSMsgType, web
 
 from aiobt.transport import Bus
 from aiobt.web.coalesce import Hub, Outbox
@@ -68,22 +68,28 @@ def is_loopback(host: str) -> bool:
         return False
 
 
+def warn_if_open(host: str, port: int) -> None:
+    if not is_loopback(host):
+        log.warning(
+            "web view on %s:%d: reachable from other machines, with no authentication "
+            "(anyone who can reach it can send the robot goals)", host, port,
+        )  # fmt: skip
+
+
 @contextlib.asynccontextmanager
 async def serve_web(bus: Bus, options: WebOptions) -> AsyncIterator[WebView]:
     """Serve the page on ``options.host:port`` fed from ``bus`` until the block exits."""
-    if not is_loopback(options.host):
-        log.warning(
-            "web view on %s:%d: reachable from other machines, with no authentication "
-            "(anyone who can reach it can send the robot goals)", options.host, options.port,
-        )  # fmt: skip
+    warn_if_open(options.host, options.port)
     hub = Hub()
     sources = Sources(bus, hub, options.inflation)
     sources.attach()
     app = web.Application()
     for path, name in _FILES.items():
         app.router.add_get(path, _file_handler(name))
-    app.router.add_get("/ws", _socket_handler(hub, sources))
-    runner = web.AppRunner(app, access_log=None, handle_signals=False)
+    sockets: set[web.WebSocketResponse] = set()
+    app.router.add_get("/ws", _socket_handler(hub, sources, sockets))
+    # open websockets are closed first: a stop takes no more than the shutdown timeout
+    runner = web.AppRunner(app, access_log=None, handle_signals=False, shutdown_timeout=1.0)
     await runner.setup()
     flushing: asyncio.Task[None] | None = None
     try:
@@ -104,6 +110,8 @@ async def serve_web(bus: Bus, options: WebOptions) -> AsyncIterator[WebView]:
             flushing.cancel()
             with contextlib.suppress(asyncio.CancelledError):
                 await flushing
+        for ws in list(sockets):
+            await ws.close(code=WSCloseCode.GOING_AWAY, message=b"web view stopping")
         await runner.cleanup()
         sources.close()
 
@@ -129,11 +137,12 @@ def _file_handler(name: str) -> Any:
     return handler
 
 
-def _socket_handler(hub: Hub, sources: Sources) -> Any:
+def _socket_handler(hub: Hub, sources: Sources, sockets: set[web.WebSocketResponse]) -> Any:
     async def handler(request: web.Request) -> web.WebSocketResponse:
         ws = web.WebSocketResponse(heartbeat=10.0, max_msg_size=64 * 1024)
         await ws.prepare(request)
         outbox = hub.join()
+        sockets.add(ws)
         log.info("browser %s connected (%d open)", request.remote, hub.clients)
         sending = asyncio.create_task(_send_forever(ws, outbox))
         try:
@@ -142,6 +151,7 @@ def _socket_handler(hub: Hub, sources: Sources) -> Any:
                     await _on_message(message.data, sources, outbox)
         finally:
             hub.leave(outbox)
+            sockets.discard(ws)
             sending.cancel()
             with contextlib.suppress(asyncio.CancelledError):
                 await sending
