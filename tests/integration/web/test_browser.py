@@ -83,6 +83,16 @@ async def test_page_shows_the_robot_driving_to_a_clicked_goal(browser, tmp_path)
                 assert page(browser, "window.aiobtState.plan.length") > 10
                 assert page(browser, "window.aiobtState.local.length") > 1
                 assert page(browser, "window.aiobtState.scan.length") > 0
+                feedback = await wait_page(browser, "window.aiobtState.feedback", "feedback")
+                assert feedback["recoveries"] >= 0
+                assert feedback["distance_remaining"] > 0
+                shown = browser.find_element(By.ID, "recoveries").text
+                assert shown.isdigit(), shown
+                costmap = browser.find_element(By.ID, "show-costmap")
+                await asyncio.to_thread(costmap.click)  # the inflated costmap drawn over the map
+                assert page(browser, "window.aiobtState.costmap.width") == (
+                    page(browser, "window.aiobtState.map.width")
+                )
                 rate = await measured_rate(browser)
                 print(f"web view at 10x: {rate[0]:.1f} updates/s, {rate[1]:.1f} poses/s")
                 assert rate[1] > 0  # the robot kept moving in the page (a rate, not a bound)

@@ -212,7 +212,9 @@ function buildTree(tree) {
     const kind = document.createElement("span"); kind.className = "kind"; kind.textContent = node.kind;
     row.appendChild(kind); box.appendChild(row);
   }
-  setText("tree-title", `${tree.tree_id} (run ${tree.run}) ${tree.source}`);
+  const source = tree.source.split("/").pop();
+  setText("tree-title", `${tree.tree_id} (run ${tree.run})${source ? ` from ${source}` : ""}`);
+  document.getElementById("tree-title").title = tree.source;
 }
 function paintStatus(status) {
   if (!state.tree || status.run !== state.tree.run) return;
