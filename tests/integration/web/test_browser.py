@@ -15,6 +15,7 @@ from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
 
 from aiobt.msgs import PoseStamped
+from aiobt.testing.browser import measured_rate, page_value
 from aiobt.testing.stack import StackConfig, running_stack
 from aiobt.transport import open_bus
 from aiobt.web import WebOptions, serve_web
@@ -24,17 +25,13 @@ GOAL = (18.5, 18.0)  # the office's north-east room, ~25 m of path from the star
 WAIT = 90.0  # s for anything the page must show (a loaded machine)
 
 
-def page(driver: Any, script: str) -> Any:
-    return driver.execute_script(f"return {script};")
-
-
 async def wait_page(driver: Any, script: str, what: str) -> Any:
     """The value of ``script`` once truthy (the page re-evaluated until then), in a thread:
     the web view runs in this test's event loop."""
 
     def until() -> Any:
         return WebDriverWait(driver, WAIT, poll_frequency=0.2).until(
-            lambda d: page(d, script), message=f"the page never showed {what} ({script})"
+            lambda d: page_value(d, script), message=f"the page never showed {what} ({script})"
         )
 
     return await asyncio.to_thread(until)
@@ -54,7 +51,9 @@ async def test_page_shows_the_robot_driving_to_a_clicked_goal(browser, tmp_path)
                 start = await wait_page(browser, "window.aiobtState.robot", "the robot")
                 assert math.dist((start["x"], start["y"]), (2.0, 9.75)) < 0.5  # office's start
 
-                dx, dy = page(browser, f"window.aiobtView.offsetFromCenter({GOAL[0]}, {GOAL[1]})")
+                dx, dy = page_value(
+                    browser, f"window.aiobtView.offsetFromCenter({GOAL[0]}, {GOAL[1]})"
+                )
                 canvas = browser.find_element(By.ID, "map")
                 click = ActionChains(browser).move_to_element_with_offset(canvas, dx, dy).click()
                 await asyncio.to_thread(click.perform)
@@ -80,9 +79,9 @@ async def test_page_shows_the_robot_driving_to_a_clicked_goal(browser, tmp_path)
                     float(browser.find_element(By.ID, "map").get_attribute("data-robot-x"))
                     != (start["x"])
                 )
-                assert page(browser, "window.aiobtState.plan.length") > 10
-                assert page(browser, "window.aiobtState.local.length") > 1
-                assert page(browser, "window.aiobtState.scan.length") > 0
+                assert page_value(browser, "window.aiobtState.plan.length") > 10
+                assert page_value(browser, "window.aiobtState.local.length") > 1
+                assert page_value(browser, "window.aiobtState.scan.length") > 0
                 feedback = await wait_page(browser, "window.aiobtState.feedback", "feedback")
                 assert feedback["recoveries"] >= 0
                 assert feedback["distance_remaining"] > 0
@@ -90,27 +89,13 @@ async def test_page_shows_the_robot_driving_to_a_clicked_goal(browser, tmp_path)
                 assert shown.isdigit(), shown
                 costmap = browser.find_element(By.ID, "show-costmap")
                 await asyncio.to_thread(costmap.click)  # the inflated costmap drawn over the map
-                assert page(browser, "window.aiobtState.costmap.width") == (
-                    page(browser, "window.aiobtState.map.width")
+                assert page_value(browser, "window.aiobtState.costmap.width") == (
+                    page_value(browser, "window.aiobtState.map.width")
                 )
-                rate = await measured_rate(browser)
+                rate = await asyncio.to_thread(measured_rate, browser)
                 print(f"web view at 10x: {rate[0]:.1f} updates/s, {rate[1]:.1f} poses/s")
                 assert rate[1] > 0  # the robot kept moving in the page (a rate, not a bound)
                 shot = tmp_path / "web_view.png"
                 assert await asyncio.to_thread(browser.save_screenshot, str(shot))
                 assert shot.stat().st_size > 10_000
                 assert moved["x"] != start["x"] or moved["y"] != start["y"]
-
-
-async def measured_rate(driver: Any, seconds: float = 3.0) -> tuple[float, float]:
-    """Updates and pose updates per second the page received over ``seconds`` of wall time
-    (measured in the page by its own clock)."""
-    script = (
-        "const done = arguments[arguments.length - 1]; const s = window.aiobtState;"
-        "const f0 = s.frames, p0 = s.poseUpdates, t0 = performance.now();"
-        f"setTimeout(() => done([(s.frames - f0), (s.poseUpdates - p0), "
-        f"(performance.now() - t0) / 1000]), {seconds * 1000});"
-    )
-    driver.set_script_timeout(seconds + 30)
-    frames, poses, elapsed = await asyncio.to_thread(driver.execute_async_script, script)
-    return frames / elapsed, poses / elapsed
