@@ -15,16 +15,15 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import ipaddress
 import json
 import logging
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Awaitable, Callable
 from dataclasses import dataclass, field
 from importlib import resources
-from typing import Any
 
 from aiohttp import WSCloseCode, WSMsgType, web
 
+from aiobt.hosts import is_loopback
 from aiobt.transport import Bus
 from aiobt.web.coalesce import Hub, Outbox
 from aiobt.web.sources import Sources
@@ -33,6 +32,7 @@ from aiobt_services.costmap.inflation import InflationParams
 log = logging.getLogger("aiobt.web.server")
 STATIC = resources.files("aiobt.web") / "static"
 _FILES = {"/": "index.html", "/app.js": "app.js", "/style.css": "style.css"}
+Handler = Callable[[web.Request], Awaitable[web.Response]]
 _TYPES = {".html": "text/html", ".js": "text/javascript", ".css": "text/css"}
 
 
@@ -57,15 +57,6 @@ class WebView:
     url: str
     hub: Hub
     sources: Sources
-
-
-def is_loopback(host: str) -> bool:
-    if host == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False
 
 
 def warn_if_open(host: str, port: int) -> None:
@@ -127,7 +118,7 @@ async def _flush_forever(sources: Sources, period: float) -> None:
         await asyncio.sleep(period)
 
 
-def _file_handler(name: str) -> Any:
+def _file_handler(name: str) -> Handler:
     body = (STATIC / name).read_bytes()
     content_type = _TYPES[name[name.rindex(".") :]]
 
@@ -137,7 +128,9 @@ def _file_handler(name: str) -> Any:
     return handler
 
 
-def _socket_handler(hub: Hub, sources: Sources, sockets: set[web.WebSocketResponse]) -> Any:
+def _socket_handler(
+    hub: Hub, sources: Sources, sockets: set[web.WebSocketResponse]
+) -> Callable[[web.Request], Awaitable[web.WebSocketResponse]]:
     async def handler(request: web.Request) -> web.WebSocketResponse:
         ws = web.WebSocketResponse(heartbeat=10.0, max_msg_size=64 * 1024)
         await ws.prepare(request)

@@ -147,8 +147,8 @@ class Sources:
         elif isinstance(message, BtSnapshot):
             self._tree_changed |= self.tree.on_snapshot(message)
             self.hub.publish("nav", convert.navigation_payload(message))
-        elif stream == "plan" and message.error_code == 0:  # type: ignore[attr-defined]
-            self.hub.publish("plan", convert.path_points(message.path))  # type: ignore[attr-defined]
+        elif isinstance(message, ComputePathToPose.Result) and message.error_code == 0:
+            self.hub.publish("plan", convert.path_points(message.path))
         elif stream == "feedback":
             self.hub.publish("feedback", _feedback(message))
 

@@ -8,7 +8,8 @@ import pytest
 
 from aiobt.cli.main import _full_parser
 from aiobt.cli.web import web_options
-from aiobt.web import WebOptions, is_loopback
+from aiobt.hosts import is_loopback
+from aiobt.web import WebOptions
 from aiobt.web.server import parse_goal, warn_if_open
 
 
