@@ -106,6 +106,8 @@ def run(args: argparse.Namespace) -> int:
     # up's own session only watches tokens: where it connects is not the user's concern
     # (each service logs where it listens), and its failures reach stderr in one line
     logging.getLogger("aiobt.transport.session").setLevel(logging.WARNING)
+    # the web view's start is one line of up's own output (its warnings still reach stderr)
+    logging.getLogger("aiobt.web").setLevel(logging.WARNING)
     try:
         config = config_from_args(args)
         web = None if args.no_web else web_options(args, prefix="web-")
