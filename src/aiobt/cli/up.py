@@ -3,11 +3,14 @@
     aiobt up                                  # router, robot, planner, controller,
     aiobt up --config system.yaml             # behaviors, navigator; defaults below
     aiobt up --speed 5 --world small          # flags override the file
+    aiobt up --web-port 8000                  # the web view elsewhere (--no-web: none)
 
 A Zenoh router, then every service as its own process with the commands
 docker-compose.yml uses; output prefixed by service; a crashed service is
 restarted with back-off; health from the liveliness tokens
-``{ns}/nodes/<service>``. See :mod:`aiobt.system.config` for the file.
+``{ns}/nodes/<service>``. See :mod:`aiobt.system.config` for the file. The
+web view (docs/web.md) runs in this process on http://127.0.0.1:8080/ unless
+``--no-web``; a port it cannot listen on is reported and the system runs without it.
 
 Exit status: 0 after a clean stop, 1 when a service cannot be kept running or
 the router is not there, 2 for a bad config.
@@ -17,12 +20,17 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import logging
 import sys
+from collections.abc import AsyncIterator
 
+from aiobt.cli.web import add_web_arguments, web_options
 from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
 from aiobt.system.console import wants_colour
 from aiobt.system.supervisor import on_signals
+from aiobt.transport import Bus
+from aiobt.web import WebOptions, serve_web
 
 log = logging.getLogger("aiobt.cli.up")
 
@@ -33,6 +41,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--health-timeout", type=float, default=60.0, metavar="SECONDS",
         help="report the services not up after this long (default: %(default)s)",
     )  # fmt: skip
+    parser.add_argument("--no-web", action="store_true", help="no web view")
+    add_web_arguments(parser, prefix="web-")
 
 
 def add_system_arguments(parser: argparse.ArgumentParser) -> None:
@@ -54,10 +64,30 @@ def config_from_args(args: argparse.Namespace) -> SystemConfig:
     return load_config(args.config, overrides)
 
 
-async def up(config: SystemConfig, sink: ConsoleSink, health_timeout: float) -> int:
+@contextlib.asynccontextmanager
+async def web_view(
+    bus: Bus | None, options: WebOptions | None, sink: ConsoleSink
+) -> AsyncIterator[None]:
+    """The web view on ``bus`` while the system runs; one that cannot start is reported."""
+    if bus is None or options is None:
+        yield
+        return
+    async with contextlib.AsyncExitStack() as stack:
+        try:
+            view = await stack.enter_async_context(serve_web(bus, options))
+        except OSError as exc:
+            sink.event("web", f"not started: {exc} (--web-port PORT, or --no-web)")
+        else:
+            sink.event("web", f"web view on {view.url}")
+        yield
+
+
+async def up(
+    config: SystemConfig, sink: ConsoleSink, health_timeout: float, web: WebOptions | None = None
+) -> int:
     stop = asyncio.Event()
     on_signals(stop.set)
-    async with run_system(config, sink) as system:
+    async with run_system(config, sink) as system, web_view(system.bus, web, sink):
         down = await system.wait_healthy(health_timeout)
         if down:
             sink.event("up", f"not up after {health_timeout:g} s: {', '.join(down)}")
@@ -76,14 +106,17 @@ def run(args: argparse.Namespace) -> int:
     # up's own session only watches tokens: where it connects is not the user's concern
     # (each service logs where it listens), and its failures reach stderr in one line
     logging.getLogger("aiobt.transport.session").setLevel(logging.WARNING)
+    # the web view's start is one line of up's own output (its warnings still reach stderr)
+    logging.getLogger("aiobt.web").setLevel(logging.WARNING)
     try:
         config = config_from_args(args)
-    except ConfigError as exc:
+        web = None if args.no_web else web_options(args, prefix="web-")
+    except (ConfigError, ValueError) as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 2
     sink = ConsoleSink(sys.stdout, colour=wants_colour(sys.stdout, args.colour))
     try:
-        return asyncio.run(up(config, sink, args.health_timeout))
+        return asyncio.run(up(config, sink, args.health_timeout, web))
     except Fatal as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 1

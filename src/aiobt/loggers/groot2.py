@@ -26,7 +26,6 @@ from __future__ import annotations
 import argparse
 import asyncio
 import contextlib
-import ipaddress
 import logging
 from types import TracebackType
 from typing import Self
@@ -35,6 +34,7 @@ import zmq
 import zmq.asyncio
 
 from aiobt.core.tree import Tree
+from aiobt.hosts import is_loopback as _is_loopback
 from aiobt.loggers.groot2_monitor import Groot2Monitor
 from aiobt.loggers.groot2_protocol import error_reply, notification
 
@@ -42,15 +42,6 @@ log = logging.getLogger("aiobt.loggers.groot2")
 
 DEFAULT_PORT = 1667
 _HEARTBEAT_CHECK = 0.1  # seconds of wall time between two checks of the heartbeat
-
-
-def _is_loopback(host: str) -> bool:
-    if host == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False
 
 
 def port_argument(text: str) -> int:

@@ -17,8 +17,8 @@ from aiobt.core.leaves import AsyncActionNode
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.hosts import is_loopback as _is_loopback
 from aiobt.loggers import Groot2Publisher
-from aiobt.loggers.groot2 import _is_loopback
 from aiobt.loggers.groot2_monitor import Groot2Monitor
 from aiobt.testing.stubs import tree_xml
 from tests.groot2_client import Groot2Client, free_port_pair, status_pairs, transitions
