@@ -136,13 +136,6 @@ class TargetFeed:
         return await wait_until(self.moved, lambda: self.x >= x, timeout)
 
 
-@pytest.mark.xfail(
-    strict=False,  # intermittent: it passes when no goal update meets a running plan
-    reason="open defect (issue 13): when GoalUpdater changes ComputePathToPose's "
-    "goal while the leaf's goal runs, the leaf sometimes ends FAILURE with the old goal's "
-    "result 'aborted the goal: 0 preempted by goal <new id>' (nav/actions/base.py BtAction), "
-    "and follow_point fails with 9000; also seen: 207 'did not accept the goal within 5.0 s'",
-)
 @pytest.mark.timeout(150)
 async def test_follow_point_tree_follows_a_moving_target(world: World, goals: ServerGoals):
     # low (under the lidar plane): the planner plans to it, TruncatePath keeps 1 m back
