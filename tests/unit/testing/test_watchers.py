@@ -16,12 +16,6 @@ pytestmark = pytest.mark.timeout(90)
 WAIT = 30.0  # s: generous, the machine is shared
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="open defect: after the merge of h-edges' subscription pacing this watcher "
-    "sometimes never sees the goal's first (non-terminal) status on the in-process bus "
-    "(2 of 3 runs); a lost status on a wildcard subscription is suspected, not yet found",
-)
 async def test_server_goals_follow_states_and_the_last_result_code(local_bus: Bus) -> None:
     release = asyncio.Event()
 

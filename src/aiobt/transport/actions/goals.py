@@ -121,7 +121,8 @@ class ResultStore:
 
 
 class RecentIds:
-    """Goal ids seen lately, to refuse a duplicate. One writer: the goal intake."""
+    """Goal ids seen lately (bounded): to refuse a duplicate, or a goal canceled before
+    it arrived. One writer each."""
 
     __slots__ = ("_ids",)
 
@@ -136,6 +137,9 @@ class RecentIds:
         if len(self._ids) > 4 * _KEEP_RESULTS:
             self._ids.popitem(last=False)
         return True
+
+    def __contains__(self, goal_id: object) -> bool:
+        return goal_id in self._ids
 
 
 class GoalHandle(Generic[G, R, F]):

@@ -3,8 +3,9 @@
 Wildcard publishers on ``status/*``, ``feedback/*`` and ``result/*`` that are
 never put to: their matching status says whether a subscriber exists. Matching
 listeners keep one flag per kind current, so unobserved goals cost no puts and
-asking costs a dict lookup (not a call into Zenoh per goal). Statuses are
-stamped with the time of the change on the server's (robot) clock.
+a "yes" costs a dict lookup; a "no" is checked with Zenoh (the listener's news
+of a new subscriber can come after that subscriber's first message is due).
+Statuses are stamped with the time of the change on the server's (robot) clock.
 """
 
 from __future__ import annotations
@@ -52,15 +53,19 @@ class Observers:
 
         return callback(on_change)
 
-    def _refresh(self, kind: Kind) -> None:
-        self._flags[kind] = _z.matching(self._publishers[kind].matching_status)
+    def _refresh(self, kind: Kind) -> bool:
+        matching = self._flags[kind] = _z.matching(self._publishers[kind].matching_status)
+        return matching
 
     def __call__(self, kind: Kind) -> bool:
-        return self._flags[kind]
+        """A "no" is read again from Zenoh: the matching listener's news of a new
+        subscriber may trail the subscriber's declaration (seen on the in-process bus:
+        a watcher declared before the goal was sent missed its first statuses)."""
+        return self._flags[kind] or self._refresh(kind)
 
     def put_status(self, goal_id: str, state: GoalState, reason: str = "") -> None:
         """Put the goal's new status, stamped now, if anybody watches statuses."""
-        if not self._flags["status"]:
+        if not self("status"):
             return
         stamp = max(0.0, self._clock.now())
         status = GoalStatus(goal_id=goal_id, status=state, stamp=stamp, reason=reason)

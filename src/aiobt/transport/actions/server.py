@@ -18,7 +18,7 @@ from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
-from aiobt.transport.actions.goals import GoalRecord, ResultStore
+from aiobt.transport.actions.goals import GoalRecord, RecentIds, ResultStore
 from aiobt.transport.actions.intake import GoalIntake
 from aiobt.transport.actions.observers import Observers
 from aiobt.transport.actions.runner import Execute, GoalRunner
@@ -53,6 +53,9 @@ class ActionServer(Generic[G, R, F]):
       running. A canceled waiting goal ends CANCELED at once and never runs.
       Cancel-all: the running and the waiting goal,
       except a running goal already being preempted (its outcome is decided).
+    - A cancel naming a goal id the server has not seen is remembered: that goal,
+      arriving later (a late copy its client gave up on, canceled and sent again
+      under a new id), is rejected "canceled before it arrived" and preempts nothing.
     - :meth:`aclose` rejects new goals ("action server shutting down"), ends the
       waiting and running goals ABORTED with that reason, then withdraws the token.
     - ``clock`` (robot time; default the system's) stamps GoalStatus messages.
@@ -84,6 +87,7 @@ class ActionServer(Generic[G, R, F]):
         self._session = session
         self._bridge = bridge
         self._results = ResultStore()
+        self._canceled_early = RecentIds()  # canceled before they arrived (loop only)
         self._closed: asyncio.Event | None = None  # set once aclose() has finished
         self._queryables = [
             session.declare_queryable(keys.goal, callback(self._on_goal_query)),
@@ -131,6 +135,9 @@ class ActionServer(Generic[G, R, F]):
             self._begin(GoalRecord(checked[0], query), checked[1])
 
     def _begin(self, record: GoalRecord, goal: G) -> None:
+        if record.goal_id in self._canceled_early:
+            record.reject("canceled before it arrived")
+            return
         self._runner.begin(record, goal)
 
     def _finish(self, record: GoalRecord, state: GoalState, result: R) -> None:
@@ -155,9 +162,22 @@ class ActionServer(Generic[G, R, F]):
             query.reply_err(f"bad cancel request: {exc}")
             _z.drop(query)
             return
-        response = p.CancelResponse(goals_canceling=self._runner.cancel(request.goal_id))
+        goal_id = request.goal_id
+        canceling = self._runner.cancel(goal_id)
+        if goal_id and not canceling and not self._seen(goal_id):
+            self._canceled_early.add(goal_id)
+        response = p.CancelResponse(goals_canceling=canceling)
         query.reply(query.key_expr, response.to_json(), encoding=JSON)
         _z.drop(query)
+
+    def _seen(self, goal_id: str) -> bool:
+        """Whether ``goal_id`` is running, waiting or has ended here (as far as kept)."""
+        active = self._runner.active
+        return (
+            (active is not None and active.goal_id == goal_id)
+            or self._runner.waiting.get(goal_id) is not None
+            or self._results.get(goal_id) is not None
+        )
 
     def _on_result(self, query: zenoh.Query) -> None:
         goal_id = str(query.key_expr).rsplit("/", 1)[-1]
