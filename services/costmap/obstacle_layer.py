@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry
+from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry, IntArray
 
 
 @dataclass(frozen=True, slots=True)
@@ -73,11 +73,12 @@ def _rays(
 
 def clear_and_mark(
     grid: CostArray, geometry: GridGeometry, scan: Scan, params: ObstacleParams
-) -> None:
+) -> IntArray:
     """Ray-trace free space along every ray, then mark the hit cells LETHAL (in place).
 
     Rays are sampled every half cell; the cell of a hit is never cleared by
-    its own ray. Points outside the grid are ignored.
+    its own ray. Points outside the grid are ignored. Returns the flat indices
+    of the cells whose value changed (empty when the scan changed nothing).
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
@@ -86,18 +87,25 @@ def clear_and_mark(
     flat = grid.reshape(-1)
     step = geometry.resolution * 0.5
     longest = float(clear_len.max(initial=0.0))
+    cleared: IntArray = np.empty(0, dtype=np.intp)
     if longest > 0.0:
         t = np.arange(0.0, longest, step)
         inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
         xs = scan.sensor_x + dx[:, None] * t[None, :]
         ys = scan.sensor_y + dy[:, None] * t[None, :]
         cols, rows, ok = geometry.world_to_cells(xs[inside], ys[inside])
-        flat[rows[ok] * geometry.width + cols[ok]] = FREE
+        cleared = rows[ok] * geometry.width + cols[ok]
     marks = hit > 0
     cols, rows, ok = geometry.world_to_cells(
         scan.sensor_x + dx[marks] * ranges[marks], scan.sensor_y + dy[marks] * ranges[marks]
     )
-    flat[rows[ok] * geometry.width + cols[ok]] = LETHAL
+    marked = rows[ok] * geometry.width + cols[ok]
+    before = flat.copy()
+    flat[cleared] = FREE
+    flat[marked] = LETHAL
+    touched = np.concatenate((cleared, marked))
+    changed: IntArray = np.unique(touched[flat[touched] != before[touched]])
+    return changed
 
 
 def combine_max(master: CostArray, layer: CostArray) -> CostArray:
