@@ -196,10 +196,13 @@ class Costmap:
     def _update_cells(self, flat: IntArray) -> None:
         """Recombine the changed obstacle cells and re-inflate around those whose
         combined value changed."""
-        assert self._base is not None and self._master is not None
+        assert self._base is not None
+        assert self._master is not None
         self._pending.clear()
-        start = self.static.flat[flat] if self.static is not None else np.full(
-            flat.shape, self.default_value, dtype=np.uint8
+        start = (
+            self.static.flat[flat]
+            if self.static is not None
+            else np.full(flat.shape, self.default_value, dtype=np.uint8)
         )
         combined = combine_max(start, self.obstacles.flat[flat])
         differs = combined != self._base.flat[flat]

@@ -100,9 +100,7 @@ class GridGraph:
         return Reach(np.asarray(cost, dtype=np.float64), np.asarray(parent, dtype=np.int32))
 
 
-def _edge_weights(
-    padded: FloatArray, out: FloatArray, window: tuple[int, int, int, int]
-) -> None:
+def _edge_weights(padded: FloatArray, out: FloatArray, window: tuple[int, int, int, int]) -> None:
     """``out[r, c, k]`` = the weight of move ``k`` from interior cell ``(r, c)``,
     for the sources in ``window`` (interior rows/cols, half-open)."""
     row0, row1, col0, col1 = window
@@ -111,9 +109,7 @@ def _edge_weights(
                     length, out=out[row0:row1, col0:col1, k])  # fmt: skip
 
 
-def _layout_of(
-    rows: int, cols: int, stride: int, nodes: int
-) -> tuple[IndexArray, IndexArray]:
+def _layout_of(rows: int, cols: int, stride: int, nodes: int) -> tuple[IndexArray, IndexArray]:
     """CSR column indices and row pointers: 8 edges per interior cell, none elsewhere."""
     interior = (np.arange(1, rows + 1, dtype=np.int32)[:, None] * stride
                 + np.arange(1, cols + 1, dtype=np.int32)[None, :])  # fmt: skip

@@ -124,7 +124,12 @@ class Traversal:
         if grid.costs.shape != self.fine.costs.shape:
             raise ValueError(f"grid shape {grid.costs.shape} != {self.fine.costs.shape}")
         f = self.params.downsample
-        row0, row1, col0, col1 = window[0] // f, -(-window[1] // f), window[2] // f, -(-window[3] // f)
+        row0, row1, col0, col1 = (
+            window[0] // f,
+            -(-window[1] // f),
+            window[2] // f,
+            -(-window[3] // f),
+        )
         block = downsample_costs(grid.costs[row0 * f : row1 * f, col0 * f : col1 * f], f)
         clone = copy.copy(self)
         clone.fine = grid
