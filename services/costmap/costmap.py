@@ -21,7 +21,7 @@ from .grid import (
     IntArray,
 )
 from .inflation import InflationParams, Window, bounding_window, grown, inflate, inflate_window
-from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max
+from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max, same_scan
 from .static_layer import StaticParams, occupancy_to_costs
 
 logger = logging.getLogger("aiobt_services.costmap")
@@ -45,6 +45,7 @@ class Costmap:
         "_base",
         "_dirty",
         "_history",
+        "_last_scan",
         "_master",
         "_pending",
         "default_value",
@@ -77,6 +78,7 @@ class Costmap:
         self._pending: list[IntArray] = []  # obstacle cells changed since the last refresh
         self._history: deque[tuple[int, Window | None]] = deque(maxlen=HISTORY)
         self._dirty = True
+        self._last_scan: Scan | None = None  # the newest scan, while re-applying it is a no-op
         self.version = 0
 
     @classmethod
@@ -103,13 +105,16 @@ class Costmap:
             self.geometry = geometry
             self.obstacles = np.full(geometry.shape, NO_INFORMATION, dtype=np.uint8)
         self.static = costs
-        self._dirty = True
+        self.layers_replaced()
 
     def update_from_scan(self, scan: Scan) -> int:
         """Clear along the scan's rays and mark its hits in the obstacle layer;
         the number of obstacle cells that changed (0: the master is untouched)."""
+        if self._last_scan is not None and same_scan(self._last_scan, scan):
+            return 0  # nothing changed the obstacle layer since: it would change nothing
         changed = clear_and_mark(self.obstacles, self.geometry, scan, self.obstacle_params)
         self._obstacles_changed(changed)
+        self._last_scan = scan
         return int(changed.size)
 
     def mark_points(self, xs: npt.ArrayLike, ys: npt.ArrayLike) -> int:
@@ -120,7 +125,13 @@ class Costmap:
         changed = cells[self.obstacles.flat[cells] != LETHAL]
         self.obstacles.flat[changed] = LETHAL
         self._obstacles_changed(changed)
+        self._last_scan = None
         return int(changed.size)
+
+    def layers_replaced(self) -> None:
+        """A layer changed other than by a scan or a mark: rebuild on the next read."""
+        self._dirty = True
+        self._last_scan = None
 
     def _obstacles_changed(self, flat: IntArray) -> None:
         if flat.size and not self._dirty:
@@ -129,19 +140,19 @@ class Costmap:
     # -- clearing (Nav2 ClearCostmapService semantics: the obstacle layer) ---
     def clear_entirely(self) -> None:
         self.obstacles.fill(NO_INFORMATION)
-        self._dirty = True
+        self.layers_replaced()
 
     def clear_around(self, x: float, y: float, reset_distance: float) -> None:
         """Reset the obstacle layer inside the square of side ``reset_distance`` at (x, y)."""
         inside = self._square_mask(x, y, reset_distance)
         self.obstacles[inside] = NO_INFORMATION
-        self._dirty = True
+        self.layers_replaced()
 
     def clear_except(self, x: float, y: float, reset_distance: float) -> None:
         """Reset the obstacle layer outside the square of side ``reset_distance`` at (x, y)."""
         inside = self._square_mask(x, y, reset_distance)
         self.obstacles[~inside] = NO_INFORMATION
-        self._dirty = True
+        self.layers_replaced()
 
     def _square_mask(self, x: float, y: float, side: float) -> npt.NDArray[np.bool_]:
         if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(side) and side >= 0):

@@ -49,6 +49,15 @@ class Scan:
         return cls(*pose, angle_min, angle_increment, values, range_min, range_max)
 
 
+def same_scan(a: Scan, b: Scan) -> bool:
+    """The same readings from the same sensor pose (re-applying one is a no-op)."""
+    head = (a.sensor_x, a.sensor_y, a.sensor_yaw, a.angle_min, a.angle_increment, a.range_min,
+            a.range_max)  # fmt: skip
+    other = (b.sensor_x, b.sensor_y, b.sensor_yaw, b.angle_min, b.angle_increment, b.range_min,
+             b.range_max)  # fmt: skip
+    return head == other and np.array_equal(a.ranges, b.ranges)
+
+
 def _rays(
     scan: Scan, params: ObstacleParams
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:

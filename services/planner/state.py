@@ -6,8 +6,6 @@ import logging
 import math
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from aiobt.msgs import LaserScan, OccupancyGrid, PoseStamped
 from aiobt_services.costmap import (
     CostGrid,
@@ -42,8 +40,8 @@ class GlobalCostmap:
 
     Scans are coalesced, never queued: the newest one waits and is folded in
     when a reader asks (a plan, a cost query) or when it is ``scan_period``
-    robot seconds newer (header stamps) than the last one folded; a scan equal
-    to the last one folded, from the same pose, is skipped. Snapshots and the
+    robot seconds newer (header stamps) than the last one folded (the costmap
+    skips a scan equal to the last, from the same pose). Snapshots and the
     traversal are updated from the costmap's changed window, not rebuilt.
     Bad messages (wrong frame, rotated map origin) are logged and dropped.
     """
@@ -57,7 +55,7 @@ class GlobalCostmap:
         self.pose: Pose2D | None = None
         self.pose_stamp = 0.0
         self._pending: tuple[LaserScan, Pose2D] | None = None
-        self._folded: tuple[float, Pose2D, np.ndarray] | None = None  # stamp, pose, ranges
+        self._folded = -math.inf  # stamp of the newest scan folded in
         self._grid: tuple[int, CostGrid] | None = None
         self._traversal: tuple[int, Traversal] | None = None
 
@@ -88,8 +86,7 @@ class GlobalCostmap:
         if self.costmap is None or self.pose is None:
             return
         self._pending = (msg, self.pose)
-        last = self._folded
-        if last is None or msg.header.stamp - last[0] >= self.options.scan_period:
+        if msg.header.stamp - self._folded >= self.options.scan_period:
             self._fold_pending()
 
     def _fold_pending(self) -> None:
@@ -97,13 +94,14 @@ class GlobalCostmap:
         if self._pending is None or self.costmap is None:
             return
         (msg, pose), self._pending = self._pending, None
-        ranges = msg.ranges_array()
-        last = self._folded
-        self._folded = (msg.header.stamp, pose, ranges)
-        if last is not None and last[1] == pose and np.array_equal(last[2], ranges):
-            return
+        self._folded = msg.header.stamp
         scan = Scan.create(
-            pose, msg.angle_min, msg.angle_increment, ranges, msg.range_min, msg.range_max
+            pose,
+            msg.angle_min,
+            msg.angle_increment,
+            msg.ranges_array(),
+            msg.range_min,
+            msg.range_max,
         )
         self.costmap.update_from_scan(scan)
 
