@@ -100,21 +100,30 @@ def clear_and_mark(
     if longest > 0.0:
         t = np.arange(0.0, longest, step)
         inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
-        xs = scan.sensor_x + dx[:, None] * t[None, :]
-        ys = scan.sensor_y + dy[:, None] * t[None, :]
-        cols, rows, ok = geometry.world_to_cells(xs[inside], ys[inside])
-        cleared = rows[ok] * geometry.width + cols[ok]
+        rays, samples = np.nonzero(inside)
+        cleared = _cells(geometry, scan.sensor_x + dx[rays] * t[samples],
+                         scan.sensor_y + dy[rays] * t[samples])  # fmt: skip
     marks = hit > 0
-    cols, rows, ok = geometry.world_to_cells(
-        scan.sensor_x + dx[marks] * ranges[marks], scan.sensor_y + dy[marks] * ranges[marks]
-    )
-    marked = rows[ok] * geometry.width + cols[ok]
-    before = flat.copy()
+    marked = _cells(geometry, scan.sensor_x + dx[marks] * ranges[marks],
+                    scan.sensor_y + dy[marks] * ranges[marks])  # fmt: skip
+    touched = np.zeros(flat.size, dtype=np.bool_)  # the cells once each, without a sort
+    touched[cleared] = True
+    touched[marked] = True
+    cells = np.flatnonzero(touched)
+    before = flat[cells]
     flat[cleared] = FREE
     flat[marked] = LETHAL
-    touched = np.concatenate((cleared, marked))
-    changed: IntArray = np.unique(touched[flat[touched] != before[touched]])
+    changed: IntArray = cells[flat[cells] != before]
     return changed
+
+
+def _cells(geometry: GridGeometry, xs: FloatArray, ys: FloatArray) -> IntArray:
+    """Flat indices of the cells holding the (finite) points inside the grid."""
+    cols = np.floor((xs - geometry.origin_x) / geometry.resolution)
+    rows = np.floor((ys - geometry.origin_y) / geometry.resolution)
+    ok = (cols >= 0) & (cols < geometry.width) & (rows >= 0) & (rows < geometry.height)
+    flat: IntArray = (rows[ok] * geometry.width + cols[ok]).astype(np.intp)
+    return flat
 
 
 def combine_max(master: CostArray, layer: CostArray) -> CostArray:
