@@ -157,3 +157,16 @@ def test_changes_from_before_a_rebuild_or_too_long_ago_are_unknown() -> None:
         costmap.master  # noqa: B018 - one version per read
     assert costmap.changed_since(start + 2) is None  # history holds 32 versions
     assert costmap.changed_since(costmap.version - 1) is not None
+
+
+def test_the_same_scan_again_is_skipped_until_another_change_to_the_obstacles() -> None:
+    costmap = Costmap.from_occupancy(np.zeros((30, 30), dtype=np.int8), GridGeometry(30, 30, 0.1))
+    scan = Scan.create((1.0, 1.5, 0.0), -0.5, 0.1, [1.05] * 11, 0.0, 5.0)
+    marked = costmap.update_from_scan(scan)
+    assert marked > 0
+    assert costmap.update_from_scan(scan) == 0
+    costmap.clear_entirely()  # the marks are gone: the same scan puts them back
+    assert costmap.update_from_scan(scan) == marked
+    assert costmap.mark_points([1.55], [1.55]) == 1  # on the middle ray's free stretch
+    assert costmap.update_from_scan(scan) == 1  # applied again: clears that mark
+    assert np.array_equal(costmap.master, full_master(costmap))
