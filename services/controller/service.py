@@ -8,6 +8,7 @@ cancel, failure or success always leave a zero twist on ``{ns}/cmd_vel``.
 from __future__ import annotations
 
 import logging
+import time
 from dataclasses import dataclass
 
 from aiobt.core.clock import Clock
@@ -24,6 +25,7 @@ from aiobt.msgs import (
 from aiobt.transport import Bus, GoalHandle, Publisher
 
 from .collision import CollisionChecker
+from .cycle_stats import CycleStats
 from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Velocity
 from .local_costmap import FrameShift, LocalCostmap, frame_transform
@@ -111,6 +113,13 @@ class ControllerService:
         log.info("follow_path: goal %s ended %s %s", handle.goal_id, outcome, result.error_msg)
         return result
 
+    async def _run(self, session: FollowPathSession, handle: Handle) -> FollowPath.Result:
+        stats = CycleStats(self.config.control_period)
+        try:
+            return await self._loop(session, handle, stats)
+        finally:
+            log.info("follow_path: goal %s: %s", handle.goal_id, stats.summary())
+
     def _open(self, request: FollowRequest) -> FollowPathSession:
         checker = self._checker_for(request.path.frame_id)
         return FollowPathSession(request, self.config, self.clock.now(), checker)
@@ -118,9 +127,12 @@ class ControllerService:
     def _checker_for(self, frame: str) -> CollisionChecker:
         return CollisionChecker(self.costmap if frame == "map" else self._shift)
 
-    async def _run(self, session: FollowPathSession, handle: Handle) -> FollowPath.Result:
+    async def _loop(
+        self, session: FollowPathSession, handle: Handle, stats: CycleStats
+    ) -> FollowPath.Result:
         period = self.config.control_period
         while True:
+            began, work = self.clock.now(), time.perf_counter()
             newer = handle.take_new_goal()
             if newer is not None:
                 try:
@@ -130,6 +142,7 @@ class ControllerService:
             step = self._step(session)
             self._publish(step.cmd)
             self._feedback(step, handle, session.request.path.frame_id)
+            stats.record(began, time.perf_counter() - work)
             if step.finished:
                 return result_of(step.error)
             if not await sleep_bounded(self.clock, period, self.options.clock_timeout):

@@ -23,7 +23,7 @@ from .grid import (
     CostGrid,
     GridGeometry,
 )
-from .inflation import InflationParams, costs_from_distance, inflate
+from .inflation import InflationParams, Window, costs_from_distance, inflate, inflate_window
 from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max
 from .rolling import RollingCostmap
 from .static_layer import StaticParams, occupancy_to_costs, resample
@@ -42,12 +42,14 @@ __all__ = [
     "RollingCostmap",
     "Scan",
     "StaticParams",
+    "Window",
     "clear_and_mark",
     "combine_max",
     "costs_from_distance",
     "distance_transform",
     "footprint_cost",
     "inflate",
+    "inflate_window",
     "line_cells",
     "occupancy_to_costs",
     "oriented_footprint",

@@ -4,30 +4,50 @@ from __future__ import annotations
 
 import logging
 import math
+from collections import deque
 
 import numpy as np
 import numpy.typing as npt
 
 from .collision import footprint_cost, point_cost, segment_max_cost
-from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, CostGrid, FloatArray, GridGeometry
-from .inflation import InflationParams, inflate
-from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max
+from .grid import (
+    FREE,
+    LETHAL,
+    NO_INFORMATION,
+    CostArray,
+    CostGrid,
+    FloatArray,
+    GridGeometry,
+    IntArray,
+)
+from .inflation import InflationParams, Window, bounding_window, grown, inflate, inflate_window
+from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max, same_scan
 from .static_layer import StaticParams, occupancy_to_costs
 
 logger = logging.getLogger("aiobt_services.costmap")
+HISTORY = 32  # master versions whose changed window is remembered
 
 
 class Costmap:
     """Nav2's LayeredCostmap with a static, an obstacle and an inflation layer.
 
-    The master grid is recomputed lazily when a layer changed. Without a
+    The master grid is brought up to date lazily, when read. Obstacle cells
+    changed by scans or marks are updated incrementally: their combined value
+    is recomputed and inflation is redone in the window of the inflation radius
+    around them only (the result equals a full rebuild). A new static map, a
+    clearing or a moved window rebuilds everything. ``version`` counts the
+    master's changes; :meth:`changed_since` says where they were. Without a
     static layer the master starts from ``default_value`` (NO_INFORMATION when
     ``track_unknown_space``, else FREE).
     """
 
     __slots__ = (
+        "_base",
         "_dirty",
+        "_history",
+        "_last_scan",
         "_master",
+        "_pending",
         "default_value",
         "geometry",
         "inflation",
@@ -35,6 +55,7 @@ class Costmap:
         "obstacles",
         "static",
         "static_params",
+        "version",
     )
 
     def __init__(
@@ -53,7 +74,12 @@ class Costmap:
         self.static: CostArray | None = None
         self.obstacles: CostArray = np.full(geometry.shape, NO_INFORMATION, dtype=np.uint8)
         self._master: CostArray | None = None
+        self._base: CostArray | None = None  # static and obstacles combined, not inflated
+        self._pending: list[IntArray] = []  # obstacle cells changed since the last refresh
+        self._history: deque[tuple[int, Window | None]] = deque(maxlen=HISTORY)
         self._dirty = True
+        self._last_scan: Scan | None = None  # the newest scan, while re-applying it is a no-op
+        self.version = 0
 
     @classmethod
     def from_occupancy(
@@ -79,35 +105,54 @@ class Costmap:
             self.geometry = geometry
             self.obstacles = np.full(geometry.shape, NO_INFORMATION, dtype=np.uint8)
         self.static = costs
-        self._dirty = True
+        self.layers_replaced()
 
-    def update_from_scan(self, scan: Scan) -> None:
-        """Clear along the scan's rays and mark its hits in the obstacle layer."""
-        clear_and_mark(self.obstacles, self.geometry, scan, self.obstacle_params)
-        self._dirty = True
+    def update_from_scan(self, scan: Scan) -> int:
+        """Clear along the scan's rays and mark its hits in the obstacle layer;
+        the number of obstacle cells that changed (0: the master is untouched)."""
+        if self._last_scan is not None and same_scan(self._last_scan, scan):
+            return 0  # nothing changed the obstacle layer since: it would change nothing
+        changed = clear_and_mark(self.obstacles, self.geometry, scan, self.obstacle_params)
+        self._obstacles_changed(changed)
+        self._last_scan = scan
+        return int(changed.size)
 
-    def mark_points(self, xs: npt.ArrayLike, ys: npt.ArrayLike) -> None:
-        """Mark world points as lethal obstacles (e.g. from another sensor)."""
+    def mark_points(self, xs: npt.ArrayLike, ys: npt.ArrayLike) -> int:
+        """Mark world points as lethal obstacles (e.g. from another sensor); the
+        number of cells that changed."""
         cols, rows, ok = self.geometry.world_to_cells(np.asarray(xs), np.asarray(ys))
-        self.obstacles[rows[ok], cols[ok]] = LETHAL
+        cells = np.unique(rows[ok] * self.geometry.width + cols[ok])
+        changed = cells[self.obstacles.flat[cells] != LETHAL]
+        self.obstacles.flat[changed] = LETHAL
+        self._obstacles_changed(changed)
+        self._last_scan = None
+        return int(changed.size)
+
+    def layers_replaced(self) -> None:
+        """A layer changed other than by a scan or a mark: rebuild on the next read."""
         self._dirty = True
+        self._last_scan = None
+
+    def _obstacles_changed(self, flat: IntArray) -> None:
+        if flat.size and not self._dirty:
+            self._pending.append(flat)
 
     # -- clearing (Nav2 ClearCostmapService semantics: the obstacle layer) ---
     def clear_entirely(self) -> None:
         self.obstacles.fill(NO_INFORMATION)
-        self._dirty = True
+        self.layers_replaced()
 
     def clear_around(self, x: float, y: float, reset_distance: float) -> None:
         """Reset the obstacle layer inside the square of side ``reset_distance`` at (x, y)."""
         inside = self._square_mask(x, y, reset_distance)
         self.obstacles[inside] = NO_INFORMATION
-        self._dirty = True
+        self.layers_replaced()
 
     def clear_except(self, x: float, y: float, reset_distance: float) -> None:
         """Reset the obstacle layer outside the square of side ``reset_distance`` at (x, y)."""
         inside = self._square_mask(x, y, reset_distance)
         self.obstacles[~inside] = NO_INFORMATION
-        self._dirty = True
+        self.layers_replaced()
 
     def _square_mask(self, x: float, y: float, side: float) -> npt.NDArray[np.bool_]:
         if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(side) and side >= 0):
@@ -125,16 +170,70 @@ class Costmap:
     # -- the master grid ------------------------------------------------------
     @property
     def master(self) -> CostArray:
-        """The combined, inflated costs (do not modify; use :meth:`snapshot`)."""
-        if self._dirty or self._master is None:
-            base = (
-                self.static.copy()
-                if self.static is not None
-                else np.full(self.geometry.shape, self.default_value, dtype=np.uint8)
-            )
-            self._master = inflate(combine_max(base, self.obstacles), self.geometry, self.inflation)
-            self._dirty = False
+        """The combined, inflated costs, updated in place (do not modify; use :meth:`snapshot`)."""
+        return self._refresh()
+
+    def changed_since(self, version: int) -> Window | None:
+        """The window holding every master change after ``version`` (``None``: a
+        rebuild, or too long ago to tell). Only meaningful if ``version`` < :attr:`version`."""
+        self._refresh()
+        windows = [window for v, window in self._history if v > version]
+        if len(windows) != self.version - version or any(w is None for w in windows):
+            return None
+        known = [w for w in windows if w is not None]
+        return (min(w[0] for w in known), max(w[1] for w in known),
+                min(w[2] for w in known), max(w[3] for w in known))  # fmt: skip
+
+    def _refresh(self) -> CostArray:
+        if self._dirty or self._master is None or self._base is None:
+            self._rebuild()
+        elif self._pending:
+            self._update_cells(np.unique(np.concatenate(self._pending)))
+        assert self._master is not None
         return self._master
+
+    def _rebuild(self) -> None:
+        start = (
+            self.static.copy()
+            if self.static is not None
+            else np.full(self.geometry.shape, self.default_value, dtype=np.uint8)
+        )
+        self._base = combine_max(start, self.obstacles)
+        self._master = inflate(self._base, self.geometry, self.inflation)
+        self._dirty = False
+        self._pending.clear()
+        self._record(None)
+
+    def _update_cells(self, flat: IntArray) -> None:
+        """Recombine the changed obstacle cells and re-inflate around those whose
+        combined value changed."""
+        assert self._base is not None
+        assert self._master is not None
+        self._pending.clear()
+        start = (
+            self.static.flat[flat]
+            if self.static is not None
+            else np.full(flat.shape, self.default_value, dtype=np.uint8)
+        )
+        combined = combine_max(start, self.obstacles.flat[flat])
+        differs = combined != self._base.flat[flat]
+        if not differs.any():
+            return
+        changed = flat[differs]
+        self._base.flat[changed] = combined[differs]
+        bound = self.geometry.cell_distance(self.inflation.inflation_radius)
+        window = grown(bounding_window(changed, self.geometry.width), bound, self.geometry.shape)
+        row0, row1, col0, col1 = window
+        before = self._master[row0:row1, col0:col1].copy()
+        inflate_window(self._base, self._master, window, self.geometry, self.inflation)
+        moved = np.flatnonzero(before != self._master[row0:row1, col0:col1])
+        if moved.size:
+            inner = bounding_window(moved, col1 - col0)
+            self._record((inner[0] + row0, inner[1] + row0, inner[2] + col0, inner[3] + col0))
+
+    def _record(self, window: Window | None) -> None:
+        self.version += 1
+        self._history.append((self.version, window))
 
     def snapshot(self) -> CostGrid:
         """An immutable copy of the master grid, safe to plan on in another thread."""

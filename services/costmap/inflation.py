@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .distance import distance_transform
-from .grid import INSCRIBED, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry
+from .grid import INSCRIBED, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry, IntArray
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,3 +61,37 @@ def inflate(master: CostArray, geometry: GridGeometry, params: InflationParams) 
     result = np.maximum(master, inflated)
     result[unknown] = np.where(inflated[unknown] >= threshold, inflated[unknown], NO_INFORMATION)
     return result
+
+
+Window = tuple[int, int, int, int]
+"""A half-open cell rectangle ``(row0, row1, col0, col1)``."""
+
+
+def bounding_window(flat: IntArray, width: int) -> Window:
+    """The smallest window holding the (non-empty) flat cell indices ``flat``."""
+    rows, cols = np.divmod(flat, width)
+    return (int(rows.min()), int(rows.max()) + 1, int(cols.min()), int(cols.max()) + 1)
+
+
+def grown(window: Window, cells: int, shape: tuple[int, int]) -> Window:
+    """``window`` grown by ``cells`` on every side, clipped to a grid of ``shape``."""
+    row0, row1, col0, col1 = window
+    return (max(0, row0 - cells), min(shape[0], row1 + cells),
+            max(0, col0 - cells), min(shape[1], col1 + cells))  # fmt: skip
+
+
+def inflate_window(
+    base: CostArray, out: CostArray, window: Window, geometry: GridGeometry, params: InflationParams
+) -> None:
+    """Recompute ``out[window]`` as ``inflate(base)[window]``, exactly, in place.
+
+    A cell's inflated cost depends only on its own base value and on the seeds
+    within the inflation radius, so inflating the window grown by that radius
+    and keeping its inner part equals a full re-inflation there. Callers pass
+    the changed cells' window grown by the radius: nothing outside it can change.
+    """
+    bound = geometry.cell_distance(params.inflation_radius)
+    row0, row1, col0, col1 = window
+    g0, g1, h0, h1 = grown(window, bound, base.shape)
+    inflated = inflate(base[g0:g1, h0:h1], geometry, params)
+    out[row0:row1, col0:col1] = inflated[row0 - g0 : row1 - g0, col0 - h0 : col1 - h0]

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry
+from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry, IntArray
 
 
 @dataclass(frozen=True, slots=True)
@@ -49,6 +49,15 @@ class Scan:
         return cls(*pose, angle_min, angle_increment, values, range_min, range_max)
 
 
+def same_scan(a: Scan, b: Scan) -> bool:
+    """The same readings from the same sensor pose (re-applying one is a no-op)."""
+    head = (a.sensor_x, a.sensor_y, a.sensor_yaw, a.angle_min, a.angle_increment, a.range_min,
+            a.range_max)  # fmt: skip
+    other = (b.sensor_x, b.sensor_y, b.sensor_yaw, b.angle_min, b.angle_increment, b.range_min,
+             b.range_max)  # fmt: skip
+    return head == other and np.array_equal(a.ranges, b.ranges)
+
+
 def _rays(
     scan: Scan, params: ObstacleParams
 ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
@@ -73,11 +82,12 @@ def _rays(
 
 def clear_and_mark(
     grid: CostArray, geometry: GridGeometry, scan: Scan, params: ObstacleParams
-) -> None:
+) -> IntArray:
     """Ray-trace free space along every ray, then mark the hit cells LETHAL (in place).
 
     Rays are sampled every half cell; the cell of a hit is never cleared by
-    its own ray. Points outside the grid are ignored.
+    its own ray. Points outside the grid are ignored. Returns the flat indices
+    of the cells whose value changed (empty when the scan changed nothing).
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
@@ -86,18 +96,34 @@ def clear_and_mark(
     flat = grid.reshape(-1)
     step = geometry.resolution * 0.5
     longest = float(clear_len.max(initial=0.0))
+    cleared: IntArray = np.empty(0, dtype=np.intp)
     if longest > 0.0:
         t = np.arange(0.0, longest, step)
         inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
-        xs = scan.sensor_x + dx[:, None] * t[None, :]
-        ys = scan.sensor_y + dy[:, None] * t[None, :]
-        cols, rows, ok = geometry.world_to_cells(xs[inside], ys[inside])
-        flat[rows[ok] * geometry.width + cols[ok]] = FREE
+        rays, samples = np.nonzero(inside)
+        cleared = _cells(geometry, scan.sensor_x + dx[rays] * t[samples],
+                         scan.sensor_y + dy[rays] * t[samples])  # fmt: skip
     marks = hit > 0
-    cols, rows, ok = geometry.world_to_cells(
-        scan.sensor_x + dx[marks] * ranges[marks], scan.sensor_y + dy[marks] * ranges[marks]
-    )
-    flat[rows[ok] * geometry.width + cols[ok]] = LETHAL
+    marked = _cells(geometry, scan.sensor_x + dx[marks] * ranges[marks],
+                    scan.sensor_y + dy[marks] * ranges[marks])  # fmt: skip
+    touched = np.zeros(flat.size, dtype=np.bool_)  # the cells once each, without a sort
+    touched[cleared] = True
+    touched[marked] = True
+    cells = np.flatnonzero(touched)
+    before = flat[cells]
+    flat[cleared] = FREE
+    flat[marked] = LETHAL
+    changed: IntArray = cells[flat[cells] != before]
+    return changed
+
+
+def _cells(geometry: GridGeometry, xs: FloatArray, ys: FloatArray) -> IntArray:
+    """Flat indices of the cells holding the (finite) points inside the grid."""
+    cols = np.floor((xs - geometry.origin_x) / geometry.resolution)
+    rows = np.floor((ys - geometry.origin_y) / geometry.resolution)
+    ok = (cols >= 0) & (cols < geometry.width) & (rows >= 0) & (rows < geometry.height)
+    flat: IntArray = (rows[ok] * geometry.width + cols[ok]).astype(np.intp)
+    return flat
 
 
 def combine_max(master: CostArray, layer: CostArray) -> CostArray:

@@ -44,7 +44,7 @@ class RollingCostmap(Costmap):
         """Use a global static cost grid (Nav2 costs) as this window's static layer."""
         self._static_source = (costs, geometry)
         self.static = resample(costs, geometry, self.geometry)
-        self._dirty = True
+        self.layers_replaced()
 
     def update_origin(self, robot_x: float, robot_y: float) -> None:
         """Centre the window on the robot; shift the obstacle layer by whole cells."""
@@ -62,7 +62,7 @@ class RollingCostmap(Costmap):
         self.geometry = g.moved_to(g.origin_x + shift_c * res, g.origin_y + shift_r * res)
         if self._static_source is not None:
             self.static = resample(*self._static_source, self.geometry)
-        self._dirty = True
+        self.layers_replaced()
 
 
 def _shifted(grid: CostArray, shift_r: int, shift_c: int) -> CostArray:

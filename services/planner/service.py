@@ -46,7 +46,7 @@ class PlannerService:
         bus, world, act = self.bus, self.world, self.actions
         bus.subscribe("map", OccupancyGrid, world.on_map, latched=True)
         bus.subscribe("pose", PoseStamped, world.on_pose)
-        bus.subscribe("scan", LaserScan, world.on_scan, queue_size=4)
+        bus.subscribe("scan", LaserScan, world.on_scan, queue_size=1)
         bus.action_server(ComputePathToPose.name, ComputePathToPose, act.compute_path_to_pose)
         bus.action_server(
             ComputePathThroughPoses.name, ComputePathThroughPoses, act.compute_path_through_poses

@@ -5,10 +5,11 @@ imports it (``[[tool.mypy.overrides]]`` for ``scipy.*``) and hands typed numpy
 arrays in and out.
 
 Nodes are a :class:`Traversal`'s padded flat indices. An edge ``u -> v`` exists
-for every interior cell ``u`` and each of its 8 neighbours ``v`` that is
-passable, weighted ``step_length * weight(v)`` (the GridBased metric: entering a
-cell costs its weight). Edges leave blocked cells too, so a search may start in
-a block opened for the start without rebuilding the graph.
+for every interior cell ``u`` and each of its 8 neighbours ``v``, weighted
+``step_length * weight(v)`` (the GridBased metric: entering a cell costs its
+weight; ``inf`` into a blocked cell, never taken). Edges leave blocked cells
+too, so a search may start in a block opened for the start without rebuilding
+the graph, and a changed cell only rewrites the weights of the edges into it.
 """
 
 from __future__ import annotations
@@ -50,34 +51,46 @@ class Reach:
 
 
 class GridGraph:
-    """A padded grid of step weights as a CSR graph for scipy's compiled Dijkstra."""
+    """A padded grid of step weights as a CSR graph for scipy's compiled Dijkstra.
 
-    __slots__ = ("_matrix", "passable", "stride")
+    Every interior cell holds its 8 edges in :data:`MOVES` order (an edge into a
+    blocked cell weighs ``inf``, which the search never relaxes), so the layout
+    is fixed by the grid's shape and :meth:`updated` rewrites weights in place
+    of rebuilding the graph.
+    """
+
+    __slots__ = ("_matrix", "_weights", "passable", "stride")
 
     def __init__(self, padded: FloatArray) -> None:
         """``padded``: ``(rows + 2, cols + 2)`` weights, ``inf`` = blocked, border blocked."""
         rows, cols = padded.shape[0] - 2, padded.shape[1] - 2
         self.stride = int(padded.shape[1])
-        nodes = padded.size
         self.passable: npt.NDArray[np.bool_] = np.isfinite(padded).ravel()
-        weights = np.empty((rows, cols, len(MOVES)))
-        for k, (dr, dc, length) in enumerate(MOVES):
-            np.multiply(padded[1 + dr : rows + 1 + dr, 1 + dc : cols + 1 + dc], length,
-                        out=weights[:, :, k])  # fmt: skip
-        edge = np.isfinite(weights)
-        interior = (np.arange(1, rows + 1, dtype=np.int32)[:, None] * self.stride
-                    + np.arange(1, cols + 1, dtype=np.int32)[None, :])  # fmt: skip
-        offsets = np.array([dr * self.stride + dc for dr, dc, _ in MOVES], dtype=np.int32)
-        targets = (interior[:, :, None] + offsets)[edge]
-        counts = np.zeros(nodes, dtype=np.int32)
-        counts[interior.ravel()] = edge.sum(axis=2, dtype=np.int32).ravel()
-        starts = np.zeros(nodes + 1, dtype=np.int32)
-        np.cumsum(counts, out=starts[1:])
-        self._matrix = csr_array((weights[edge], targets, starts), shape=(nodes, nodes))
+        self._weights = np.empty((rows, cols, len(MOVES)))
+        _edge_weights(padded, self._weights, (0, rows, 0, cols))
+        targets, starts = _layout_of(rows, cols, self.stride, padded.size)
+        nodes = padded.size
+        self._matrix = csr_array((self._weights.ravel(), targets, starts), shape=(nodes, nodes))
+
+    def updated(self, padded: FloatArray, window: tuple[int, int, int, int]) -> GridGraph:
+        """A graph of ``padded``, which differs from this graph's weights only in
+        the interior cells ``(row0, row1, col0, col1)`` (half-open; this graph is unchanged)."""
+        row0, row1, col0, col1 = window
+        clone = GridGraph.__new__(GridGraph)
+        clone.stride = self.stride
+        clone.passable = np.isfinite(padded).ravel()
+        clone._weights = self._weights.copy()
+        rows, cols = self._weights.shape[:2]
+        sources = (max(0, row0 - 1), min(rows, row1 + 1), max(0, col0 - 1), min(cols, col1 + 1))
+        _edge_weights(padded, clone._weights, sources)
+        m = self._matrix
+        clone._matrix = csr_array((clone._weights.ravel(), m.indices, m.indptr), shape=m.shape)
+        return clone
 
     @property
     def edges(self) -> int:
-        return int(self._matrix.nnz)
+        """Edges into passable cells."""
+        return int(np.isfinite(self._weights).sum())
 
     def reach_from(self, source: int) -> Reach:
         """A complete Dijkstra from ``source`` (one compiled call: not interruptible)."""
@@ -85,3 +98,25 @@ class GridGraph:
             self._matrix, directed=True, indices=source, return_predecessors=True
         )
         return Reach(np.asarray(cost, dtype=np.float64), np.asarray(parent, dtype=np.int32))
+
+
+def _edge_weights(padded: FloatArray, out: FloatArray, window: tuple[int, int, int, int]) -> None:
+    """``out[r, c, k]`` = the weight of move ``k`` from interior cell ``(r, c)``,
+    for the sources in ``window`` (interior rows/cols, half-open)."""
+    row0, row1, col0, col1 = window
+    for k, (dr, dc, length) in enumerate(MOVES):
+        np.multiply(padded[1 + dr + row0 : 1 + dr + row1, 1 + dc + col0 : 1 + dc + col1],
+                    length, out=out[row0:row1, col0:col1, k])  # fmt: skip
+
+
+def _layout_of(rows: int, cols: int, stride: int, nodes: int) -> tuple[IndexArray, IndexArray]:
+    """CSR column indices and row pointers: 8 edges per interior cell, none elsewhere."""
+    interior = (np.arange(1, rows + 1, dtype=np.int32)[:, None] * stride
+                + np.arange(1, cols + 1, dtype=np.int32)[None, :])  # fmt: skip
+    offsets = np.array([dr * stride + dc for dr, dc, _ in MOVES], dtype=np.int32)
+    targets: IndexArray = (interior[:, :, None] + offsets).ravel()
+    counts = np.zeros(nodes, dtype=np.int32)
+    counts[interior.ravel()] = len(MOVES)
+    starts: IndexArray = np.zeros(nodes + 1, dtype=np.int32)
+    np.cumsum(counts, out=starts[1:])
+    return targets, starts

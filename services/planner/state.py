@@ -28,22 +28,36 @@ class CostmapOptions:
     inflation: InflationParams = field(default_factory=InflationParams)
     obstacles: ObstacleParams = field(default_factory=ObstacleParams)
     search: SearchParams = field(default_factory=lambda: SearchParams(downsample=2))
+    scan_period: float = 0.2  # robot s between folded scans; newer ones wait for a read
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.scan_period) and self.scan_period >= 0.0):
+            raise ValueError(f"scan_period must be finite and >= 0, got {self.scan_period!r}")
 
 
 class GlobalCostmap:
     """Latest map, robot pose and scans folded into a :class:`Costmap`.
 
+    Scans are coalesced, never queued: the newest one waits and is folded in
+    when a reader asks (a plan, a cost query) or when it is ``scan_period``
+    robot seconds newer (header stamps) than the last one folded (the costmap
+    skips a scan equal to the last, from the same pose). Snapshots and the
+    traversal are updated from the costmap's changed window, not rebuilt.
     Bad messages (wrong frame, rotated map origin) are logged and dropped.
     """
 
-    __slots__ = ("_cache", "costmap", "options", "pose", "pose_stamp")
+    __slots__ = ("_folded", "_grid", "_pending", "_traversal", "costmap", "options", "pose",
+                 "pose_stamp")  # fmt: skip
 
     def __init__(self, options: CostmapOptions | None = None) -> None:
         self.options = options or CostmapOptions()
         self.costmap: Costmap | None = None
         self.pose: Pose2D | None = None
         self.pose_stamp = 0.0
-        self._cache: tuple[object, CostGrid, Traversal | None] | None = None
+        self._pending: tuple[LaserScan, Pose2D] | None = None
+        self._folded = -math.inf  # stamp of the newest scan folded in
+        self._grid: tuple[int, CostGrid] | None = None
+        self._traversal: tuple[int, Traversal] | None = None
 
     def on_map(self, msg: OccupancyGrid) -> None:
         if msg.header.frame_id not in MAP_FRAMES:
@@ -71,34 +85,53 @@ class GlobalCostmap:
     def on_scan(self, msg: LaserScan) -> None:
         if self.costmap is None or self.pose is None:
             return
-        self.costmap.update_from_scan(
-            Scan.create(
-                self.pose,
-                msg.angle_min,
-                msg.angle_increment,
-                msg.ranges_array(),
-                msg.range_min,
-                msg.range_max,
-            )
+        self._pending = (msg, self.pose)
+        if msg.header.stamp - self._folded >= self.options.scan_period:
+            self._fold_pending()
+
+    def _fold_pending(self) -> None:
+        """Fold the waiting scan (if any) into the obstacle layer."""
+        if self._pending is None or self.costmap is None:
+            return
+        (msg, pose), self._pending = self._pending, None
+        self._folded = msg.header.stamp
+        scan = Scan.create(
+            pose,
+            msg.angle_min,
+            msg.angle_increment,
+            msg.ranges_array(),
+            msg.range_min,
+            msg.range_max,
         )
+        self.costmap.update_from_scan(scan)
 
     def snapshot(self) -> CostGrid | None:
-        """The current master grid (shared, read-only: rebuilt when a layer changes)."""
+        """The current master grid (shared, read-only: a new one when the costmap changed)."""
         if self.costmap is None:
             return None
+        self._fold_pending()
         master = self.costmap.master
-        if self._cache is None or self._cache[0] is not master:
-            self._cache = (master, CostGrid(self.costmap.geometry, master.copy()), None)
-        return self._cache[1]
+        version = self.costmap.version
+        if self._grid is None or self._grid[0] != version:
+            self._grid = (version, CostGrid(self.costmap.geometry, master.copy()))
+        return self._grid[1]
 
     def traversal(self) -> Traversal | None:
-        """Search weights for the current snapshot (built once per snapshot)."""
+        """Search weights for the current snapshot: the last traversal updated in the
+        window the costmap changed, or built anew after a new map or a clearing."""
         grid = self.snapshot()
-        if grid is None or self._cache is None:
+        if grid is None or self.costmap is None:
             return None
-        if self._cache[2] is None:
-            self._cache = (self._cache[0], grid, Traversal(grid, self.options.search))
-        return self._cache[2]
+        version, cached = self.costmap.version, self._traversal
+        if cached is not None and cached[0] == version:
+            return cached[1]
+        window = None if cached is None else self.costmap.changed_since(cached[0])
+        if cached is not None and window is not None and cached[1].fine.geometry == grid.geometry:
+            traversal = cached[1].updated(grid, window)
+        else:
+            traversal = Traversal(grid, self.options.search)
+        self._traversal = (version, traversal)
+        return traversal
 
     def robot_xy(self) -> tuple[float, float] | None:
         return None if self.pose is None else (self.pose[0], self.pose[1])

@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, GridGeometry
+from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, GridGeometry, Window
 
 from .errors import PlanningCancelled, PlanningError
 from .sparse import GridGraph
@@ -101,15 +101,58 @@ class Traversal:
             self.costs.shape[1], self.costs.shape[0], g.resolution * factor, g.origin_x, g.origin_y
         )
         self.passable = self._passable(self.costs)
-        weight = 1.0 + self.params.cost_penalty * np.minimum(self.costs, 252) / 252.0
         padded = np.full((self.costs.shape[0] + 2, self.costs.shape[1] + 2), math.inf)
-        padded[1:-1, 1:-1] = np.where(self.passable, weight, math.inf)
+        padded[1:-1, 1:-1] = self._step_weights(self.costs, self.passable)
         self.stride = int(padded.shape[1])
         self.weights: list[float] = padded.ravel().tolist()
         padded.flags.writeable = False
         self._base: npt.NDArray[np.float64] = padded
         self._graph = _GraphCache()
         self._coords: tuple[npt.NDArray[np.intp], npt.NDArray[np.intp]] | None = None
+
+    def _step_weights(
+        self, costs: npt.NDArray[np.uint8], passable: npt.NDArray[np.bool_]
+    ) -> npt.NDArray[np.float64]:
+        weight = 1.0 + self.params.cost_penalty * np.minimum(costs, 252) / 252.0
+        stepped: npt.NDArray[np.float64] = np.where(passable, weight, math.inf)
+        return stepped
+
+    def updated(self, grid: CostGrid, window: Window) -> Traversal:
+        """The traversal of ``grid``, which differs from :attr:`fine` only inside the
+        fine-cell ``window``: the blocks it touches are recomputed, the rest (and
+        a built graph's layout) kept; this traversal is left as it was."""
+        if grid.costs.shape != self.fine.costs.shape:
+            raise ValueError(f"grid shape {grid.costs.shape} != {self.fine.costs.shape}")
+        f = self.params.downsample
+        row0, row1, col0, col1 = (
+            window[0] // f,
+            -(-window[1] // f),
+            window[2] // f,
+            -(-window[3] // f),
+        )
+        block = downsample_costs(grid.costs[row0 * f : row1 * f, col0 * f : col1 * f], f)
+        clone = copy.copy(self)
+        clone.fine = grid
+        clone.costs = self.costs.copy()
+        clone.costs[row0:row1, col0:col1] = block
+        clone.passable = self.passable.copy()
+        clone.passable[row0:row1, col0:col1] = self._passable(block)
+        padded = self._base.copy()
+        padded[row0 + 1 : row1 + 1, col0 + 1 : col1 + 1] = self._step_weights(
+            block, clone.passable[row0:row1, col0:col1]
+        )
+        padded.flags.writeable = False
+        clone._base = padded
+        clone.weights = list(self.weights)
+        for row in range(row0 + 1, row1 + 1):
+            at = row * self.stride
+            clone.weights[at + col0 + 1 : at + col1 + 1] = padded[row, col0 + 1 : col1 + 1].tolist()
+        clone._graph = _GraphCache()
+        with self._graph.lock:
+            built = self._graph.graph
+        if built is not None:
+            clone._graph.graph = built.updated(padded, (row0, row1, col0, col1))
+        return clone
 
     def graph(self) -> GridGraph:
         """The compiled search graph of these weights, built once (thread-safe).

@@ -1,0 +1,239 @@
+"""The running system's speed in one run: the whole stack up at a sim speed-up.
+
+Run: ``.venv/bin/python -m bench.system.report --speed 10``
+
+Starts a router and the stack (robot at ``--speed``, planner, controller, behaviors,
+navigator; processes as the end-to-end tests run them) and measures:
+
+- CPU of each process (router included) in % of one core, from ``/proc/<pid>/stat``,
+  over an idle phase (robot standing, ``--idle`` wall s) and over the driving phase;
+- the driving phase: ``--goals`` seeded reachable goals, each planned (ComputePathToPose)
+  and followed (FollowPath), while a client sends ComputePathToPose from the robot's pose
+  every ``--probe-period`` s: the planner's round trip over Zenoh (p50/p99/max, wall).
+  The planner serves one goal at a time (a newer aborts the older), so the driving
+  goes straight to planner and controller, not through the navigator's replanning
+  tree (it would be aborted by the probe); the navigator is up, and drives the
+  reaction runs;
+- the controller's cycle time and achieved rate (its per-goal log lines);
+- the sim speed-up achieved (``{ns}/clock`` vs wall) in both phases, vs asked;
+- ``--reactions`` times: a box spawned ahead of the driving robot, sim and wall
+  seconds until the first ``cmd_vel`` under half the speed commanded before.
+
+Prints one table (markdown) with the load average before and after.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import math
+import re
+import statistics
+from dataclasses import dataclass, field
+
+from aiobt.msgs import FollowPath, NavigateToPose, PoseStamped
+from aiobt.testing.bus import start_router
+from aiobt.testing.navwatch import NavClient, RobotTrack, start_navigation
+from aiobt.testing.stack import NavStack, StackConfig
+from aiobt.transport import ActionError, Bus, ServiceError, open_bus
+
+from ..nav.goals import pick_goals, static_grid
+from ..nav.run import START, loadavg
+from .probes import Commands, PlannerProbe, Refused, SimClock, percentile, reaction
+from .procstat import percent_of_core, sample
+
+CYCLES = re.compile(
+    r"(\d+) cycles, rate ([\d.]+|nan) of ([\d.]+) Hz, cycle p50 ([\d.]+) ms "
+    r"p99 ([\d.]+) ms max ([\d.]+) ms"
+)
+Goal = tuple[float, float, float]
+
+
+@dataclass
+class Figures:
+    cpu_idle: dict[str, float] = field(default_factory=dict)
+    cpu_driving: dict[str, float] = field(default_factory=dict)
+    speed_idle: float = math.nan
+    speed_driving: float = math.nan
+    round_trips: list[float] = field(default_factory=list)
+    probe_failures: list[str] = field(default_factory=list)
+    reached: int = 0
+    goals: int = 0
+    reactions: list[tuple[float, float] | None] = field(default_factory=list)
+    controller: list[tuple[int, float, float, float, float]] = field(default_factory=list)
+
+
+async def drive(bus: Bus, probe: PlannerProbe, goals: list[Goal], limit: float) -> int:
+    """Plan (through the probe's lock) and follow each goal; how many were reached."""
+    follow = bus.action_client(FollowPath.name, FollowPath)
+    reached = 0
+    for goal in goals:
+        try:
+            assert probe.pose is not None
+            plan, _ = await probe.plan(probe.pose, goal)
+            if plan.error_code != 0:
+                print(f"goal {goal}: plan {plan.error_code} {plan.error_msg}", flush=True)
+                continue
+            sent = await follow.send_goal(FollowPath.Goal(path=plan.path), server_timeout=10.0)
+            result = await sent.result(timeout=limit)
+            reached += result.error_code == 0
+            print(f"goal {goal}: follow {result.error_code} {result.error_msg}".strip(), flush=True)
+        except (ActionError, TimeoutError) as exc:
+            print(f"goal {goal}: {type(exc).__name__}: {exc}", flush=True)
+            with contextlib.suppress(ActionError, ServiceError, TimeoutError):
+                await follow.cancel_all(timeout=5.0)
+    return reached
+
+
+async def react(
+    bus: Bus, client: NavClient, track: RobotTrack, goals: list[Goal], figures: Figures,
+    clock: SimClock, commands: Commands, count: int,
+) -> None:  # fmt: skip
+    """``count`` times: drive to the farthest goal, drop a box ahead once cruising."""
+    for _ in range(count):
+        here = track.latest
+        assert here is not None
+        far = max(goals, key=lambda g: math.hypot(g[0] - here.x, g[1] - here.y))
+        running = await start_navigation(client, PoseStamped.from_xy_yaw(*far))
+        result = None
+        for _ in range(10):  # until the box is accepted (not in a wall) while cruising
+            if await commands.first(lambda c: c.linear.x > 0.2, 60.0) is None:
+                break
+            pose = track.latest
+            assert pose is not None
+            try:
+                result = await reaction(
+                    bus, clock, commands, PoseStamped.from_xy_yaw(pose.x, pose.y, pose.yaw), 0.9
+                )
+                break
+            except Refused as exc:
+                print(f"reaction: {exc}; trying further on", flush=True)
+        figures.reactions.append(result)
+        with contextlib.suppress(ActionError, ServiceError, TimeoutError):
+            await running.goal.cancel(timeout=10.0)
+        await track.wait_still(0.5, 30.0)
+
+
+async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) -> Figures:
+    figures = Figures()
+    goals = pick_goals(static_grid(), START, args.goals, args.seed)
+    pids = {"router": router_pid, **{n: p.pid for n, p in stack.processes.items()}}
+    async with open_bus(stack.settings()) as bus:
+        await stack.wait_ready(bus, timeout=120.0)
+        client = bus.action_client(NavigateToPose.name, NavigateToPose)
+        if not await client.wait_for_server(60.0):
+            raise SystemExit(f"no navigate_to_pose server:\n{stack.logs()}")
+        track, clock, commands = RobotTrack(bus), SimClock(bus), Commands(bus)
+        probe = PlannerProbe(bus, goals, args.probe_period)
+        try:
+            if await track.wait_for(lambda _: True, 30.0) is None:
+                raise SystemExit("no pose from the robot")
+            await asyncio.sleep(2.0)  # the services' start-up work done
+            first, mark = sample(pids), clock.mark()
+            await asyncio.sleep(args.idle)  # the idle phase: its length is the measurement
+            figures.cpu_idle = percent_of_core(first, sample(pids))
+            figures.speed_idle = clock.factor_since(mark)
+            stop = asyncio.Event()
+            first, mark = sample(pids), clock.mark()
+            prober = asyncio.create_task(probe.run(stop))
+            figures.reached = await drive(bus, probe, goals, args.timeout)
+            stop.set()
+            await prober
+            figures.cpu_driving = percent_of_core(first, sample(pids))
+            figures.speed_driving = clock.factor_since(mark)
+            figures.goals = len(goals)
+            figures.round_trips, figures.probe_failures = probe.round_trips, probe.failures
+            await react(bus, client, track, goals, figures, clock, commands, args.reactions)
+        finally:
+            track.close()
+    figures.controller = [
+        (int(m[0]), float(m[1]), float(m[2]), float(m[4]), float(m[5]))
+        for m in CYCLES.findall(stack.processes["controller"].output())
+    ]
+    return figures
+
+
+def row(*cells: object) -> str:
+    return "| " + " | ".join(str(c) for c in cells) + " |"
+
+
+def ms(seconds: float) -> str:
+    return f"{seconds * 1e3:.1f}"
+
+
+def planner_row(figures: Figures) -> str:
+    trips, failed = figures.round_trips, len(figures.probe_failures)
+    spread = [ms(percentile(trips, q)) for q in (50, 99, 100)]
+    label = f"planner round trip ms p50 / p99 / max (n={len(trips)}, failed {failed})"
+    return row(label, " / ".join(spread), "p99 < 50")
+
+
+def controller_rows(goals: list[tuple[int, float, float, float, float]]) -> list[str]:
+    if not goals:
+        return [row("controller cycle statistics", "none logged", "")]
+    rates = [r / c for _, r, c, _, _ in goals if math.isfinite(r) and c > 0]
+    p99s, worst = [p for *_, p, _ in goals], max(m for *_, m in goals)
+    cycles = sum(n for n, *_ in goals)
+    achieved = f"{statistics.median(rates):.1%}, {min(rates):.1%}" if rates else "n/a"
+    label = (
+        f"controller rate achieved / configured, {len(goals)} goals, {cycles} cycles: median, min"
+    )
+    p99 = f"{statistics.median(p99s):.2f}, {max(p99s):.2f}; {worst:.2f}"
+    return [
+        row(label, achieved, ">= 95 %"),
+        row("controller cycle p99 ms: median goal, worst goal; max", p99, "p99 < 10"),
+    ]
+
+
+def table(figures: Figures, speed: float) -> list[str]:
+    lines = [row("figure", "value", "target"), row("---", "---", "---")]
+    for name, idle in figures.cpu_idle.items():
+        busy = figures.cpu_driving.get(name, math.nan)
+        target = "idle < 2 %" if name not in ("robot", "router") else ""
+        lines.append(
+            row(f"CPU {name} % of a core: idle / driving", f"{idle:.1f} / {busy:.1f}", target)
+        )
+    lines.append(planner_row(figures))
+    lines.extend(controller_rows(figures.controller))
+    achieved = f"{figures.speed_idle:.2f} / {figures.speed_driving:.2f}"
+    lines.append(
+        row(f"sim speed-up idle / driving (asked {speed:g})", achieved, f">= {0.9 * speed:g}")
+    )
+    lines.append(row("goals reached", f"{figures.reached} / {figures.goals}", ""))
+    done = [r for r in figures.reactions if r is not None]
+    label = (
+        f"reaction box -> cmd_vel slows, sim s / wall s ({len(done)} of {len(figures.reactions)})"
+    )
+    values = ", ".join(f"{sim:.2f} / {wall:.2f}" for sim, wall in done) or "n/a"
+    lines.append(row(label, values, ""))
+    return lines
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--speed", type=float, default=10.0, help="sim speed-up (robot --speed)")
+    parser.add_argument("--goals", type=int, default=6)
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--idle", type=float, default=10.0, help="wall s of the idle phase")
+    parser.add_argument("--probe-period", type=float, default=0.25, help="wall s between plans")
+    parser.add_argument("--reactions", type=int, default=3)
+    parser.add_argument("--timeout", type=float, default=120.0, help="wall s per goal")
+    args = parser.parse_args(argv)
+    before = loadavg()
+    config = StackConfig(world="office", speed=args.speed, seed=args.seed)
+    router, endpoint = start_router(extra_args=("--lease-ms", str(config.lease_ms)), timeout=60.0)
+    try:
+        with NavStack.launch(endpoint, config) as stack:
+            figures = asyncio.run(measure(stack, router.pid, args))
+    finally:
+        router.cleanup()
+    print("\n".join(table(figures, args.speed)))
+    print(f"\nload average before: {before}; after: {loadavg()}")
+    for failure in sorted(set(figures.probe_failures))[:5]:
+        print(f"planner probe failure: {failure}")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,53 @@
+"""Per-goal control-loop statistics: cycles, achieved rate (robot time), cycle compute time."""
+
+from __future__ import annotations
+
+import math
+
+
+class CycleStats:
+    """Cycles of one FollowPath goal: when each began (robot clock seconds) and how long
+    its work took (seconds of wall time spent computing, not waiting)."""
+
+    __slots__ = ("_durations", "_first", "_last", "period")
+
+    def __init__(self, period: float) -> None:
+        if not (math.isfinite(period) and period > 0.0):
+            raise ValueError(f"control period must be finite and > 0, got {period!r}")
+        self.period = period
+        self._durations: list[float] = []
+        self._first = math.nan
+        self._last = math.nan
+
+    def record(self, began: float, duration: float) -> None:
+        if not self._durations:
+            self._first = began
+        self._last = began
+        self._durations.append(duration)
+
+    @property
+    def cycles(self) -> int:
+        return len(self._durations)
+
+    def rate(self) -> float:
+        """Cycles per robot second between the first and the last cycle (nan if < 2)."""
+        span = self._last - self._first
+        if self.cycles < 2 or not span > 0.0:
+            return math.nan
+        return (self.cycles - 1) / span
+
+    def percentile(self, q: float) -> float:
+        """The ``q`` (0-100) percentile of the cycle times, in seconds (nearest rank)."""
+        if not self._durations:
+            return math.nan
+        ordered = sorted(self._durations)
+        rank = max(1, math.ceil(q / 100.0 * len(ordered)))
+        return ordered[rank - 1]
+
+    def summary(self) -> str:
+        """One line: ``N cycles, rate R of C Hz, cycle p50 A ms p99 B ms max M ms``."""
+        return (
+            f"{self.cycles} cycles, rate {self.rate():.2f} of {1.0 / self.period:.2f} Hz, "
+            f"cycle p50 {self.percentile(50) * 1e3:.2f} ms p99 {self.percentile(99) * 1e3:.2f} ms "
+            f"max {self.percentile(100) * 1e3:.2f} ms"
+        )

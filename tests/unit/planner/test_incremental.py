@@ -1,0 +1,119 @@
+"""The planner's traversal and graph follow costmap changes in a window, and scans coalesce."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from aiobt.msgs import Header, LaserScan, OccupancyGrid, PoseStamped
+from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION, CostGrid, GridGeometry
+from aiobt_services.costmap.inflation import bounding_window
+from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
+from aiobt_services.planner.traversal import SearchParams, Traversal
+
+VALUES = np.array((0, 30, 120, INSCRIBED, LETHAL, NO_INFORMATION), dtype=np.uint8)
+
+
+def assert_same(updated: Traversal, fresh: Traversal) -> None:
+    assert updated.weights == fresh.weights
+    assert np.array_equal(updated.costs, fresh.costs)
+    assert np.array_equal(updated.passable, fresh.passable)
+    assert np.array_equal(updated.graph()._weights, fresh.graph()._weights)
+    assert updated.graph().edges == fresh.graph().edges
+    assert np.array_equal(updated.graph().passable, fresh.graph().passable)
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    height=st.integers(3, 20),
+    width=st.integers(3, 20),
+    downsample=st.integers(1, 3),
+    seed=st.integers(0, 2**32 - 1),
+    built=st.booleans(),
+)
+def test_an_updated_traversal_equals_one_built_from_scratch(
+    height: int, width: int, downsample: int, seed: int, built: bool
+) -> None:
+    rng = np.random.default_rng(seed)
+    geometry = GridGeometry(width, height, 0.1)
+    before = rng.choice(VALUES, size=(height, width))
+    after = before.copy()
+    cells = rng.integers(0, height * width, size=int(rng.integers(1, 6)))
+    after.flat[cells] = rng.choice(VALUES, size=cells.size)
+    params = SearchParams(downsample=downsample)
+    old = Traversal(CostGrid(geometry, before), params)
+    if built:
+        old.graph()
+    changed = np.flatnonzero(after != before)
+    if not changed.size:
+        return
+    updated = old.updated(CostGrid(geometry, after), bounding_window(changed, width))
+    assert_same(updated, Traversal(CostGrid(geometry, after), params))
+    assert_same(old, Traversal(CostGrid(geometry, before), params))  # the old one untouched
+
+
+def scan(stamp: float, ranges: list[float]) -> LaserScan:
+    count = len(ranges)
+    return LaserScan(
+        header=Header(stamp=stamp, frame_id="base_scan"),
+        angle_min=-0.3,
+        angle_max=-0.3 + 0.06 * (count - 1),
+        angle_increment=0.06,
+        range_min=0.0,
+        range_max=5.0,
+        ranges=ranges,
+    )
+
+
+def world() -> GlobalCostmap:
+    grid = GlobalCostmap(CostmapOptions(scan_period=0.5))
+    grid.on_map(OccupancyGrid.from_array(np.zeros((60, 60), dtype=np.int8), 0.05))
+    grid.on_pose(PoseStamped.from_xy_yaw(0.5, 1.5, 0.0, stamp=1.0))
+    return grid
+
+
+def lethal_at(grid: CostGrid, x: float, y: float) -> bool:
+    cell = grid.geometry.world_to_cell(x, y)
+    assert cell is not None
+    return bool(grid.costs[cell[1], cell[0]] == LETHAL)
+
+
+def test_scans_within_the_period_wait_and_a_read_folds_only_the_newest() -> None:
+    state = world()
+    first = state.traversal()
+    assert first is not None
+    assert state.costmap is not None
+    state.on_scan(scan(1.0, [1.0] * 11))  # folded at once: the first scan
+    version = state.costmap.version
+    state.on_scan(scan(1.1, [1.5] * 11))  # waits (0.1 s < 0.5 s), then replaced
+    state.on_scan(scan(1.2, [2.0] * 11))
+    assert state.costmap.version == version
+    grid = state.snapshot()
+    assert grid is not None
+    assert lethal_at(grid, 2.5, 1.5)  # the newest scan's hit
+    assert not lethal_at(grid, 2.0, 1.5)  # the replaced one was never folded
+    assert not lethal_at(grid, 1.5, 1.5)  # the first one's hit, cleared by the newest
+    traversal = state.traversal()
+    assert traversal is not None
+    assert traversal is not first
+    assert state.traversal() is traversal  # no change since: the same one
+    assert_same(traversal, Traversal(grid, state.options.search))
+
+
+def test_an_equal_scan_from_the_same_pose_changes_nothing() -> None:
+    state = world()
+    state.on_scan(scan(1.0, [1.0] * 11))
+    grid = state.snapshot()
+    assert state.costmap is not None
+    version = state.costmap.version
+    state.on_scan(scan(2.0, [1.0] * 11))
+    assert state.snapshot() is grid
+    assert state.costmap.version == version
+    state.on_pose(PoseStamped.from_xy_yaw(0.6, 1.5, 0.0, stamp=2.5))
+    state.on_scan(scan(3.0, [1.0] * 11))  # moved: folded, the hits move with the robot
+    moved = state.snapshot()
+    assert moved is not None
+    assert moved is not grid
+    assert lethal_at(moved, 1.62, 1.5)
+    assert not lethal_at(moved, 1.52, 1.5)
