@@ -26,6 +26,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "navigate": ("aiobt.cli.navigate", "send a navigation goal and follow it to its end"),
     "goal": ("aiobt.cli.goal", "put a goal on {ns}/goal_pose and return"),
     "monitor": ("aiobt.cli.monitor", "the navigator's running tree, live, in the terminal"),
+    "foxglove": ("aiobt.cli.foxglove", "the robot's topics in Foxglove (WebSocket, MCAP)"),
     "robot": ("aiobt_services.robot.main", "the pybullet robot service"),
     "planner": ("aiobt_services.planner.main", "the planner service"),
     "controller": ("aiobt_services.controller.main", "the controller service"),
