@@ -28,7 +28,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.set_defaults(connect_timeout=CONNECT_TIMEOUT)
     add = parser.add_argument
     add("--host", default=LOCAL_HOST, help="address the server binds (default: %(default)s)")
-    add("--port", type=_port, default=DEFAULT_PORT, help="server port, 0: any (default: %(default)s)")
+    add(
+        "--port",
+        type=_port,
+        default=DEFAULT_PORT,
+        help="server port, 0: any (default: %(default)s)",
+    )
     add("--no-server", action="store_true", help="no WebSocket server (with --mcap: record only)")
     add("--mcap", type=Path, metavar="FILE", help="record every channel to this MCAP file")
     add("--footprint-radius", type=float, default=DEFAULT_FOOTPRINT_RADIUS, metavar="M",

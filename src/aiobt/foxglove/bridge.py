@@ -41,7 +41,10 @@ class FoxgloveBridge:
     """Feeds ``channels`` from ``bus``; :meth:`close` ends the subscriptions."""
 
     def __init__(
-        self, bus: Bus, context: foxglove.Context, footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS
+        self,
+        bus: Bus,
+        context: foxglove.Context,
+        footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS,
     ) -> None:
         if not footprint_radius > 0.0 or not math.isfinite(footprint_radius):
             raise ValueError(f"footprint radius must be > 0 m, not {footprint_radius!r}")

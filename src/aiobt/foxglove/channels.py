@@ -26,7 +26,25 @@ from dataclasses import dataclass
 import foxglove
 from foxglove import channels as fc
 
+from aiobt.msgs import NavigateToPose
+
 GOAL_TOPIC = "/goal_pose"  # the client channel a Publish panel sends goals on
+
+# JSON schemas: Foxglove's message path editor (plots, raw messages) offers the fields
+_FEEDBACK = {
+    **NavigateToPose.feedback_type().model_json_schema(),
+    "title": "aiobt.NavigateToPose.Feedback",
+}
+_SPEED = {
+    "type": "object",
+    "title": "aiobt.OdomSpeed",
+    "properties": {
+        "stamp": {"type": "number", "description": "robot clock, s"},
+        "linear": {"type": "number", "description": "forward speed, m/s"},
+        "angular": {"type": "number", "description": "turn rate, rad/s"},
+        "speed": {"type": "number", "description": "planar speed, m/s"},
+    },
+}
 
 
 @dataclass(slots=True)
@@ -55,8 +73,8 @@ class Channels:
             robot=fc.SceneUpdateChannel("/robot", context=c),
             plan=fc.PosesInFrameChannel("/plan", context=c),
             goal=fc.PoseInFrameChannel("/goal", context=c),
-            feedback=foxglove.Channel("/navigator/feedback", message_encoding="json", context=c),
-            speed=foxglove.Channel("/odom/speed", message_encoding="json", context=c),
+            feedback=foxglove.Channel("/navigator/feedback", schema=_FEEDBACK, context=c),
+            speed=foxglove.Channel("/odom/speed", schema=_SPEED, context=c),
             log=fc.LogChannel("/log", context=c),
         )
 

@@ -33,7 +33,7 @@ _LEVELS = {"FAILURE": fm.LogLevel.Warning, "SKIPPED": fm.LogLevel.Debug}
 
 def timestamp(seconds: float) -> fm.Timestamp:
     sec = math.floor(seconds)
-    nsec = min(int(round((seconds - sec) * 1e9)), 999_999_999)
+    nsec = min(round((seconds - sec) * 1e9), 999_999_999)
     return fm.Timestamp(sec=sec, nsec=nsec)
 
 
@@ -149,10 +149,8 @@ def transforms(
 def footprint(stamp: float, radius: float, frame_id: str = "base_link") -> fm.SceneUpdate:
     """The robot's round footprint and a heading arrow, locked to ``frame_id``."""
     n = 32
-    ring = [
-        fm.Point3(x=radius * math.cos(2 * math.pi * i / n), y=radius * math.sin(2 * math.pi * i / n))
-        for i in range(n)
-    ]
+    angles = [2 * math.pi * i / n for i in range(n)]
+    ring = [fm.Point3(x=radius * math.cos(a), y=radius * math.sin(a)) for a in angles]
     blue = fm.Color(r=0.2, g=0.5, b=1.0, a=1.0)
     entity = fm.SceneEntity(
         timestamp=timestamp(stamp),

@@ -15,7 +15,14 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import foxglove
-from foxglove.websocket import Capability, ChannelView, Client, ClientChannel, ServerListener
+from foxglove.websocket import (
+    Capability,
+    ChannelView,
+    Client,
+    ClientChannel,
+    ServerListener,
+    WebSocketServer,
+)
 
 from aiobt.foxglove.bridge import DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
 from aiobt.foxglove.channels import GOAL_TOPIC
@@ -91,7 +98,7 @@ async def running_bridge(bus: Bus, options: BridgeOptions) -> AsyncIterator[Foxg
 
 def _start_server(
     bridge: FoxgloveBridge, context: foxglove.Context, options: BridgeOptions
-) -> foxglove.WebSocketServer:
+) -> WebSocketServer:
     listener = _GoalListener(bridge, asyncio.get_running_loop())
     return foxglove.start_server(
         name=f"aiobt {bridge.bus.namespace}",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import asyncio
 import contextlib
 from collections.abc import AsyncIterator, Callable, Sequence
+from typing import Any
 
 import pytest
 
@@ -69,7 +70,9 @@ async def test_client_receives_scan_and_moving_pose(
             assert fox.channels["/scan"]["schemaName"] == "foxglove.LaserScan"
             assert fox.channels["/pose"]["schemaName"] == "foxglove.PoseInFrame"
             await fox.subscribe("/scan", "/pose", "/tf")
-            scans, xs, frames = [], [], set()
+            scans: list[Any] = []
+            xs: list[float] = []
+            frames: set[tuple[str, str]] = set()
             async with asyncio.timeout(60.0):
                 while not (scans and len(xs) > 1 and abs(xs[-1] - xs[0]) > 0.05):
                     got = await fox.receive()
@@ -83,7 +86,8 @@ async def test_client_receives_scan_and_moving_pose(
     finally:
         stop.set()
         await driving
-    assert scans[0].frame_id == "base_scan" and len(scans[0].ranges) == 360
+    assert scans[0].frame_id == "base_scan"
+    assert len(scans[0].ranges) == 360
     assert 0.0 < min(scans[0].ranges) < 5.0
     assert abs(xs[-1] - xs[0]) > 0.05  # the robot drove between two poses
     assert {("map", "odom"), ("odom", "base_link")} <= frames, frames

@@ -81,7 +81,7 @@ class FoxgloveClient:
             return None
         _, sub_id, log_time = _HEADER.unpack_from(frame)
         topic, decode = self._subs[sub_id]
-        return Received(topic, log_time, decode(frame[_HEADER.size:]))
+        return Received(topic, log_time, decode(frame[_HEADER.size :]))
 
     async def subscribe(self, *topics: str) -> None:
         subscriptions = []
