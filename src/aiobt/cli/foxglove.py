@@ -35,7 +35,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="server port, 0: any (default: %(default)s)",
     )
     add("--no-server", action="store_true", help="no WebSocket server (with --mcap: record only)")
-    add("--mcap", type=Path, metavar="FILE", help="record every channel to this MCAP file")
+    add(
+        "--mcap",
+        type=Path,
+        metavar="FILE",
+        help="record every channel to this MCAP file (FILE-1.mcap etc. if it exists)",
+    )
+    add("--overwrite", action="store_true", help="--mcap: overwrite FILE if it exists")
     add("--footprint-radius", type=float, default=DEFAULT_FOOTPRINT_RADIUS, metavar="M",
         help="robot footprint drawn on /robot (default: %(default)s)")  # fmt: skip
     add("--layout", action="store_true", help="print the shipped layout file's path and exit")
@@ -60,6 +66,7 @@ def options_from_args(args: argparse.Namespace) -> BridgeOptions:
         host=args.host,
         port=None if args.no_server else args.port,
         mcap=args.mcap,
+        overwrite=args.overwrite,
         footprint_radius=args.footprint_radius,
     )
 

@@ -3,6 +3,7 @@
     aiobt up                                  # router, robot, planner, controller,
     aiobt up --config system.yaml             # behaviors, navigator; defaults below
     aiobt up --speed 5 --world small          # flags override the file
+    aiobt up --foxglove --mcap run.mcap       # + Foxglove on ws://127.0.0.1:8765, recorded
 
 A Zenoh router, then every service as its own process with the commands
 docker-compose.yml uses; output prefixed by service; a crashed service is
@@ -19,9 +20,11 @@ import argparse
 import asyncio
 import logging
 import sys
+from pathlib import Path
 
 from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
 from aiobt.system.console import wants_colour
+from aiobt.system.foxglove import FoxgloveOptions, start_foxglove, stop_foxglove
 from aiobt.system.supervisor import on_signals
 
 log = logging.getLogger("aiobt.cli.up")
@@ -33,6 +36,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--health-timeout", type=float, default=60.0, metavar="SECONDS",
         help="report the services not up after this long (default: %(default)s)",
     )  # fmt: skip
+    add_foxglove_arguments(parser)
 
 
 def add_system_arguments(parser: argparse.ArgumentParser) -> None:
@@ -46,6 +50,32 @@ def add_system_arguments(parser: argparse.ArgumentParser) -> None:
     add("--colour", "--color", choices=("auto", "always", "never"), default="auto")
 
 
+def add_foxglove_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--foxglove [PORT]``, ``--mcap FILE`` (docs/foxglove.md)."""
+    add = parser.add_argument
+    add(
+        "--foxglove",
+        nargs="?",
+        type=int,
+        const=8765,
+        metavar="PORT",
+        help="run the Foxglove bridge on ws://127.0.0.1:PORT (default PORT: %(const)s)",
+    )
+    add(
+        "--foxglove-host",
+        default="127.0.0.1",
+        metavar="ADDRESS",
+        help="address the Foxglove server binds (default: %(default)s)",
+    )
+    add("--mcap", type=Path, metavar="FILE", help="record the Foxglove channels to FILE")
+
+
+def foxglove_from_args(args: argparse.Namespace) -> FoxgloveOptions:
+    if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
+        raise ConfigError(f"--foxglove: port {args.foxglove} is not in 0..65535")
+    return FoxgloveOptions(port=args.foxglove, mcap=args.mcap, host=args.foxglove_host)
+
+
 def config_from_args(args: argparse.Namespace) -> SystemConfig:
     router = {"listen": args.router_listen} if args.router_listen else None
     overrides = {
@@ -54,10 +84,17 @@ def config_from_args(args: argparse.Namespace) -> SystemConfig:
     return load_config(args.config, overrides)
 
 
-async def up(config: SystemConfig, sink: ConsoleSink, health_timeout: float) -> int:
+async def up(
+    config: SystemConfig,
+    sink: ConsoleSink,
+    health_timeout: float,
+    foxglove: FoxgloveOptions | None = None,
+) -> int:
     stop = asyncio.Event()
     on_signals(stop.set)
     async with run_system(config, sink) as system:
+        if foxglove is not None and foxglove.wanted:
+            await start_foxglove(system, foxglove)
         down = await system.wait_healthy(health_timeout)
         if down:
             sink.event("up", f"not up after {health_timeout:g} s: {', '.join(down)}")
@@ -67,6 +104,8 @@ async def up(config: SystemConfig, sink: ConsoleSink, health_timeout: float) -> 
             sink.event("up", f"{names} up on namespace '{config.namespace}' ({clock})")
         failure = await system.stopped(stop)
         sink.event("up", "stopping" if failure is None else f"stopping: {failure}")
+        if foxglove is not None and foxglove.wanted:
+            await stop_foxglove(system)  # first, with time to close its recording
     if failure is not None:
         raise Fatal(failure)
     return 0
@@ -78,12 +117,13 @@ def run(args: argparse.Namespace) -> int:
     logging.getLogger("aiobt.transport.session").setLevel(logging.WARNING)
     try:
         config = config_from_args(args)
+        foxglove = foxglove_from_args(args)
     except ConfigError as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 2
     sink = ConsoleSink(sys.stdout, colour=wants_colour(sys.stdout, args.colour))
     try:
-        return asyncio.run(up(config, sink, args.health_timeout))
+        return asyncio.run(up(config, sink, args.health_timeout, foxglove))
     except Fatal as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 1

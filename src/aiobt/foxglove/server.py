@@ -26,6 +26,7 @@ from foxglove.websocket import (
 
 from aiobt.foxglove.bridge import DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
 from aiobt.foxglove.channels import GOAL_TOPIC
+from aiobt.system.announce import announce
 from aiobt.transport import Bus
 
 log = logging.getLogger("aiobt.foxglove.server")
@@ -39,7 +40,19 @@ class BridgeOptions:
     host: str = LOCAL_HOST
     port: int | None = DEFAULT_PORT  # None: no WebSocket server (a recording only)
     mcap: Path | None = None
+    overwrite: bool = False  # False: an existing recording is kept, the new one numbered
     footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS
+
+
+def recording_path(path: Path, overwrite: bool) -> Path:
+    """``path``, or the first free ``<stem>-<n><suffix>`` beside it when it exists (a
+    restarted bridge never overwrites the recording of the run before)."""
+    if overwrite or not path.exists():
+        return path
+    n = 1
+    while (numbered := path.with_name(f"{path.stem}-{n}{path.suffix}")).exists():
+        n += 1
+    return numbered
 
 
 class _GoalListener(ServerListener):
@@ -82,14 +95,16 @@ async def running_bridge(bus: Bus, options: BridgeOptions) -> AsyncIterator[Foxg
     bridge = FoxgloveBridge(bus, context, options.footprint_radius)
     with contextlib.ExitStack() as stack:
         if options.mcap is not None:
-            writer = foxglove.open_mcap(options.mcap, allow_overwrite=True, context=context)
+            path = recording_path(options.mcap, options.overwrite)
+            writer = foxglove.open_mcap(path, allow_overwrite=options.overwrite, context=context)
             stack.callback(writer.close)
-            log.info("recording to %s", options.mcap)
+            log.info("recording to %s", path)
         if options.port is not None:
             server = _start_server(bridge, context, options)
             stack.callback(server.stop)
             log.info("Foxglove server on ws://%s:%d", options.host, server.port)
         bridge.start()
+        announce(bus, "foxglove", sim_time=False)  # health for aiobt up, aiobt status lists it
         try:
             yield bridge
         finally:
