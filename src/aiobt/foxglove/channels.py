@@ -78,5 +78,6 @@ class Channels:
             log=fc.LogChannel("/log", context=c),
         )
 
-    def all(self) -> list[object]:
-        return [getattr(self, name) for name in self.__dataclass_fields__]
+    def topics(self) -> set[str]:
+        """Every channel's topic."""
+        return {getattr(self, name).topic() for name in self.__dataclass_fields__}

@@ -27,8 +27,7 @@ GOAL = (1.0, 0.8, 0.0)  # small world: open floor from the start at the origin
 
 
 def every_topic() -> set[str]:
-    channels = Channels.create(foxglove.Context()).all()
-    return {channel.topic() for channel in channels}  # type: ignore[attr-defined]
+    return Channels.create(foxglove.Context()).topics()
 
 
 @pytest.fixture
