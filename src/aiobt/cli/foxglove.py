@@ -19,7 +19,7 @@ from pathlib import Path
 
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.foxglove import DEFAULT_PORT, LAYOUT, LOCAL_HOST, BridgeOptions, running_bridge
-from aiobt.foxglove.bridge import DEFAULT_FOOTPRINT_RADIUS
+from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 
 
@@ -44,6 +44,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add("--overwrite", action="store_true", help="--mcap: overwrite FILE if it exists")
     add("--footprint-radius", type=float, default=DEFAULT_FOOTPRINT_RADIUS, metavar="M",
         help="robot footprint drawn on /robot (default: %(default)s)")  # fmt: skip
+    add(
+        "--costmap-period",
+        type=float,
+        default=DEFAULT_COSTMAP_PERIOD,
+        metavar="SECONDS",
+        help="robot-time seconds between /global_costmap updates, 0: none (default: %(default)s)",
+    )
     add("--layout", action="store_true", help="print the shipped layout file's path and exit")
 
 
@@ -62,12 +69,15 @@ def options_from_args(args: argparse.Namespace) -> BridgeOptions:
         raise ValueError("--no-server without --mcap would bridge to nothing")
     if not args.footprint_radius > 0.0:
         raise ValueError(f"--footprint-radius must be > 0, not {args.footprint_radius}")
+    if not args.costmap_period >= 0.0 or args.costmap_period == float("inf"):
+        raise ValueError(f"--costmap-period must be >= 0 s, not {args.costmap_period}")
     return BridgeOptions(
         host=args.host,
         port=None if args.no_server else args.port,
         mcap=args.mcap,
         overwrite=args.overwrite,
         footprint_radius=args.footprint_radius,
+        costmap_period=args.costmap_period,
     )
 
 

@@ -18,6 +18,7 @@ from foxglove import messages as fm
 
 from aiobt.foxglove import convert
 from aiobt.foxglove.channels import Channels
+from aiobt.foxglove.costmap import CostmapMirror
 from aiobt.msgs import (
     BtTransitions,
     BtTree,
@@ -35,6 +36,7 @@ from aiobt.transport.topics import declare_subscription
 log = logging.getLogger("aiobt.foxglove.bridge")
 
 DEFAULT_FOOTPRINT_RADIUS = 0.22  # m: the robot service's body
+DEFAULT_COSTMAP_PERIOD = 1.0  # s of robot time between costmap updates
 
 
 class FoxgloveBridge:
@@ -45,6 +47,7 @@ class FoxgloveBridge:
         bus: Bus,
         context: foxglove.Context,
         footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS,
+        costmap_period: float = DEFAULT_COSTMAP_PERIOD,
     ) -> None:
         if not footprint_radius > 0.0 or not math.isfinite(footprint_radius):
             raise ValueError(f"footprint radius must be > 0 m, not {footprint_radius!r}")
@@ -52,6 +55,7 @@ class FoxgloveBridge:
         self.ch = Channels.create(context)
         self.radius = footprint_radius
         self.goals = bus.publisher("goal_pose", PoseStamped, reliable=True)
+        self.costmap = CostmapMirror(costmap_period) if costmap_period > 0.0 else None
         self._pose: PoseStamped | None = None
         self._odom: Odometry | None = None
         self._scan_frame: str | None = None
@@ -87,6 +91,8 @@ class FoxgloveBridge:
     # -- bus -> Foxglove -----------------------------------------------------------------
     def on_map(self, msg: OccupancyGrid) -> None:
         self.ch.map.log(convert.grid(msg))
+        if self.costmap is not None:
+            self.costmap.on_map(msg)
 
     def on_scan(self, msg: LaserScan) -> None:
         new_frame = msg.header.frame_id != self._scan_frame
@@ -94,9 +100,14 @@ class FoxgloveBridge:
         if new_frame:
             self._transforms()
         self.ch.scan.log(convert.laser_scan(msg))
+        costs = self.costmap.on_scan(msg) if self.costmap is not None else None
+        if costs is not None:
+            self.ch.costmap.log(convert.cost_grid(costs, msg.header.stamp))
 
     def on_pose(self, msg: PoseStamped) -> None:
         self._pose = msg
+        if self.costmap is not None:
+            self.costmap.on_pose(msg)
         self.ch.pose.log(convert.pose_in_frame(msg))
         self.ch.robot.log(convert.footprint(msg.header.stamp, self.radius))
         self._transforms()

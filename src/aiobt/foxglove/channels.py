@@ -6,6 +6,7 @@ Topic names (what Foxglove shows and the shipped layout uses):
 topic                 schema                       from (under the namespace ``ns``)
 ====================  ===========================  =====================================
 /map                  foxglove.Grid                ``{ns}/map`` (latched)
+/global_costmap       foxglove.Grid                ``{ns}/map``, ``pose``, ``scan`` (mirrored)
 /scan                 foxglove.LaserScan           ``{ns}/scan``
 /pose                 foxglove.PoseInFrame         ``{ns}/pose``
 /odom                 foxglove.Odometry            ``{ns}/odom``
@@ -50,6 +51,7 @@ _SPEED = {
 @dataclass(slots=True)
 class Channels:
     map: fc.GridChannel
+    costmap: fc.GridChannel
     scan: fc.LaserScanChannel
     pose: fc.PoseInFrameChannel
     odom: fc.OdometryChannel
@@ -66,6 +68,7 @@ class Channels:
         c = context
         return cls(
             map=fc.GridChannel("/map", context=c),
+            costmap=fc.GridChannel("/global_costmap", context=c),
             scan=fc.LaserScanChannel("/scan", context=c),
             pose=fc.PoseInFrameChannel("/pose", context=c),
             odom=fc.OdometryChannel("/odom", context=c),

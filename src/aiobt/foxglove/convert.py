@@ -26,8 +26,10 @@ from aiobt.msgs import (
     decode,
 )
 from aiobt.msgs import Pose as AiobtPose
+from aiobt_services.costmap import CostGrid
 
 _INT8 = fm.PackedElementFieldNumericType.Int8
+_UINT8 = fm.PackedElementFieldNumericType.Uint8
 _LEVELS = {"FAILURE": fm.LogLevel.Warning, "SKIPPED": fm.LogLevel.Debug}
 
 
@@ -60,6 +62,23 @@ def grid(msg: OccupancyGrid) -> fm.Grid:
         cell_stride=1,
         fields=[fm.PackedElementField(name="occupancy", offset=0, type=_INT8)],
         data=cells.tobytes(),
+    )
+
+
+def cost_grid(costs: CostGrid, stamp: float, frame_id: str = "map") -> fm.Grid:
+    """A costmap (uint8 Nav2 costs: 0 free .. 253 inscribed, 254 lethal, 255 unknown) as a
+    one-field uint8 Grid."""
+    g = costs.geometry
+    return fm.Grid(
+        timestamp=timestamp(stamp),
+        frame_id=frame_id,
+        pose=pose(AiobtPose.from_xy_yaw(g.origin_x, g.origin_y)),
+        column_count=g.width,
+        cell_size=fm.Vector2(x=g.resolution, y=g.resolution),
+        row_stride=g.width,
+        cell_stride=1,
+        fields=[fm.PackedElementField(name="cost", offset=0, type=_UINT8)],
+        data=np.ascontiguousarray(costs.costs, dtype=np.uint8).tobytes(),
     )
 
 

@@ -24,7 +24,7 @@ from foxglove.websocket import (
     WebSocketServer,
 )
 
-from aiobt.foxglove.bridge import DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
+from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
 from aiobt.foxglove.channels import GOAL_TOPIC
 from aiobt.system.announce import announce
 from aiobt.transport import Bus
@@ -42,6 +42,7 @@ class BridgeOptions:
     mcap: Path | None = None
     overwrite: bool = False  # False: an existing recording is kept, the new one numbered
     footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS
+    costmap_period: float = DEFAULT_COSTMAP_PERIOD  # 0: no /global_costmap
 
 
 def recording_path(path: Path, overwrite: bool) -> Path:
@@ -92,7 +93,7 @@ async def running_bridge(bus: Bus, options: BridgeOptions) -> AsyncIterator[Foxg
         log.warning("Foxglove server bound to %s: reachable from other machines, "
                     "and anyone reaching it can send the robot goals", options.host)  # fmt: skip
     context = foxglove.Context()
-    bridge = FoxgloveBridge(bus, context, options.footprint_radius)
+    bridge = FoxgloveBridge(bus, context, options.footprint_radius, options.costmap_period)
     with contextlib.ExitStack() as stack:
         if options.mcap is not None:
             path = recording_path(options.mcap, options.overwrite)

@@ -93,4 +93,6 @@ async def test_recording_holds_every_channel_in_time_order(stack: NavStack, tmp_
     goal = recorded["/goal"][0][1]
     assert (goal.pose.position.x, goal.pose.position.y) == GOAL[:2]
     assert recorded["/plan"][-1][1].poses, "an empty plan"
+    costs = recorded["/global_costmap"][-1][1].data
+    assert b"\xfe" in costs, "no lethal cell in the costmap"  # the small world's walls
     assert recorded["/navigator/feedback"][-1][1]["distance_remaining"] >= 0.0
