@@ -97,7 +97,12 @@ async def running_bridge(bus: Bus, options: BridgeOptions) -> AsyncIterator[Foxg
     with contextlib.ExitStack() as stack:
         if options.mcap is not None:
             path = recording_path(options.mcap, options.overwrite)
-            writer = foxglove.open_mcap(path, allow_overwrite=options.overwrite, context=context)
+            try:
+                writer = foxglove.open_mcap(
+                    path, allow_overwrite=options.overwrite, context=context
+                )
+            except (OSError, RuntimeError) as exc:
+                raise OSError(f"--mcap {path}: cannot record: {exc}") from None
             stack.callback(writer.close)
             log.info("recording to %s", path)
         if options.port is not None:
@@ -116,12 +121,15 @@ def _start_server(
     bridge: FoxgloveBridge, context: foxglove.Context, options: BridgeOptions
 ) -> WebSocketServer:
     listener = _GoalListener(bridge, asyncio.get_running_loop())
-    return foxglove.start_server(
-        name=f"aiobt {bridge.bus.namespace}",
-        host=options.host,
-        port=options.port,
-        capabilities=[Capability.ClientPublish],
-        supported_encodings=["json"],
-        server_listener=listener,
-        context=context,
-    )
+    try:
+        return foxglove.start_server(
+            name=f"aiobt {bridge.bus.namespace}",
+            host=options.host,
+            port=options.port,
+            capabilities=[Capability.ClientPublish],
+            supported_encodings=["json"],
+            server_listener=listener,
+            context=context,
+        )
+    except RuntimeError as exc:  # the SDK's FoxgloveError: bind failures, bad host
+        raise OSError(f"Foxglove server on {options.host}:{options.port}: {exc}") from None

@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import socket
 from collections.abc import AsyncIterator, Callable, Sequence
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -117,3 +119,33 @@ async def test_goal_published_from_foxglove_reaches_goal_pose(
     assert received.header.frame_id == "map"
     assert (received.pose.position.x, received.pose.position.y) == (1.5, -0.5)
     assert bridge.wait_for_output("goal on /goal_pose refused", 10.0), bridge.output()
+
+
+@pytest.mark.timeout(90)
+async def test_a_taken_port_is_named_and_every_interface_is_warned_about(
+    spawn: Spawn, bus_settings: BusSettings
+) -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        refused = start_bridge(spawn, bus_settings, "--port", str(port))
+        code = await asyncio.to_thread(refused.popen.wait, 60.0)
+    assert code == 2, refused.output()
+    assert "aiobt foxglove: " in refused.output()
+    assert str(port) in refused.output().split("aiobt foxglove: ")[-1]
+    wide = start_bridge(spawn, bus_settings, "--host", "0.0.0.0", "--port", "0")
+    warned = await asyncio.to_thread(wide.wait_for_output, "bound to 0.0.0.0", 60.0)
+    assert warned, wide.output()
+    assert "W aiobt.foxglove.server" in wide.output()
+
+
+@pytest.mark.timeout(60)
+async def test_an_unwritable_recording_is_named(
+    spawn: Spawn, bus_settings: BusSettings, tmp_path: Path
+) -> None:
+    where = tmp_path / "missing" / "run.mcap"
+    bridge = start_bridge(spawn, bus_settings, "--no-server", "--mcap", str(where))
+    code = await asyncio.to_thread(bridge.popen.wait, 50.0)
+    assert code == 2, bridge.output()
+    assert f"aiobt foxglove: --mcap {where}: cannot record: " in bridge.output()
