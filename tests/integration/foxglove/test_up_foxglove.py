@@ -5,25 +5,17 @@ from __future__ import annotations
 
 import asyncio
 import signal
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 from mcap.reader import make_reader
 
-from aiobt.testing.bus import free_endpoint, free_port
+from aiobt.testing.bus import free_port
 
-from ..system.helpers import SystemProcess, kill_mentioning, processes_mentioning
+from ..system.helpers import SystemProcess, processes_mentioning
 from .wsclient import FoxgloveClient
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(180)]
-
-
-@pytest.fixture
-def endpoint() -> Iterator[str]:
-    chosen = free_endpoint()
-    yield chosen
-    kill_mentioning(chosen)
 
 
 async def test_up_runs_the_bridge_and_closes_its_recording(endpoint: str, tmp_path: Path) -> None:
