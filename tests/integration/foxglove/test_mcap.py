@@ -67,7 +67,9 @@ async def test_recording_holds_every_channel_in_time_order(stack: NavStack, tmp_
         async with open_bus(stack.settings()) as bus:
             goals = ServerGoals(bus, [NavigateToPose])
             await stack.wait_ready(bus, timeout=90.0)
-            assert recorder.wait_for_output("recording to", 30.0), recorder.output()
+            # its token comes after its subscriptions: a goal put now reaches the bridge too
+            bridged = await bus.presence(bus.keys.topic("nodes/foxglove")).wait(60.0)
+            assert bridged, recorder.output()
             pub = bus.publisher("goal_pose", PoseStamped, reliable=True)
             for _ in range(6):  # the navigator's subscription may not be routed at once
                 pub.put(PoseStamped.from_xy_yaw(*GOAL))
