@@ -142,7 +142,7 @@ class FoxgloveBridge:
 
     def note(self, text: str, level: fm.LogLevel = fm.LogLevel.Info) -> None:
         """A line of the bridge's own on ``/log`` (and in the Python log)."""
-        log.info("%s", text)
+        log.log(logging.WARNING if level == fm.LogLevel.Warning else logging.INFO, "%s", text)
         stamp = self._pose.header.stamp if self._pose is not None else 0.0
         self.ch.log.log(
             fm.Log(timestamp=convert.timestamp(stamp), level=level, message=text, name="foxglove")

@@ -118,7 +118,9 @@ async def test_goal_published_from_foxglove_reaches_goal_pose(
                     received = await goals.wait_latest(1.0)
     assert received.header.frame_id == "map"
     assert (received.pose.position.x, received.pose.position.y) == (1.5, -0.5)
-    assert bridge.wait_for_output("goal on /goal_pose refused", 10.0), bridge.output()
+    refusal = "goal on /goal_pose refused: goal: PoseStamped field 'pose'"
+    assert bridge.wait_for_output(refusal, 10.0), bridge.output()
+    assert "W aiobt.foxglove.bridge: goal on /goal_pose refused" in bridge.output()
 
 
 @pytest.mark.timeout(90)
