@@ -2,8 +2,9 @@
 
 Brings the whole system up at a sim speed-up (router, robot, planner,
 controller, behaviors, navigator: the processes of ``aiobt up``), then patrols
-four goals of the small world through the navigator; on the third a box lands
-in front of the moving robot, so the navigator needs a recovery. Progress
+four goals of the small world through the navigator; the third starts with
+the robot walled in by boxes, so no path exists until the navigator's first
+recovery (then the boxes are taken away, see :mod:`aiobt.demo.boxes`). Progress
 shows goal k of n, distance remaining and recoveries; at the end a PNG (map,
 inflated costmap, planned paths, driven trajectory, goals, recoveries) is
 written to the path it prints. The services' output goes to a log file next
@@ -34,15 +35,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add("--speed", type=float, default=2.0, help="sim speed-up (default: %(default)s)")
     add("--out", default="out/demo", metavar="DIR", help="PNG and log (default: %(default)s)")
     add("--listen", metavar="ENDPOINT", help="the router's (default: a free loopback port)")
-
-
-def demo_config(args: argparse.Namespace) -> SystemConfig:
-    """``aiobt up``'s defaults on the small world at ``--speed``; the navigator's leaves
-    wait 5 s (not 1 s) for a server, as a loaded 2-core machine may need."""
-    listen = args.listen or free_endpoint()
-    navigator = {"args": ["--server-timeout", "5"]}
-    overrides = {"world": "small", "speed": args.speed, "router": {"listen": listen}}
-    return load_config(None, {**overrides, "services": {"navigator": navigator}})
 
 
 class FileSink:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import logging
+import os
 import sys
 from collections.abc import Sequence
 
@@ -27,6 +28,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "goal": ("aiobt.cli.goal", "put a goal on {ns}/goal_pose and return"),
     "monitor": ("aiobt.cli.monitor", "the navigator's running tree, live, in the terminal"),
     "foxglove": ("aiobt.cli.foxglove", "the robot's topics in Foxglove (WebSocket, MCAP)"),
+    "web": ("aiobt.cli.web", "the robot, its plans and its tree in a browser (a web view)"),
     "robot": ("aiobt_services.robot.main", "the pybullet robot service"),
     "planner": ("aiobt_services.planner.main", "the planner service"),
     "controller": ("aiobt_services.controller.main", "the controller service"),
@@ -41,6 +43,10 @@ def _load(module_name: str) -> object:
 
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    if "AIOBT_SUPERVISOR_PID" in os.environ:  # a child of aiobt up/demo: dies with it
+        from aiobt.system.lifeline import die_with_supervisor  # only then: a heavy import
+
+        die_with_supervisor()
     args = _full_parser(argv).parse_args(argv)
     logging.basicConfig(
         level=logging.DEBUG if args.verbose > 1 else logging.INFO,

@@ -37,7 +37,7 @@ from aiobt.loggers import (
     SqliteLogger,
     TreeStatistics,
 )
-from aiobt.loggers.groot2 import DEFAULT_PORT
+from aiobt.loggers.groot2 import DEFAULT_PORT, port_argument
 from aiobt.nav import register_nav2_nodes
 from aiobt.nodes.subtree import SubTreeNode
 from aiobt.xml.model import is_unimplemented
@@ -81,23 +81,13 @@ def add_tree_arguments(parser: argparse.ArgumentParser) -> None:
         "--stats", action="store_true", help="print the tree with per-node tick counts at the end"
     )
     parser.add_argument(
-        "--groot2", type=_port, nargs="?", const=DEFAULT_PORT, default=None, metavar="PORT",
+        "--groot2", type=port_argument, nargs="?", const=DEFAULT_PORT, default=None, metavar="PORT",
         help=f"let Groot2 attach live (ZeroMQ on PORT and PORT+1, default {DEFAULT_PORT})",
     )  # fmt: skip
     parser.add_argument(
         "--host", default="127.0.0.1",
         help="address the --groot2 publisher binds (default 127.0.0.1; 0.0.0.0 exposes it)",
     )  # fmt: skip
-
-
-def _port(text: str) -> int:
-    try:
-        port = int(text)
-    except ValueError:
-        port = 0
-    if not 0 < port < 0xFFFF:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a port in 1..65534 (PORT+1 is used too)")
-    return port
 
 
 def add_node_source_arguments(parser: argparse.ArgumentParser) -> None:

@@ -4,11 +4,14 @@
     aiobt up --config system.yaml             # behaviors, navigator; defaults below
     aiobt up --speed 5 --world small          # flags override the file
     aiobt up --foxglove --mcap run.mcap       # + Foxglove on ws://127.0.0.1:8765, recorded
+    aiobt up --web-port 8000                  # the web view elsewhere (--no-web: none)
 
 A Zenoh router, then every service as its own process with the commands
 docker-compose.yml uses; output prefixed by service; a crashed service is
 restarted with back-off; health from the liveliness tokens
-``{ns}/nodes/<service>``. See :mod:`aiobt.system.config` for the file.
+``{ns}/nodes/<service>``. See :mod:`aiobt.system.config` for the file. The
+web view (docs/web.md) runs in this process on http://127.0.0.1:8080/ unless
+``--no-web``; a port it cannot listen on is reported and the system runs without it.
 
 Exit status: 0 after a clean stop, 1 when a service cannot be kept running or
 the router is not there, 2 for a bad config.
@@ -18,14 +21,19 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import logging
 import sys
+from collections.abc import AsyncIterator
 from pathlib import Path
 
+from aiobt.cli.web import add_web_arguments, web_options
 from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
 from aiobt.system.console import wants_colour
 from aiobt.system.foxglove import FoxgloveOptions, start_foxglove, stop_foxglove
 from aiobt.system.supervisor import on_signals
+from aiobt.transport import Bus
+from aiobt.web import WebOptions, serve_web
 
 log = logging.getLogger("aiobt.cli.up")
 
@@ -37,6 +45,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="report the services not up after this long (default: %(default)s)",
     )  # fmt: skip
     add_foxglove_arguments(parser)
+    parser.add_argument("--no-web", action="store_true", help="no web view")
+    add_web_arguments(parser, prefix="web-")
 
 
 def add_system_arguments(parser: argparse.ArgumentParser) -> None:
@@ -84,15 +94,34 @@ def config_from_args(args: argparse.Namespace) -> SystemConfig:
     return load_config(args.config, overrides)
 
 
+@contextlib.asynccontextmanager
+async def web_view(
+    bus: Bus | None, options: WebOptions | None, sink: ConsoleSink
+) -> AsyncIterator[None]:
+    """The web view on ``bus`` while the system runs; one that cannot start is reported."""
+    if bus is None or options is None:
+        yield
+        return
+    async with contextlib.AsyncExitStack() as stack:
+        try:
+            view = await stack.enter_async_context(serve_web(bus, options))
+        except OSError as exc:
+            sink.event("web", f"not started: {exc} (--web-port PORT, or --no-web)")
+        else:
+            sink.event("web", f"web view on {view.url}")
+        yield
+
+
 async def up(
     config: SystemConfig,
     sink: ConsoleSink,
     health_timeout: float,
+    web: WebOptions | None = None,
     foxglove: FoxgloveOptions | None = None,
 ) -> int:
     stop = asyncio.Event()
     on_signals(stop.set)
-    async with run_system(config, sink) as system:
+    async with run_system(config, sink) as system, web_view(system.bus, web, sink):
         if foxglove is not None and foxglove.wanted:
             await start_foxglove(system, foxglove)
         down = await system.wait_healthy(health_timeout)
@@ -115,15 +144,18 @@ def run(args: argparse.Namespace) -> int:
     # up's own session only watches tokens: where it connects is not the user's concern
     # (each service logs where it listens), and its failures reach stderr in one line
     logging.getLogger("aiobt.transport.session").setLevel(logging.WARNING)
+    # the web view's start is one line of up's own output (its warnings still reach stderr)
+    logging.getLogger("aiobt.web").setLevel(logging.WARNING)
     try:
         config = config_from_args(args)
+        web = None if args.no_web else web_options(args, prefix="web-")
         foxglove = foxglove_from_args(args)
-    except ConfigError as exc:
+    except (ConfigError, ValueError) as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 2
     sink = ConsoleSink(sys.stdout, colour=wants_colour(sys.stdout, args.colour))
     try:
-        return asyncio.run(up(config, sink, args.health_timeout, foxglove))
+        return asyncio.run(up(config, sink, args.health_timeout, web, foxglove))
     except Fatal as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 1

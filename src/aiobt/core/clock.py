@@ -40,6 +40,10 @@ class SystemClock:
         await asyncio.sleep(max(0.0, seconds))
 
 
+SYSTEM_CLOCK = SystemClock()
+"""The wall clock trees get when none is given (one instance, so they share tickers)."""
+
+
 class ScaledClock:
     """Wall time running ``factor`` times faster (``factor`` > 0)."""
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol
 
 from aiobt.core.blackboard import Blackboard
-from aiobt.core.clock import Clock, SystemClock
+from aiobt.core.clock import SYSTEM_CLOCK, Clock
 from aiobt.core.convert import converter_for
 from aiobt.core.errors import LogicError, NodeError, PortError
 from aiobt.core.ports import NO_DEFAULT, PortInfo
@@ -57,7 +57,7 @@ class TreeContext:
     __slots__ = ("cleanups", "clock", "enums", "halt_timeout", "listeners", "wake_up")
 
     def __init__(self, clock: Clock | None = None, halt_timeout: float = 2.0) -> None:
-        self.clock: Clock = clock if clock is not None else SystemClock()
+        self.clock: Clock = clock if clock is not None else SYSTEM_CLOCK
         self.listeners: list[StatusListener] = []
         self.wake_up: Callable[[], None] = _no_wake_up
         self.enums: dict[str, int] = {}

@@ -23,7 +23,7 @@ import logging
 import weakref
 from collections import deque
 
-from aiobt.core.clock import Clock
+from aiobt.core.clock import SYSTEM_CLOCK, Clock, SystemClock
 
 log = logging.getLogger("aiobt.core.ticker")
 
@@ -98,6 +98,8 @@ def ticker_for(clock: Clock, period: float) -> Ticker:
     """The running loop's ticker for ``clock`` and ``period`` (made on first use)."""
     if not period >= 0.0:  # also NaN
         raise ValueError(f"a tick period must be a number of seconds >= 0, got {period!r}")
+    if type(clock) is SystemClock:  # stateless: every instance is the same clock
+        clock = SYSTEM_CLOCK
     loop = asyncio.get_running_loop()
     tickers = _TICKERS.get(loop)
     if tickers is None:

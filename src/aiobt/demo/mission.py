@@ -1,4 +1,4 @@
-"""The patrol: goals through the navigator, one of them blocked on the way (a recovery).
+"""The patrol: goals through the navigator, one of them walled in until a recovery.
 
 Runs against a system already up (see :func:`aiobt.system.run_system`), through
 the same Python API a user embeds (:func:`aiobt.embed.connect`).
@@ -8,26 +8,22 @@ from __future__ import annotations
 
 import asyncio
 import logging
-import math
 from collections.abc import Callable
 
+from aiobt.demo.boxes import WallIn
 from aiobt.demo.record import Leg, Record
 from aiobt.embed import Feedback, RobotClient, pose
 from aiobt.msgs import ComputePathToPose, OccupancyGrid, PoseStamped
 from aiobt.transport import ActionError
-from aiobt_services.robot.messages import Ack, SpawnObstacle
 
 # the small world (5 m x 5 m, a wall at y = 1.2 from x = -2 to -1)
 PATROL = (
     ("north-east corner", (1.5, 1.5, 1.57)),
     ("behind the wall", (-1.5, 1.9, 3.14)),
-    ("south-west, a box dropped on the way", (-1.5, -1.6, -1.57)),
+    ("south-west, walled in until a recovery", (-1.5, -1.6, -1.57)),
     ("home", (0.0, 0.0, 0.0)),
 )
-BLOCKED = 2  # the leg on which a box lands in front of the moving robot
-DROP_AFTER = 0.6  # m driven on that leg before the box lands
-BOX = (0.3, 0.6)  # m along and across the robot's heading
-AHEAD = 0.65  # m from the robot to the box's centre: the robot service refuses a box it touches
+WALLED_IN = 2  # the leg that starts walled in by boxes (see aiobt.demo.boxes)
 PLAN_TIMEOUT = 30.0  # s of wall time for the planner's answer (a loaded machine is slow)
 Progress = Callable[[int, Leg, Feedback], None]
 log = logging.getLogger("aiobt.demo.mission")
@@ -53,28 +49,43 @@ class Patrol:
 
     async def drive(self, number: int, leg: Leg) -> None:
         """Navigate leg ``number``; ``leg`` says how it went."""
-        leg.plan = await self._plan(leg)
+        leg.plan = await self._plan(leg)  # before the walls: the way out, once they are gone
+        walls = WallIn(self.robot.bus, self.robot.clock) if number == WALLED_IN else None
+        if walls is not None:
+            await self._wall_in(walls)
         began = self.robot.clock.now()
-        dropper = asyncio.create_task(self._drop_box()) if number == BLOCKED else None
+        opening: list[asyncio.Task[None]] = []
 
         def feedback(message: Feedback) -> None:
             if message.number_of_recoveries > leg.recoveries:
                 self.record.recoveries.append(self.record.position)
                 leg.recoveries = message.number_of_recoveries
+                if walls is not None and not opening:
+                    opening.append(asyncio.create_task(walls.open()))
             self.progress(number, leg, message)
 
         try:
             outcome = await self.robot.navigate_to(*leg.goal, on_feedback=feedback)
         finally:
-            if dropper is not None:
-                dropper.cancel()
-                await asyncio.gather(dropper, return_exceptions=True)
-                if not dropper.cancelled() and dropper.exception() is not None:
-                    log.warning("the box was not dropped: %r", dropper.exception())
+            if walls is not None:
+                await self._open(walls, opening)
         leg.seconds = self.robot.clock.now() - began
         leg.reached = outcome.succeeded
         error = f" {outcome.error_code} {outcome.error_msg}" if outcome.error_code else ""
         leg.result = outcome.state.name + error
+
+    async def _wall_in(self, walls: WallIn) -> None:
+        try:
+            self.record.obstacles.extend(await walls.close())
+        except (RuntimeError, ActionError, TimeoutError) as exc:
+            log.warning("the robot is not walled in (no recovery forced): %s", exc)
+
+    async def _open(self, walls: WallIn, opening: list[asyncio.Task[None]]) -> None:
+        """Wait for the removal the first recovery started, or remove the boxes now."""
+        try:
+            await (opening[0] if opening else walls.open())
+        except (RuntimeError, ActionError, TimeoutError) as exc:
+            log.warning("the boxes were not all removed: %s", exc)
 
     async def _plan(self, leg: Leg) -> list[tuple[float, float]]:
         """The planner's path for ``leg`` from where the robot is (for the picture)."""
@@ -86,16 +97,3 @@ class Patrol:
             log.warning("no path drawn for goal %s: %s", leg.name, exc)
             return []
         return [(p.x, p.y) for p in result.path.poses]
-
-    async def _drop_box(self) -> None:
-        start = self.record.position
-        while math.dist(start, self.record.position) < DROP_AFTER:
-            await self.robot.clock.sleep(0.05)
-        (x, y), yaw = self.record.position, self._heading
-        spot = (x + AHEAD * math.cos(yaw), y + AHEAD * math.sin(yaw))
-        box = SpawnObstacle(x=spot[0], y=spot[1], yaw=yaw, size_x=BOX[0], size_y=BOX[1])
-        ack = await self.robot.bus.call("obstacles/spawn", box, Ack, 5.0)
-        if not ack.ok:
-            raise RuntimeError(f"the robot refused the box: {ack.message}")
-        self.record.obstacles.append((spot[0], spot[1], yaw, *BOX))
-        log.info("a box landed %.2f m in front of the robot at (%.2f, %.2f)", AHEAD, *spot)

@@ -96,7 +96,7 @@ def _cross(draw: ImageDraw.ImageDraw, at: tuple[float, float]) -> None:
 def _legend(draw: ImageDraw.ImageDraw, top: int) -> None:
     entries = [
         (PLAN, "planned path"), (TRAIL, "driven"), (GOAL, "goal"),
-        (RECOVERY, "recovery"), (OBSTACLE, "obstacle dropped"),
+        (RECOVERY, "recovery"), (OBSTACLE, "obstacle"),
     ]  # fmt: skip
     for column, (colour, text) in enumerate(entries):
         x, y = 8 + column * 120, top + 10

@@ -30,7 +30,7 @@ class Record:
     trajectory: list[XY] = field(default_factory=list)
     legs: list[Leg] = field(default_factory=list)
     recoveries: list[XY] = field(default_factory=list)
-    # boxes dropped in the robot's way: x, y, yaw, size along, size across
+    # boxes put in the robot's way: x, y, yaw, size along, size across
     obstacles: list[tuple[float, float, float, float, float]] = field(default_factory=list)
 
     def on_map(self, grid: OccupancyGrid) -> None:

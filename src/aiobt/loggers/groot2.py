@@ -13,15 +13,19 @@ and a breakpoint suspends only the coroutine ticking the tree
 ``max_heartbeat_delay`` seconds every hook is disabled (a held breakpoint
 lets the tree go on), and enabled again when Groot2 comes back.
 
+A process that runs one tree after another (the navigator: a tree per
+navigation) keeps one publisher, bound once, and calls :meth:`attach` with each
+new tree; before the first, Groot2's requests get an error reply.
+
 The sockets bind to 127.0.0.1 unless another ``host`` is given (a warning is
 logged for a non-loopback address: anyone who reaches it can stop the tree).
 """
 
 from __future__ import annotations
 
+import argparse
 import asyncio
 import contextlib
-import ipaddress
 import logging
 from types import TracebackType
 from typing import Self
@@ -30,6 +34,7 @@ import zmq
 import zmq.asyncio
 
 from aiobt.core.tree import Tree
+from aiobt.hosts import is_loopback as _is_loopback
 from aiobt.loggers.groot2_monitor import Groot2Monitor
 from aiobt.loggers.groot2_protocol import error_reply, notification
 
@@ -39,13 +44,15 @@ DEFAULT_PORT = 1667
 _HEARTBEAT_CHECK = 0.1  # seconds of wall time between two checks of the heartbeat
 
 
-def _is_loopback(host: str) -> bool:
-    if host == "localhost":
-        return True
+def port_argument(text: str) -> int:
+    """A command line's ``--groot2 PORT`` (argparse type): 1..65534, PORT+1 is used too."""
     try:
-        return ipaddress.ip_address(host).is_loopback
+        port = int(text)
     except ValueError:
-        return False
+        port = 0
+    if not 0 < port < 0xFFFF:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a port in 1..65534 (PORT+1 is used too)")
+    return port
 
 
 def _report_end(task: asyncio.Task[None]) -> None:
@@ -62,7 +69,7 @@ class Groot2Publisher:
 
     def __init__(
         self,
-        tree: Tree,
+        tree: Tree | None,
         port: int = DEFAULT_PORT,
         host: str = "127.0.0.1",
         *,
@@ -83,7 +90,9 @@ class Groot2Publisher:
         self._server: zmq.asyncio.Socket | None = None
         self._publisher: zmq.Socket[bytes] | None = None
         self._tasks: list[asyncio.Task[None]] = []
+        self._started = False
         self._last_request = 0.0
+        self._hooks_on = True  # Groot2 heard from within max_heartbeat_delay
 
     @property
     def monitor(self) -> Groot2Monitor:
@@ -97,7 +106,7 @@ class Groot2Publisher:
 
     async def start(self) -> None:
         """Bind both sockets and start serving; raises OSError if a port is taken."""
-        if self._monitor is not None:
+        if self._started:
             raise RuntimeError(f"Groot2Publisher on {self.endpoint} is already started")
         if not _is_loopback(self.host):
             log.warning(
@@ -105,7 +114,9 @@ class Groot2Publisher:
                 self.host,
             )
         self._bind()
-        self._monitor = Groot2Monitor(self.tree, self._notify)
+        self._started = True
+        if self.tree is not None:
+            self.attach(self.tree)
         self._last_request = asyncio.get_running_loop().time()
         self._tasks = [
             asyncio.create_task(self._serve(), name=f"groot2-serve-{self.port}"),
@@ -113,7 +124,19 @@ class Groot2Publisher:
         ]
         for task in self._tasks:
             task.add_done_callback(_report_end)
-        log.info("Groot2 publisher for tree %s on %s", self.tree.tree_id, self.endpoint)
+        shown = self.tree.tree_id if self.tree is not None else "(none yet)"
+        log.info("Groot2 publisher for tree %s on %s", shown, self.endpoint)
+
+    def attach(self, tree: Tree) -> None:
+        """Show ``tree`` from now on (on the same ports): the previous tree's hooks are
+        removed (a held breakpoint lets it go on), Groot2 reloads on the new tree's UUID."""
+        if not self._started:
+            raise RuntimeError("Groot2Publisher is not started")
+        if self._monitor is not None:
+            self._monitor.close()
+        self.tree = tree
+        self._monitor = Groot2Monitor(tree, self._notify)
+        self._monitor.hooks.enable_all(self._hooks_on)
 
     def _bind(self) -> None:
         context = zmq.asyncio.Context()
@@ -143,6 +166,7 @@ class Groot2Publisher:
         if self._monitor is not None:
             self._monitor.close()
             self._monitor = None
+        self._started = False
         for socket in (self._server, self._publisher):
             if socket is not None:
                 socket.close()
@@ -170,24 +194,27 @@ class Groot2Publisher:
             frames = await server.recv_multipart()
             self._last_request = asyncio.get_running_loop().time()
             try:
-                reply = self.monitor.handle(frames)
+                if self._monitor is None:
+                    reply = error_reply("no tree is running yet")
+                else:
+                    reply = self._monitor.handle(frames)
             except Exception as exc:  # never leave Groot2's REQ socket without a reply
                 log.exception("Groot2 request failed")
                 reply = error_reply(f"{type(exc).__name__}: {exc}")
             await server.send_multipart(reply)
 
     async def _heartbeat(self) -> None:
-        connected = True
         loop = asyncio.get_running_loop()
         while True:
             await asyncio.sleep(_HEARTBEAT_CHECK)  # wall time: Groot2's polling, not robot time
             alive = loop.time() - self._last_request < self.max_heartbeat_delay
-            if alive != connected:
-                connected = alive
+            if alive != self._hooks_on:
+                self._hooks_on = alive
                 log.info(
                     "Groot2 %s: hooks %s", "back" if alive else "silent", "on" if alive else "off"
                 )
-                self.monitor.hooks.enable_all(alive)
+                if self._monitor is not None:
+                    self._monitor.hooks.enable_all(alive)
 
     def _notify(self, uid: int) -> None:
         if self._publisher is None:

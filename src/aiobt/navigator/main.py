@@ -3,18 +3,22 @@
 Serves ``navigate_to_pose`` and ``navigate_through_poses``, takes goals from
 ``{ns}/goal_pose``, ticks a Nav2 tree per goal with Nav2's nodes, and publishes
 the tree status stream on ``{ns}/bt/tree``, ``{ns}/bt/transitions`` and
-``{ns}/bt/snapshot`` (see docs/navigator.md).
+``{ns}/bt/snapshot`` (see docs/navigator.md). With ``--groot2 [PORT]`` Groot2
+attaches live on 127.0.0.1:PORT to the tree of the current navigation (one
+publisher for the process life, shown each new navigation's tree).
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import contextlib
 import logging
 from pathlib import Path
 
 from aiobt.core.clock import Clock
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.loggers.groot2 import DEFAULT_PORT, Groot2Publisher, port_argument
 from aiobt.nav import register_nav2_nodes
 from aiobt.navigator.navigator import Navigator, NavigatorOptions
 from aiobt.navigator.service import BusStatusSink, NavigatorService, NavRobotState
@@ -101,6 +105,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "TF_ERROR (default: %(default)s)",
     )
     add("--btlog-dir", type=Path, metavar="DIR", help="write a .btlog per navigation in DIR")
+    add(
+        "--groot2",
+        type=port_argument,
+        nargs="?",
+        const=DEFAULT_PORT,
+        default=None,
+        metavar="PORT",
+        help="let Groot2 attach live to the current navigation's tree (ZeroMQ on "
+        f"127.0.0.1, PORT and PORT+1, default {DEFAULT_PORT})",
+    )
 
 
 def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigator:
@@ -137,14 +151,29 @@ async def serve(args: argparse.Namespace) -> int:
         except TreeLoadFailure as exc:
             log.error("navigator: %s", exc)
             return 1
-        service = NavigatorService(bus, navigator, made[0])
-        service.start(args.snapshot_period)
-        announce(bus, "navigator", sim_time=args.sim_time)
-        time = "sim" if args.sim_time else "wall"
-        log.info("navigator up on namespace '%s' (%s time)", bus.namespace, time)
-        await stopper
-        await service.aclose()
+        async with contextlib.AsyncExitStack() as stack:
+            if args.groot2 is not None and not await _groot2(args.groot2, navigator, stack):
+                return 1
+            service = NavigatorService(bus, navigator, made[0])
+            service.start(args.snapshot_period)
+            announce(bus, "navigator", sim_time=args.sim_time)
+            time = "sim" if args.sim_time else "wall"
+            log.info("navigator up on namespace '%s' (%s time)", bus.namespace, time)
+            await stopper
+            await service.aclose()
     return 0
+
+
+async def _groot2(port: int, navigator: Navigator, stack: contextlib.AsyncExitStack) -> bool:
+    """Serve Groot2 on 127.0.0.1:``port`` for the process life, showing each navigation's
+    tree; False (logged) if the port is taken."""
+    try:
+        groot2 = await stack.enter_async_context(Groot2Publisher(None, port))
+    except OSError as exc:
+        log.error("navigator: --groot2: %s", exc)
+        return False
+    navigator.tree_viewers.append(groot2.attach)
+    return True
 
 
 def run(args: argparse.Namespace) -> int:

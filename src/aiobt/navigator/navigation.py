@@ -203,6 +203,8 @@ class Navigation:
         self.tree, self.tree_source = tree, source
         self.navigator.stream.attach(tree, action=request.action, source=source)
         self._btlog = self.navigator.open_btlog(tree, request)
+        for show in self.navigator.tree_viewers:
+            show(tree)
         log.info("goal %s: running tree %s from %s", request.goal_id, tree.tree_id, source)
 
     async def _end_tree(self, reason: str) -> None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Protocol
@@ -80,6 +81,8 @@ class Navigator:
         self._latest_goal = ""
         self._state: NavigationState = "idle"
         self._last: tuple[NavRequest, ActionResult] | None = None
+        # called with each navigation's new tree (e.g. a Groot2 publisher's attach)
+        self.tree_viewers: list[Callable[[Tree], None]] = []
 
     # -- goals ---------------------------------------------------------------------------
     def tree_of(self, request: NavRequest) -> str:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Iterable
+from importlib import resources
 from pathlib import Path
 
 from aiobt.core.blackboard import Blackboard
@@ -22,13 +23,23 @@ from aiobt.xml.document import parse_file
 
 log = logging.getLogger("aiobt.navigator.trees")
 
-TREES_DIR = Path(__file__).resolve().parents[3] / "trees" / "nav2"
-DEFAULT_TO_POSE_TREE = TREES_DIR / "navigate_to_pose_w_replanning_and_recovery.xml"
-DEFAULT_THROUGH_POSES_TREE = TREES_DIR / "navigate_through_poses_w_replanning_and_recovery.xml"
-
 
 class TreeLoadFailure(Exception):
     """A goal's tree could not be loaded; the message names the tree and the cause."""
+
+
+def packaged_trees_dir() -> Path:
+    """The default trees shipped in the package (``aiobt.navigator.default_trees``): a
+    copy of the repository's ``trees/nav2``, found by an editable or a normal install."""
+    folder = resources.files("aiobt.navigator.default_trees")
+    if not isinstance(folder, Path):  # e.g. imported from a zip archive
+        raise TreeLoadFailure(f"the packaged trees ({folder}) are not a directory on disk")
+    return folder
+
+
+TREES_DIR = packaged_trees_dir()
+DEFAULT_TO_POSE_TREE = TREES_DIR / "navigate_to_pose_w_replanning_and_recovery.xml"
+DEFAULT_THROUGH_POSES_TREE = TREES_DIR / "navigate_through_poses_w_replanning_and_recovery.xml"
 
 
 def is_tree_file(file_or_id: str) -> bool:

@@ -1,7 +1,8 @@
 """A small process supervisor: start, watch, restart with back-off, stop everything.
 
 Each :class:`Child` is one process (its own session, so a terminal's Ctrl-C
-reaches only the supervisor, which stops the children in order). Its output is
+reaches only the supervisor, which stops the children in order); a child
+dies with the supervisor even when that is SIGKILLed (:mod:`.lifeline`). Its output is
 read line by line and handed to a :class:`LogSink` with the child's name. A
 child that exits while the supervisor runs is restarted after a back-off that
 doubles per crash. An exit before the child ever became healthy (it failed to
@@ -23,6 +24,7 @@ from typing import Protocol
 
 from aiobt.core.clock import SystemClock
 from aiobt.system.config import RestartConfig
+from aiobt.system.lifeline import child_env
 
 log = logging.getLogger("aiobt.system.supervisor")
 _TAIL = 5  # last output lines kept per child, for the report when it dies
@@ -89,7 +91,7 @@ class Supervisor:
             self.sink.event(name, "up" if healthy else "no longer answering (token gone)")
 
     async def _spawn(self, child: Child) -> None:
-        env = {**os.environ, "PYTHONUNBUFFERED": "1", **(child.env or {})}
+        env = {**os.environ, "PYTHONUNBUFFERED": "1", **child_env(), **(child.env or {})}
         child.process = await asyncio.create_subprocess_exec(
             *child.argv,
             stdin=asyncio.subprocess.DEVNULL,

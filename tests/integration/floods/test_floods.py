@@ -9,19 +9,23 @@ of flood, the sim ran at 0.03x and services went unanswered for seconds).
 
 from __future__ import annotations
 
-import asyncio
-import statistics
 import sys
-import time
-from collections.abc import Awaitable, Callable, Sequence
-from dataclasses import dataclass
-from pathlib import Path
+from collections.abc import Callable, Sequence
 
 import pytest
 
 from aiobt.msgs import Clock, Empty, Header, IsPathValid, PoseStamped
 from aiobt.msgs import Path as Path_
 from aiobt.testing.bus import ServiceProcess
+from aiobt.testing.flood import (
+    FLOOD_RATE,
+    FLOOD_SECONDS,
+    MIB,
+    Call,
+    Figures,
+    Flood,
+)
+from aiobt.testing.flood import flood_and_measure as _flood_and_measure
 from aiobt.transport import Bus, BusSettings, Subscription
 from aiobt_services.robot.messages import ObstacleList
 
@@ -29,49 +33,6 @@ pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 SPEED = 4.0
-FLOOD_RATE = 10_000
-FLOOD_SECONDS = 5.0
-MIB = 1024 * 1024
-
-
-def rss_bytes(pid: int) -> int:
-    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
-        if line.startswith("VmRSS:"):
-            return int(line.split()[1]) * 1024
-    raise AssertionError(f"no VmRSS for process {pid}")
-
-
-@dataclass(frozen=True)
-class Figures:
-    speed: float  # sim seconds per wall second (0 if no clock was watched)
-    reply_median: float  # s, of the service called
-    reply_max: float
-    rss_growth: int  # bytes, from the start of the phase to its largest sample
-    replies: int
-
-
-Call = Callable[[], Awaitable[object]]
-
-
-async def measure(
-    call: Call, clock: Subscription[Clock] | None, pid: int, seconds: float,
-    running: Callable[[], bool],
-) -> Figures:  # fmt: skip
-    """Call a service back to back for ``seconds`` (or while ``running()``), watching the
-    sim clock (if given) and the process's RSS."""
-    rss0 = peak = rss_bytes(pid)
-    sim0 = (await clock.wait_latest(5.0)).clock if clock is not None else 0.0
-    wall0 = time.monotonic()
-    replies: list[float] = []
-    while time.monotonic() - wall0 < seconds and running():
-        sent = time.monotonic()
-        await call()
-        replies.append(time.monotonic() - sent)
-        peak = max(peak, rss_bytes(pid))
-    speed = 0.0
-    if clock is not None and clock.latest is not None:
-        speed = (clock.latest.clock - sim0) / (time.monotonic() - wall0)
-    return Figures(speed, statistics.median(replies), max(replies), peak - rss0, len(replies))
 
 
 async def start(spawn: Spawn, bus: Bus, settings: BusSettings, service: str, *extra: str) -> int:
@@ -87,23 +48,8 @@ async def flood_and_measure(
     spawn: Spawn, settings: BusSettings, flood: tuple[str, str, str],
     call: Call, clock: Subscription[Clock] | None, pid: int,
 ) -> tuple[Figures, Figures, int]:  # fmt: skip
-    """Figures of process ``pid`` unflooded, then flooded with ``flood`` (topic, model
-    name, JSON payload); and the number of messages sent."""
-    topic, model, payload = flood
-    await measure(call, clock, pid, 1.0, lambda: True)  # warm up
-    calm = await measure(call, clock, pid, FLOOD_SECONDS, lambda: True)
-    flooder = spawn(
-        [
-            "-m", "tests.integration.floods.flood_proc",
-            "--connect", settings.connect[0], "--namespace", settings.namespace,
-            "--topic", topic, "--model", model, "--json", payload,
-            "--rate", str(FLOOD_RATE), "--seconds", str(FLOOD_SECONDS),
-        ]
-    )  # fmt: skip
-    assert await asyncio.to_thread(flooder.wait_for_output, "flooding", 30.0), flooder.output()
-    flooded = await measure(call, clock, pid, FLOOD_SECONDS, lambda: "sent" not in flooder.output())
-    assert await asyncio.to_thread(flooder.wait_for_output, "sent", 30.0), flooder.output()
-    sent = int(flooder.output().split("sent")[-1].split()[0])
+    calm, flooded, sent = await _flood_and_measure(spawn, settings, Flood(*flood), call, clock, pid)
+    topic = flood[0]
     print(f"{topic}: calm {calm}\n{topic}: flooded {flooded}, {sent} sent", file=sys.stderr)
     return calm, flooded, sent
 

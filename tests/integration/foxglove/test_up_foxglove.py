@@ -21,6 +21,7 @@ pytestmark = [pytest.mark.integration, pytest.mark.timeout(180)]
 async def test_up_runs_the_bridge_and_closes_its_recording(endpoint: str, tmp_path: Path) -> None:
     port, recording = free_port(), tmp_path / "up.mcap"
     args = ["up", "--listen", endpoint, "--world", "small", "--speed", "2", "--namespace", "fox"]
+    args.append("--no-web")
     with SystemProcess([*args, "--foxglove", str(port), "--mcap", str(recording)]) as up:
         up.wait_line("  foxglove * up")
         up.wait_line(f"Foxglove server on ws://127.0.0.1:{port}", timeout=5.0)

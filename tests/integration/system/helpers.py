@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import queue
+import select
 import signal
 import subprocess
 import sys
@@ -102,3 +103,28 @@ def kill_mentioning(text: str) -> None:
         pid = int(line.split(":", 1)[0])
         if pid != os.getpid():
             os.kill(pid, signal.SIGKILL)
+
+
+def wait_gone(pids: list[int], timeout: float) -> list[int]:
+    """Wait (on pidfds, no polling) until every process in ``pids`` has exited, at most
+    ``timeout`` s: the pids still running (not zombies) then."""
+    fds = {}
+    for pid in pids:
+        try:
+            fds[os.pidfd_open(pid)] = pid
+        except ProcessLookupError:
+            continue
+    try:
+        waiting = select.poll()
+        for fd in fds:
+            waiting.register(fd, select.POLLIN)
+        deadline = time.monotonic() + timeout
+        left = set(fds)
+        while left and (remaining := deadline - time.monotonic()) > 0:
+            for fd, _ in waiting.poll(remaining * 1000):
+                waiting.unregister(fd)
+                left.discard(fd)
+        return sorted(fds[fd] for fd in left)
+    finally:
+        for fd in fds:
+            os.close(fd)

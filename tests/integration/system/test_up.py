@@ -11,7 +11,7 @@ import pytest
 
 from aiobt.testing.bus import free_endpoint, port_of
 
-from .helpers import SystemProcess, kill_mentioning, processes_mentioning
+from .helpers import SystemProcess, kill_mentioning, processes_mentioning, wait_gone
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(180)]
 
@@ -40,6 +40,18 @@ def test_up_brings_every_service_up_and_stops_everything_in_under_3_s(
     assert code == 0
     assert seconds < 3.0
     assert processes_mentioning(endpoint) == []
+
+
+def test_a_sigkilled_up_leaves_no_process_behind(endpoint: str) -> None:
+    """Its children die with it (parent-death signal): no orphan services or router."""
+    with SystemProcess(["up", "--listen", endpoint, "--world", "small"]) as up:
+        up.wait_line("     up * ")
+        children = [int(line.split(":", 1)[0]) for line in processes_mentioning(endpoint)]
+        assert len(children) >= 6  # router, robot, planner, controller, behaviors, navigator
+        up.proc.kill()
+        assert up.proc.wait(10) == -signal.SIGKILL
+        left = wait_gone(children, timeout=30.0)
+    assert left == [], processes_mentioning(endpoint)
 
 
 def test_a_service_that_cannot_start_is_named_in_one_line_and_nothing_is_left(

@@ -7,7 +7,7 @@ from collections import Counter
 
 import pytest
 
-from aiobt.core.clock import ManualClock
+from aiobt.core.clock import ManualClock, SystemClock
 from aiobt.core.leaves import AsyncActionNode, StatefulActionNode
 from aiobt.core.status import Status
 from aiobt.core.ticker import ticker_for
@@ -192,3 +192,22 @@ async def test_a_bad_period_is_refused_before_any_tick(
     with pytest.raises(ValueError, match="tick period must be a number of seconds >= 0"):
         await tree.tick_while_running(period=period)
     assert TICKS == {}
+
+
+@pytest.mark.timeout(30)
+async def test_trees_built_without_a_clock_share_one_ticker(factory: BehaviorTreeFactory):
+    """The default wall clock is one clock: trees given none (or each its own
+    SystemClock) share one ticker task, not one task per tree and wait."""
+    xml = '<ReactiveSequence><AlwaysSuccess/><Ticking name="w{}"/></ReactiveSequence>'
+    trees = [factory.create_tree_from_text(tree_xml(xml.format(i))) for i in range(20)]
+    trees.append(factory.create_tree_from_text(tree_xml(xml.format(20)), clock=SystemClock()))
+    tasks = [asyncio.create_task(tree.tick_while_running(period=30.0)) for tree in trees]
+    try:
+        await settle()
+        assert set(TICKS.values()) == {1}
+        tickers = [t for t in asyncio.all_tasks() if t.get_name() == "aiobt ticker 30.0"]
+        assert len(tickers) == 1
+        assert ticker_for(SystemClock(), 30.0) is ticker_for(SystemClock(), 30.0)
+        assert ticker_for(SystemClock(), 30.0).waiting == len(trees)
+    finally:
+        await _stop(tasks, trees)

@@ -17,8 +17,8 @@ from aiobt.core.leaves import AsyncActionNode
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.hosts import is_loopback as _is_loopback
 from aiobt.loggers import Groot2Publisher
-from aiobt.loggers.groot2 import _is_loopback
 from aiobt.loggers.groot2_monitor import Groot2Monitor
 from aiobt.testing.stubs import tree_xml
 from tests.groot2_client import Groot2Client, free_port_pair, status_pairs, transitions
@@ -298,3 +298,31 @@ def test_a_uid_beyond_16_bits_is_refused_naming_the_node() -> None:
     tree.find("last").config.uid = 70_000
     with pytest.raises(ValueError, match=r"Seq.*last.* has uid 70000; .* 1\.\.65535"):
         Groot2Monitor(tree, lambda uid: None)
+
+
+async def test_one_publisher_shows_each_tree_attached_in_turn() -> None:
+    """As the navigator uses it: bound once, no tree at first, then a tree per run."""
+    first, second = make_tree([]), make_tree([])
+    port = free_port_pair()
+    client = Groot2Client(port)
+    try:
+        async with Groot2Publisher(None, port) as publisher:
+            assert await client.request("T") == [b"error", b"no tree is running yet"]
+            publisher.attach(first)
+            shown_first = await client.request("T")
+            assert await second.tick_exactly_once() is Status.RUNNING
+            publisher.attach(second)
+            shown_second = await client.request("T")
+            statuses = dict(status_pairs((await client.request("S"))[1]))
+    finally:
+        client.close()
+        await second.halt_tree("test over")
+    assert b"<Wait" in shown_first[1]
+    assert shown_first[1] == shown_second[1]
+    assert shown_first[0][6:] != shown_second[0][6:]  # a new tree UUID: Groot2 reloads
+    assert statuses == {1: 1, 2: 2, WAIT_UID: 1, LAST_UID: 0}  # the second, running tree
+
+
+async def test_attaching_before_start_is_refused() -> None:
+    with pytest.raises(RuntimeError, match="not started"):
+        Groot2Publisher(None, free_port_pair()).attach(make_tree([]))

@@ -42,11 +42,12 @@ class Selector(NavNode, SyncActionNode):
       port's value until one came) to the output port;
     - FAILURE when nothing was received and the default is empty (as Nav2).
 
-    ``topic_name`` is read again whenever the node starts afresh (IDLE), so a
-    blackboard-bound topic may change between runs.
+    A blackboard-bound ``topic_name`` is read again whenever the node starts
+    afresh (IDLE), so it may change between runs; a literal one is subscribed
+    once, at construction.
     """
 
-    __slots__ = ("_default", "_output_key", "_topic", "_topic_name")
+    __slots__ = ("_default", "_fixed_topic", "_output_key", "_topic", "_topic_name")
     DEFAULT_PORT: ClassVar[str] = ""
     OUTPUT_PORT: ClassVar[str] = ""
 
@@ -61,8 +62,10 @@ class Selector(NavNode, SyncActionNode):
             self._default = None
         binding = self.config.inputs.get("topic_name")
         literal = binding is None or binding.key is None
+        self._fixed_topic = False  # a literal topic_name, once subscribed, never changes
         if self.nav.bus is not None and literal:
             self._subscribe()  # now: the latched value arrives before the first tick
+            self._fixed_topic = True
 
     def _subscribe(self) -> SharedTopic[String]:
         name = topic_name(self.get_input("topic_name"), self.path, "topic_name")
@@ -73,7 +76,7 @@ class Selector(NavNode, SyncActionNode):
 
     def on_tick(self) -> Status:
         topic = self._topic
-        if topic is None or self._status is IDLE:
+        if topic is None or (self._status is IDLE and not self._fixed_topic):
             topic = self._subscribe()
         message = topic.latest
         selected: str = message.data if message is not None else ""

@@ -1,6 +1,6 @@
-"""A flooding client for the flood tests: publishes one message at a fixed rate.
+"""A flooding client (flood tests, bench.transport.flood): one message at a fixed rate.
 
-python -m tests.integration.floods.flood_proc --connect EP --namespace NS \\
+python -m aiobt.testing.flood_proc --connect EP --namespace NS \\
     --topic initialpose --model PoseStamped --json '{"x": 0, "y": 0, "yaw": 0}' \\
     --rate 10000 --seconds 4
 

@@ -1,0 +1,97 @@
+"""``aiobt web``: the robot in a browser: map, costmap, robot, scan, plans, goals, tree.
+
+    aiobt web                          # http://127.0.0.1:8080/ for namespace robot
+    aiobt web --port 8000 -n r2        # another robot
+    aiobt web --host 0.0.0.0           # other machines too (logged as a warning)
+
+A click on the map puts a goal on ``{ns}/goal_pose``. Runs until Ctrl-C
+(``aiobt up`` runs the same view on --web-port; see docs/web.md). Exit status
+2 when the router cannot be reached or the port cannot be listened on.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import signal
+import sys
+from typing import Any
+
+from aiobt.cli.navigate import CONNECT_TIMEOUT
+from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt.web import WebOptions, serve_web
+from aiobt_services._cli import non_negative, positive
+from aiobt_services.costmap.inflation import InflationParams
+
+log = logging.getLogger("aiobt.cli.web")
+DEFAULT_PORT = 8080
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_bus_arguments(parser)
+    parser.set_defaults(connect_timeout=CONNECT_TIMEOUT)
+    add_web_arguments(parser)
+
+
+def add_web_arguments(parser: argparse.ArgumentParser, prefix: str = "") -> None:
+    """The view's own flags (``--host``, ``--port``...; ``prefix="web-"`` for ``aiobt up``)."""
+    add = parser.add_argument
+    add(
+        f"--{prefix}host",
+        default="127.0.0.1",
+        help="address to listen on; 0.0.0.0 opens it to other machines (default: %(default)s)",
+    )
+    add(f"--{prefix}port", type=int, default=DEFAULT_PORT, help="HTTP port (default: %(default)s)")
+    add(
+        f"--{prefix}rate",
+        type=positive,
+        default=20.0,
+        help="updates per second pushed to a browser, at most (default: %(default)s)",
+    )
+    add(
+        f"--{prefix}robot-radius",
+        type=non_negative,
+        default=0.22,
+        help="the robot's inscribed radius, m, as the planner's (default: %(default)s)",
+    )
+    add(
+        f"--{prefix}inflation-radius",
+        type=non_negative,
+        default=0.55,
+        help="the costmap's inflation radius, m, as the planner's (default: %(default)s)",
+    )
+
+
+def web_options(args: argparse.Namespace, prefix: str = "") -> WebOptions:
+    """The :class:`WebOptions` of :func:`add_web_arguments`'s flags (ValueError if bad)."""
+
+    def get(name: str) -> Any:
+        return getattr(args, prefix.replace("-", "_") + name)
+
+    inflation = InflationParams(
+        inscribed_radius=float(get("robot_radius")),
+        inflation_radius=max(float(get("inflation_radius")), float(get("robot_radius"))),
+    )
+    return WebOptions(
+        host=str(get("host")), port=int(get("port")), rate=float(get("rate")), inflation=inflation
+    )
+
+
+async def serve(args: argparse.Namespace) -> int:
+    options = web_options(args)
+    stop = asyncio.Event()
+    loop = asyncio.get_running_loop()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        loop.add_signal_handler(sig, stop.set)
+    async with open_bus(BusSettings.from_args(args)) as bus, serve_web(bus, options):
+        await stop.wait()
+    return 0
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        return asyncio.run(serve(args))
+    except (BusUnavailable, BusConfigError, OSError, ValueError) as exc:
+        print(f"aiobt web: {exc}", file=sys.stderr)
+        return 2

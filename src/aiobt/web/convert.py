@@ -1,0 +1,116 @@
+"""Bus messages to the web page's JSON: pure functions, map-frame metres, rounded to mm.
+
+Grids go as base64 of one byte per cell, row-major from the origin (row 0 at
+the bottom, as OccupancyGrid): the occupancy 0..100 with 255 for unknown, or
+the inflated cost 0..254 (Nav2's costmap values, 255 unknown).
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+from typing import Any
+
+import numpy as np
+
+from aiobt.msgs import LaserScan, OccupancyGrid, Path, PoseStamped, Twist
+from aiobt.msgs.bt import BtSnapshot, BtTree
+from aiobt_services.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
+from aiobt_services.costmap.inflation import InflationParams, inflate
+
+Json = dict[str, Any]
+OCCUPIED = 65  # occupancy from which a cell is an obstacle (Nav2's occupied_thresh 0.65)
+ROLLOUT_SECONDS = 1.5  # how far ahead the local trajectory reaches
+ROLLOUT_STEP = 0.1  # s between its points
+
+
+def _mm(value: float) -> float:
+    return round(value, 3)
+
+
+def _grid(grid: OccupancyGrid, cells: np.ndarray) -> Json:
+    info = grid.info
+    return {
+        "width": info.width,
+        "height": info.height,
+        "resolution": info.resolution,
+        "origin": [info.origin.position.x, info.origin.position.y],
+        "cells": base64.b64encode(np.ascontiguousarray(cells, np.uint8).tobytes()).decode(),
+    }
+
+
+def map_payload(grid: OccupancyGrid) -> Json:
+    """The occupancy grid: 0..100 per cell, 255 unknown."""
+    cells = np.asarray(grid.array)
+    return _grid(grid, np.where(cells < 0, NO_INFORMATION, cells).astype(np.uint8))
+
+
+def inflated_costs(grid: OccupancyGrid, params: InflationParams) -> np.ndarray:
+    """Nav2's global costmap of ``grid``: static layer (lethal from OCCUPIED) and inflation."""
+    info = grid.info
+    geometry = GridGeometry(
+        info.width, info.height, info.resolution, info.origin.position.x, info.origin.position.y
+    )
+    cells = np.asarray(grid.array)
+    master = np.where(cells < 0, NO_INFORMATION, np.where(cells >= OCCUPIED, LETHAL, 0))
+    return inflate(master.astype(np.uint8), geometry, params)
+
+
+def costmap_payload(grid: OccupancyGrid, params: InflationParams) -> Json:
+    return _grid(grid, inflated_costs(grid, params))
+
+
+def pose_payload(pose: PoseStamped) -> Json:
+    return {"x": _mm(pose.x), "y": _mm(pose.y), "yaw": _mm(pose.yaw), "stamp": pose.header.stamp}
+
+
+def scan_points(scan: LaserScan, pose: PoseStamped) -> list[list[float]]:
+    """The scan's returns in the map frame, seen from ``pose`` (beams with no return dropped)."""
+    ranges = np.asarray(scan.ranges, dtype=np.float64)
+    angles = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
+    hit = np.isfinite(ranges) & (ranges >= scan.range_min) & (ranges < scan.range_max)
+    bearing = angles[hit] + pose.yaw
+    xs = pose.x + ranges[hit] * np.cos(bearing)
+    ys = pose.y + ranges[hit] * np.sin(bearing)
+    return np.round(np.stack([xs, ys], axis=1), 3).tolist()  # type: ignore[no-any-return]
+
+
+def path_points(path: Path) -> list[list[float]]:
+    return [[_mm(p.x), _mm(p.y)] for p in path.poses]
+
+
+def rollout(pose: PoseStamped, command: Twist) -> list[list[float]]:
+    """The local trajectory: the controller's current command (``cmd_vel``) driven for
+    ROLLOUT_SECONDS from ``pose`` on a unicycle, as DWB scores its trajectories."""
+    v, w = command.linear.x, command.angular.z
+    x, y, yaw = pose.x, pose.y, pose.yaw
+    points = [[_mm(x), _mm(y)]]
+    for _ in range(round(ROLLOUT_SECONDS / ROLLOUT_STEP)):
+        yaw += w * ROLLOUT_STEP / 2
+        x += v * ROLLOUT_STEP * math.cos(yaw)
+        y += v * ROLLOUT_STEP * math.sin(yaw)
+        yaw += w * ROLLOUT_STEP / 2
+        points.append([_mm(x), _mm(y)])
+    return points
+
+
+def tree_payload(tree: BtTree) -> Json:
+    """The tree's structure: its nodes in depth-first order, each with its parent."""
+    nodes = [
+        {"uid": n.uid, "parent": n.parent, "id": n.id, "name": n.name, "kind": n.kind}
+        for n in tree.nodes
+    ]
+    return {"run": tree.run, "tree_id": tree.tree_id, "source": tree.source, "nodes": nodes}
+
+
+def navigation_payload(snapshot: BtSnapshot) -> Json:
+    """The navigation's state from the navigator's snapshot."""
+    return {
+        "run": snapshot.run,
+        "state": snapshot.state,
+        "recoveries": snapshot.number_of_recoveries,
+        "distance_remaining": _mm(snapshot.distance_remaining),
+        "error_code": snapshot.error_code,
+        "error_msg": snapshot.error_msg,
+        "stamp": snapshot.stamp,
+    }

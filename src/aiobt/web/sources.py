@@ -1,0 +1,191 @@
+"""The bus side of the web view: what the robot's topics say, converted at the page's pace.
+
+Every message only replaces the newest one of its stream (:class:`Latest`);
+:meth:`Sources.flush`, called at the page's update rate, converts what changed
+since the last flush and hands it to the :class:`Hub`. Streams:
+
+=============  ==========================================================
+``map``        ``{ns}/map`` (latched), sent when it changes
+``costmap``    the map inflated as the planner's global costmap, with it
+``pose``       ``{ns}/pose``
+``scan``       ``{ns}/scan``, as map-frame points seen from the latest pose
+``local``      ``{ns}/cmd_vel`` driven for 1.5 s from the pose (the local
+               trajectory the controller is following)
+``plan``       the planner's latest path (``compute_path_to_pose`` and
+               ``compute_path_through_poses`` results)
+``goal``       ``{ns}/goal_pose`` (the page's clicks, ``aiobt goal``)
+``feedback``   navigate_to_pose / navigate_through_poses feedback
+``tree``       ``{ns}/bt/tree``; ``status`` from ``bt/transitions`` and
+``nav``        ``bt/snapshot`` (the navigation's state)
+=============  ==========================================================
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from aiobt.msgs import (
+    ActionDef,
+    ComputePathThroughPoses,
+    ComputePathToPose,
+    LaserScan,
+    Msg,
+    NavigateThroughPoses,
+    NavigateToPose,
+    OccupancyGrid,
+    PoseStamped,
+    Twist,
+)
+from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
+from aiobt.transport import Bus, Subscription
+from aiobt.transport.topics import declare_subscription
+from aiobt.web import convert
+from aiobt.web.coalesce import Hub, Latest
+from aiobt.web.tree import TreeStatus
+from aiobt_services.costmap.inflation import InflationParams
+
+log = logging.getLogger("aiobt.web.sources")
+GOAL_TIMEOUT = 2.0  # s for a navigator to subscribe to goal_pose before a click is refused
+_PLANNERS: tuple[type[ActionDef[Any, Any, Any]], ...] = (ComputePathToPose, ComputePathThroughPoses)
+_NAVIGATORS: tuple[type[ActionDef[Any, Any, Any]], ...] = (NavigateToPose, NavigateThroughPoses)
+
+
+@dataclass(slots=True)
+class _Robot:
+    """The latest messages conversions combine."""
+
+    pose: PoseStamped | None = None
+    command: Twist = field(default_factory=Twist)
+    grid: OccupancyGrid | None = None
+
+
+class Sources:
+    """Subscribes to the robot's topics on ``bus`` and feeds ``hub`` on :meth:`flush`."""
+
+    def __init__(self, bus: Bus, hub: Hub, inflation: InflationParams | None = None) -> None:
+        self.bus = bus
+        self.hub = hub
+        self.inflation = inflation or InflationParams()
+        self.raw: Latest[Msg] = Latest()
+        self.tree = TreeStatus()
+        self._robot = _Robot()
+        self._tree_changed = False
+        self._subs: list[Subscription[Any]] = []
+        self._goal_pub = bus.publisher("goal_pose", PoseStamped, reliable=True)
+
+    def attach(self) -> None:
+        # the robot is drawn as its inscribed circle, the radius the costmap is inflated with
+        self.hub.publish("footprint", {"radius": self.inflation.inscribed_radius})
+        topics: list[tuple[str, type[Msg], bool]] = [
+            ("map", OccupancyGrid, True), ("pose", PoseStamped, False),
+            ("scan", LaserScan, False), ("cmd_vel", Twist, False),
+            ("goal_pose", PoseStamped, False), ("bt/snapshot", BtSnapshot, False),
+        ]  # fmt: skip
+        for name, model, latched in topics:
+            sub = self.bus.subscribe(
+                name, model, self._keep(name), latched=latched, queue_size=1
+            )  # fmt: skip
+            self._subs.append(sub)
+        self._subs.append(self.bus.subscribe("bt/tree", BtTree, self._on_tree, latched=True))
+        self._subs.append(self.bus.subscribe("bt/transitions", BtTransitions, self._on_changes))
+        for planner in _PLANNERS:
+            self._watch(
+                self.bus.keys.action(planner.name).any_result, planner.result_type(), "plan"
+            )
+        for navigator in _NAVIGATORS:
+            keys = self.bus.keys.action(navigator.name)
+            self._watch(keys.any_feedback, navigator.feedback_type(), "feedback")
+
+    def _watch(self, key: str, model: type[Msg], stream: str) -> None:
+        sub = declare_subscription(
+            self.bus.session, self.bus.bridge, key, model,
+            callback_fn=self._keep(stream), latched=False, queue_size=1,
+        )  # fmt: skip
+        self._subs.append(sub)
+
+    def _keep(self, stream: str) -> Callable[[Msg], None]:
+        return lambda message: self.raw.set(stream, message)
+
+    def _on_tree(self, tree: BtTree) -> None:
+        self.hub.publish("tree", self.tree.on_tree(tree))
+        self._tree_changed = True
+
+    def _on_changes(self, message: BtTransitions) -> None:
+        self._tree_changed |= self.tree.on_transitions(message)
+
+    def flush(self) -> None:
+        """Convert what changed since the last flush and publish it to the hub."""
+        fresh = self.raw.drain()
+        for stream, message in fresh.items():
+            try:
+                self._convert(stream, message)
+            except (ValueError, TypeError, ArithmeticError) as exc:
+                log.warning("%s: message not shown: %s", stream, exc)
+        if "pose" in fresh or "cmd_vel" in fresh:
+            self._publish_local()
+        if self._tree_changed:
+            self._tree_changed = False
+            self.hub.publish("status", self.tree.payload())
+
+    def _convert(self, stream: str, message: Msg) -> None:
+        robot = self._robot
+        if isinstance(message, OccupancyGrid):
+            self._on_map(message)
+        elif stream == "pose" and isinstance(message, PoseStamped):
+            robot.pose = message
+            self.hub.publish("pose", convert.pose_payload(message))
+        elif isinstance(message, LaserScan) and robot.pose is not None:
+            self.hub.publish("scan", convert.scan_points(message, robot.pose))
+        elif isinstance(message, Twist):
+            robot.command = message
+        elif isinstance(message, PoseStamped):  # goal_pose
+            self.hub.publish("goal", convert.pose_payload(message))
+        elif isinstance(message, BtSnapshot):
+            self._tree_changed |= self.tree.on_snapshot(message)
+            self.hub.publish("nav", convert.navigation_payload(message))
+        elif isinstance(message, ComputePathToPose.Result) and message.error_code == 0:
+            self.hub.publish("plan", convert.path_points(message.path))
+        elif stream == "feedback":
+            self.hub.publish("feedback", _feedback(message))
+
+    def _on_map(self, grid: OccupancyGrid) -> None:
+        if self._robot.grid is not None and self._robot.grid == grid:
+            return
+        self._robot.grid = grid
+        self.hub.publish("map", convert.map_payload(grid), on_change=True)
+        self.hub.publish("costmap", convert.costmap_payload(grid, self.inflation), on_change=True)
+
+    def _publish_local(self) -> None:
+        if self._robot.pose is not None:
+            self.hub.publish("local", convert.rollout(self._robot.pose, self._robot.command))
+
+    async def send_goal(self, x: float, y: float, yaw: float) -> str:
+        """Put a goal on ``{ns}/goal_pose``; "" when sent, else why not."""
+        if not all(math.isfinite(v) for v in (x, y, yaw)):
+            return f"goal ({x}, {y}, {yaw}): x, y and yaw must be finite numbers"
+        # this view's own goal_pose subscription matches too: ask for the navigator itself
+        navigator = self.bus.presence(self.bus.keys.topic("nodes/navigator"))
+        if not await navigator.wait(GOAL_TIMEOUT):
+            return f"{self.bus.namespace}: no navigator is up (nodes/navigator) to take the goal"
+        self._goal_pub.put(PoseStamped.from_xy_yaw(x, y, yaw))
+        log.info("goal (%.2f, %.2f, yaw %.2f) sent on %s/goal_pose", x, y, yaw, self.bus.namespace)
+        return ""
+
+    def close(self) -> None:
+        for sub in reversed(self._subs):
+            sub.close()
+        self._subs.clear()
+        self._goal_pub.close()
+
+
+def _feedback(message: Msg) -> convert.Json:
+    data = message.model_dump(mode="json")
+    current = data.pop("current_pose", None)
+    if current is not None:
+        position = current["pose"]["position"]
+        data["x"], data["y"] = round(position["x"], 3), round(position["y"], 3)
+    return {"recoveries": data.pop("number_of_recoveries", 0), **data}
