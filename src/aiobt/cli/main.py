@@ -27,6 +27,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "navigate": ("aiobt.cli.navigate", "send a navigation goal and follow it to its end"),
     "goal": ("aiobt.cli.goal", "put a goal on {ns}/goal_pose and return"),
     "monitor": ("aiobt.cli.monitor", "the navigator's running tree, live, in the terminal"),
+    "foxglove": ("aiobt.cli.foxglove", "the robot's topics in Foxglove (WebSocket, MCAP)"),
     "web": ("aiobt.cli.web", "the robot, its plans and its tree in a browser (a web view)"),
     "robot": ("aiobt_services.robot.main", "the pybullet robot service"),
     "planner": ("aiobt_services.planner.main", "the planner service"),

@@ -3,6 +3,7 @@
     aiobt up                                  # router, robot, planner, controller,
     aiobt up --config system.yaml             # behaviors, navigator; defaults below
     aiobt up --speed 5 --world small          # flags override the file
+    aiobt up --foxglove --mcap run.mcap       # + Foxglove on ws://127.0.0.1:8765, recorded
     aiobt up --web-port 8000                  # the web view elsewhere (--no-web: none)
 
 A Zenoh router, then every service as its own process with the commands
@@ -24,10 +25,12 @@ import contextlib
 import logging
 import sys
 from collections.abc import AsyncIterator
+from pathlib import Path
 
 from aiobt.cli.web import add_web_arguments, web_options
 from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
 from aiobt.system.console import wants_colour
+from aiobt.system.foxglove import FoxgloveOptions, start_foxglove, stop_foxglove
 from aiobt.system.supervisor import on_signals
 from aiobt.transport import Bus
 from aiobt.web import WebOptions, serve_web
@@ -41,6 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--health-timeout", type=float, default=60.0, metavar="SECONDS",
         help="report the services not up after this long (default: %(default)s)",
     )  # fmt: skip
+    add_foxglove_arguments(parser)
     parser.add_argument("--no-web", action="store_true", help="no web view")
     add_web_arguments(parser, prefix="web-")
 
@@ -54,6 +58,32 @@ def add_system_arguments(parser: argparse.ArgumentParser) -> None:
     add("--speed", type=float, help="sim speed-up; sim time everywhere when != 1 (default: 1)")
     add("--listen", dest="router_listen", metavar="ENDPOINT", help="the router's endpoint")
     add("--colour", "--color", choices=("auto", "always", "never"), default="auto")
+
+
+def add_foxglove_arguments(parser: argparse.ArgumentParser) -> None:
+    """``--foxglove [PORT]``, ``--mcap FILE`` (docs/foxglove.md)."""
+    add = parser.add_argument
+    add(
+        "--foxglove",
+        nargs="?",
+        type=int,
+        const=8765,
+        metavar="PORT",
+        help="run the Foxglove bridge on ws://127.0.0.1:PORT (default PORT: %(const)s)",
+    )
+    add(
+        "--foxglove-host",
+        default="127.0.0.1",
+        metavar="ADDRESS",
+        help="address the Foxglove server binds (default: %(default)s)",
+    )
+    add("--mcap", type=Path, metavar="FILE", help="record the Foxglove channels to FILE")
+
+
+def foxglove_from_args(args: argparse.Namespace) -> FoxgloveOptions:
+    if args.foxglove is not None and not 0 <= args.foxglove <= 65535:
+        raise ConfigError(f"--foxglove: port {args.foxglove} is not in 0..65535")
+    return FoxgloveOptions(port=args.foxglove, mcap=args.mcap, host=args.foxglove_host)
 
 
 def config_from_args(args: argparse.Namespace) -> SystemConfig:
@@ -83,11 +113,17 @@ async def web_view(
 
 
 async def up(
-    config: SystemConfig, sink: ConsoleSink, health_timeout: float, web: WebOptions | None = None
+    config: SystemConfig,
+    sink: ConsoleSink,
+    health_timeout: float,
+    web: WebOptions | None = None,
+    foxglove: FoxgloveOptions | None = None,
 ) -> int:
     stop = asyncio.Event()
     on_signals(stop.set)
     async with run_system(config, sink) as system, web_view(system.bus, web, sink):
+        if foxglove is not None and foxglove.wanted:
+            await start_foxglove(system, foxglove)
         down = await system.wait_healthy(health_timeout)
         if down:
             sink.event("up", f"not up after {health_timeout:g} s: {', '.join(down)}")
@@ -97,6 +133,8 @@ async def up(
             sink.event("up", f"{names} up on namespace '{config.namespace}' ({clock})")
         failure = await system.stopped(stop)
         sink.event("up", "stopping" if failure is None else f"stopping: {failure}")
+        if foxglove is not None and foxglove.wanted:
+            await stop_foxglove(system)  # first, with time to close its recording
     if failure is not None:
         raise Fatal(failure)
     return 0
@@ -111,12 +149,13 @@ def run(args: argparse.Namespace) -> int:
     try:
         config = config_from_args(args)
         web = None if args.no_web else web_options(args, prefix="web-")
+        foxglove = foxglove_from_args(args)
     except (ConfigError, ValueError) as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 2
     sink = ConsoleSink(sys.stdout, colour=wants_colour(sys.stdout, args.colour))
     try:
-        return asyncio.run(up(config, sink, args.health_timeout, web))
+        return asyncio.run(up(config, sink, args.health_timeout, web, foxglove))
     except Fatal as exc:
         print(f"aiobt up: {exc}", file=sys.stderr)
         return 1

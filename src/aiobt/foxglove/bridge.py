@@ -1,0 +1,161 @@
+"""The bridge: the robot's topics under one namespace -> Foxglove channels.
+
+:class:`FoxgloveBridge` subscribes over :mod:`aiobt.transport` and writes each
+message, converted by :mod:`aiobt.foxglove.convert`, to its channel of
+:class:`~aiobt.foxglove.channels.Channels`. Whatever sinks the channels' context
+has (the WebSocket server, an MCAP file) get them. Goals a Foxglove client
+publishes arrive through :meth:`forward_goal` and go to ``{ns}/goal_pose``.
+"""
+
+from __future__ import annotations
+
+import logging
+import math
+from typing import Any
+
+import foxglove
+from foxglove import messages as fm
+
+from aiobt.foxglove import convert
+from aiobt.foxglove.channels import Channels
+from aiobt.foxglove.costmap import CostmapMirror
+from aiobt.msgs import (
+    BtTransitions,
+    BtTree,
+    ComputePathToPose,
+    LaserScan,
+    MessageError,
+    NavigateToPose,
+    OccupancyGrid,
+    Odometry,
+    PoseStamped,
+)
+from aiobt.transport import Bus, Subscription
+from aiobt.transport.topics import declare_subscription
+
+log = logging.getLogger("aiobt.foxglove.bridge")
+
+DEFAULT_FOOTPRINT_RADIUS = 0.22  # m: the robot service's body
+DEFAULT_COSTMAP_PERIOD = 1.0  # s of robot time between costmap updates
+
+
+class FoxgloveBridge:
+    """Feeds ``channels`` from ``bus``; :meth:`close` ends the subscriptions."""
+
+    def __init__(
+        self,
+        bus: Bus,
+        context: foxglove.Context,
+        footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS,
+        costmap_period: float = DEFAULT_COSTMAP_PERIOD,
+    ) -> None:
+        if not footprint_radius > 0.0 or not math.isfinite(footprint_radius):
+            raise ValueError(f"footprint radius must be > 0 m, not {footprint_radius!r}")
+        self.bus = bus
+        self.ch = Channels.create(context)
+        self.radius = footprint_radius
+        self.goals = bus.publisher("goal_pose", PoseStamped, reliable=True)
+        self.costmap = CostmapMirror(costmap_period) if costmap_period > 0.0 else None
+        self._pose: PoseStamped | None = None
+        self._odom: Odometry | None = None
+        self._scan_frame: str | None = None
+        self._tree: BtTree | None = None
+        self._subs: list[Subscription[Any]] = []
+
+    def start(self) -> None:
+        bus, add = self.bus, self._subs.append
+        add(bus.subscribe("map", OccupancyGrid, self.on_map, latched=True, queue_size=1))
+        add(bus.subscribe("scan", LaserScan, self.on_scan, queue_size=2))
+        add(bus.subscribe("pose", PoseStamped, self.on_pose, queue_size=2))
+        add(bus.subscribe("odom", Odometry, self.on_odom, queue_size=2))
+        add(bus.subscribe("goal_pose", PoseStamped, self.on_goal, queue_size=10))
+        add(bus.subscribe("bt/tree", BtTree, self.on_tree, latched=True, queue_size=1))
+        add(bus.subscribe("bt/transitions", BtTransitions, self.on_transitions))
+        plans = bus.keys.action(ComputePathToPose.name).any_result
+        feedback = bus.keys.action(NavigateToPose.name).any_feedback
+        add(self._watch(plans, ComputePathToPose.result_type(), self.on_plan))
+        add(self._watch(feedback, NavigateToPose.feedback_type(), self.on_feedback))
+        self.note(f"bridging namespace '{bus.namespace}'")
+
+    def _watch(self, key: str, model: Any, callback: Any) -> Subscription[Any]:
+        return declare_subscription(
+            self.bus.session, self.bus.bridge, key, model,
+            callback_fn=callback, latched=False, queue_size=10,
+        )  # fmt: skip
+
+    def close(self) -> None:
+        for sub in self._subs:
+            sub.close()
+        self._subs.clear()
+
+    # -- bus -> Foxglove -----------------------------------------------------------------
+    def on_map(self, msg: OccupancyGrid) -> None:
+        self.ch.map.log(convert.grid(msg))
+        if self.costmap is not None:
+            self.costmap.on_map(msg)
+
+    def on_scan(self, msg: LaserScan) -> None:
+        new_frame = msg.header.frame_id != self._scan_frame
+        self._scan_frame = msg.header.frame_id
+        if new_frame:
+            self._transforms()
+        self.ch.scan.log(convert.laser_scan(msg))
+        costs = self.costmap.on_scan(msg) if self.costmap is not None else None
+        if costs is not None:
+            self.ch.costmap.log(convert.cost_grid(costs, msg.header.stamp))
+
+    def on_pose(self, msg: PoseStamped) -> None:
+        self._pose = msg
+        if self.costmap is not None:
+            self.costmap.on_pose(msg)
+        self.ch.pose.log(convert.pose_in_frame(msg))
+        self.ch.robot.log(convert.footprint(msg.header.stamp, self.radius))
+        self._transforms()
+
+    def on_odom(self, msg: Odometry) -> None:
+        self._odom = msg
+        self.ch.odom.log(convert.odometry(msg))
+        self.ch.speed.log(convert.speed(msg))
+        self._transforms()
+
+    def _transforms(self) -> None:
+        tf = convert.transforms(self._pose, self._odom, self._scan_frame)
+        self.ch.tf.log(tf)
+
+    def on_goal(self, msg: PoseStamped) -> None:
+        self.ch.goal.log(convert.pose_in_frame(msg))
+
+    def on_plan(self, result: Any) -> None:
+        if result.error_code == 0 and result.path.poses:
+            self.ch.plan.log(convert.poses_in_frame(result.path))
+
+    def on_feedback(self, feedback: Any) -> None:
+        self.ch.feedback.log(convert.as_json(feedback))
+
+    def on_tree(self, tree: BtTree) -> None:
+        self._tree = tree
+        self.note(f"tree {tree.tree_id} (run {tree.run}, {len(tree.nodes)} nodes) {tree.source}")
+
+    def on_transitions(self, msg: BtTransitions) -> None:
+        for line in convert.transition_logs(msg, self._tree):
+            self.ch.log.log(line)
+
+    def note(self, text: str, level: fm.LogLevel = fm.LogLevel.Info) -> None:
+        """A line of the bridge's own on ``/log`` (and in the Python log)."""
+        log.log(logging.WARNING if level == fm.LogLevel.Warning else logging.INFO, "%s", text)
+        stamp = self._pose.header.stamp if self._pose is not None else 0.0
+        self.ch.log.log(
+            fm.Log(timestamp=convert.timestamp(stamp), level=level, message=text, name="foxglove")
+        )
+
+    # -- Foxglove -> bus -----------------------------------------------------------------
+    def forward_goal(self, payload: bytes, topic: str) -> None:
+        """A goal a Foxglove client published: on ``{ns}/goal_pose``, or a warning."""
+        try:
+            goal = convert.goal_from_json(payload)
+        except (MessageError, ValueError) as exc:
+            self.note(f"goal on {topic} refused: {exc}", fm.LogLevel.Warning)
+            return
+        self.goals.put(goal)
+        p = goal.pose.position
+        self.note(f"goal from Foxglove: ({p.x:.2f}, {p.y:.2f}) in {goal.header.frame_id}")
