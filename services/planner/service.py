@@ -110,6 +110,9 @@ class PlannerService:
     def is_path_valid(self, req: IsPathValid.Request) -> IsPathValid.Response:
         grid = self.world.snapshot()
         poses = [(p.x, p.y, p.yaw) for p in req.path.poses]
+        if not poses:  # as Nav2's planner server: an empty path cannot be followed
+            log.warning("is_path_valid: received an empty path; it is not valid")
+            return IsPathValid.Response(is_valid=False, invalid_pose_indices=[])
         if grid is None or req.path.header.frame_id not in MAP_FRAMES:
             return IsPathValid.Response(
                 is_valid=False, invalid_pose_indices=list(range(len(poses)))

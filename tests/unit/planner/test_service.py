@@ -100,6 +100,14 @@ def test_is_path_valid_sees_a_new_obstacle_and_refuses_other_frames() -> None:
     assert not service(GlobalCostmap()).is_path_valid(IsPathValid.Request(path=path)).is_valid
 
 
+def test_an_empty_path_is_not_valid() -> None:
+    """As Nav2's planner server: a tree validating an empty path (Nav2's
+    consistent-replanning tree before its first plan) must plan, not follow it."""
+    reply = service(world()).is_path_valid(IsPathValid.Request(path=Path(poses=[])))
+    assert not reply.is_valid
+    assert reply.invalid_pose_indices == []
+
+
 def test_get_costs_answers_the_cell_costs_and_fails_off_the_map() -> None:
     grid = world()
     srv = service(grid)
