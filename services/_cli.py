@@ -11,10 +11,10 @@ import asyncio
 import contextlib
 import logging
 import math
-import signal
 from collections.abc import AsyncIterator, Callable, Coroutine
 from typing import Any, TypeVar
 
+from aiobt.system.signals import stop_on_signals as stop_on_signals  # for the services
 from aiobt.transport import Bus, BusConfigError, BusSettings, BusUnavailable, open_bus
 
 T = TypeVar("T")
@@ -53,15 +53,6 @@ def module_main(
         format="%(asctime)s %(levelname).1s %(name)s: %(message)s",
     )
     return run(args)
-
-
-def stop_on_signals() -> asyncio.Event:
-    """An event set by SIGINT or SIGTERM (call inside the running loop)."""
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
-    return stop
 
 
 async def unless_stopped(work: Coroutine[Any, Any, T], stopper: asyncio.Task[Any]) -> T | None:

@@ -13,13 +13,13 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import signal
 import sys
 from pathlib import Path
 
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.foxglove import DEFAULT_PORT, LAYOUT, LOCAL_HOST, BridgeOptions, running_bridge
 from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS
+from aiobt.system.signals import stop_on_signals
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 
 
@@ -82,10 +82,7 @@ def options_from_args(args: argparse.Namespace) -> BridgeOptions:
 
 
 async def bridge(args: argparse.Namespace, options: BridgeOptions) -> int:
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
+    stop = stop_on_signals()
     async with open_bus(BusSettings.from_args(args)) as bus, running_bridge(bus, options):
         await stop.wait()
     return 0

@@ -14,11 +14,11 @@ from __future__ import annotations
 import argparse
 import asyncio
 import logging
-import signal
 import sys
 from typing import Any
 
 from aiobt.cli.navigate import CONNECT_TIMEOUT
+from aiobt.system.signals import stop_on_signals
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 from aiobt.web import WebOptions, serve_web
 from aiobt_services._cli import non_negative, positive
@@ -80,10 +80,7 @@ def web_options(args: argparse.Namespace, prefix: str = "") -> WebOptions:
 
 async def serve(args: argparse.Namespace) -> int:
     options = web_options(args)
-    stop = asyncio.Event()
-    loop = asyncio.get_running_loop()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        loop.add_signal_handler(sig, stop.set)
+    stop = stop_on_signals()
     async with open_bus(BusSettings.from_args(args)) as bus, serve_web(bus, options):
         await stop.wait()
     return 0
