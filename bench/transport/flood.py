@@ -74,8 +74,7 @@ def row(name: str, calm: Figures, flooded: Figures, sent: int, control: float) -
     )
 
 
-async def run(args: argparse.Namespace) -> list[str]:
-    rows: list[str] = []
+async def run(args: argparse.Namespace) -> None:
     with running_router() as (_, endpoint), processes() as started:
         settings = BusSettings(connect=(endpoint,), namespace=f"flood{uuid.uuid4().hex[:6]}")
         where = ["--connect", endpoint, "--namespace", settings.namespace]
@@ -122,11 +121,8 @@ async def run(args: argparse.Namespace) -> list[str]:
                     )
                     if flood is SINK:
                         control[pid] = flooded.reply_median
-                    rows.append(
-                        row(name, calm, flooded, sent, control[pid] if flood is not SINK else 0.0)
-                    )
-                    print(rows[-1], flush=True)
-    return rows
+                    versus = control[pid] if flood is not SINK else 0.0
+                    print(row(name, calm, flooded, sent, versus), flush=True)
 
 
 def main() -> None:
