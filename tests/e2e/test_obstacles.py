@@ -85,8 +85,9 @@ async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_na
     done = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=200.0)
 
     assert done.state is GoalState.ABORTED, done.result
-    codes = [goals.last_code.get(leaf, 0) for leaf in LEAVES]
-    assert done.result.error_code == min(c for c in codes if c), (done.result, codes)
+    codes = [goals.last_code[leaf] for leaf in LEAVES if goals.last_code.get(leaf)]
+    assert codes, f"the watcher holds no leaf's error code ({goals.summary()})"
+    assert done.result.error_code == min(codes), (done.result, goals.last_code)
     assert done.result.error_code in {int(c) for c in FollowPathError}, done.result
     assert done.result.error_msg
     order = tree.activations(RECOVERY_CYCLE)

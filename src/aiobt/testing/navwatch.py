@@ -124,6 +124,7 @@ class ServerGoals:
     def __init__(self, bus: Bus, actions: Iterable[type[ActionDef[Any, Any, Any]]]) -> None:
         self.states: dict[str, dict[str, GoalState]] = {}
         self.last_code: dict[str, int] = {}  # the error code of each server's latest result
+        self.results: dict[str, int] = {}  # how many results each server put
         self._changed = asyncio.Event()
         self._subs: list[Subscription[Any]] = []
         for action in actions:
@@ -159,9 +160,21 @@ class ServerGoals:
     def _result_recorder(self, server: str) -> Callable[[ActionResult], None]:
         def record(result: ActionResult) -> None:
             self.last_code[server] = result.error_code
+            self.results[server] = self.results.get(server, 0) + 1
             self._changed.set()
 
         return record
+
+    def summary(self) -> str:
+        """Goals seen and results received per server (for a failing assertion's message)."""
+        return (
+            ", ".join(
+                f"{server}: {len(goals)} goals, {self.results.get(server, 0)} results"
+                for server, goals in self.states.items()
+                if goals or server in self.results
+            )
+            or "nothing received"
+        )
 
     def active(self) -> dict[str, list[str]]:
         """Goals not yet SUCCEEDED, CANCELED or ABORTED, per server (servers with none left out)."""

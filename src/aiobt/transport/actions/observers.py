@@ -6,6 +6,9 @@ listeners keep one flag per kind current, so unobserved goals cost no puts and
 a "yes" costs a dict lookup; a "no" is checked with Zenoh (the listener's news
 of a new subscriber can come after that subscriber's first message is due).
 Statuses are stamped with the time of the change on the server's (robot) clock.
+Statuses and results are put reliably (congestion control BLOCK, as the server's
+replies are): a monitor must not lose a goal's end to a moment of congestion,
+and there are a handful per goal. Feedback, a stream, may drop.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from aiobt.transport.bridge import JSON, callback
 from aiobt.transport.keys import ActionKeys
 
 Kind = Literal["status", "feedback", "result"]
+RELIABLE = zenoh.CongestionControl.BLOCK
 
 
 class Observers:
@@ -69,7 +73,13 @@ class Observers:
             return
         stamp = max(0.0, self._clock.now())
         status = GoalStatus(goal_id=goal_id, status=state, stamp=stamp, reason=reason)
-        self._session.put(self._keys.status(goal_id), status.to_json(), encoding=JSON)
+        self.put(self._keys.status(goal_id), status.to_json())
+
+    def put(self, key: str, payload: str | bytes, attachment: bytes | None = None) -> None:
+        """Put a status or a result on ``key``, reliably."""
+        self._session.put(
+            key, payload, encoding=JSON, congestion_control=RELIABLE, attachment=attachment
+        )
 
     def close(self) -> None:
         for entity in reversed(self._entities):

@@ -150,8 +150,7 @@ class ActionServer(Generic[G, R, F]):
         record.finish(tag, payload)
         self._observed.put_status(record.goal_id, state, result.error_msg)
         if self._observed("result"):
-            key = self.keys.result(record.goal_id)
-            self._session.put(key, payload, encoding=JSON, attachment=tag)
+            self._observed.put(self.keys.result(record.goal_id), payload, attachment=tag)
 
     # -- cancel, result query, feedback ------------------------------------------------------
 
