@@ -43,6 +43,20 @@ class ObstacleSpec:
             return self.radius
         return 0.5 * math.hypot(self.size_x, self.size_y)
 
+    def distance_to(self, x: float, y: float, at: Pose2D | None = None) -> float:
+        """How far the point (x, y) is from this obstacle's footprint placed at ``at``
+        (default: its spawn pose); 0 inside it. Exact for both shapes: a box's
+        corners are not rounded off into its bounding circle."""
+        pose = at or self.pose
+        dx, dy = x - pose.x, y - pose.y
+        if self.shape == "cylinder":
+            return max(0.0, math.hypot(dx, dy) - self.radius)
+        c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+        along, across = c * dx + s * dy, -s * dx + c * dy  # in the box's frame
+        out_x = max(0.0, abs(along) - 0.5 * self.size_x)
+        out_y = max(0.0, abs(across) - 0.5 * self.size_y)
+        return math.hypot(out_x, out_y)
+
     def moved_to(self, pose: Pose2D, motion: Motion | None) -> ObstacleSpec:
         return replace(self, pose=pose, motion=motion)
 

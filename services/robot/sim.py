@@ -197,7 +197,7 @@ class Simulation:
             raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) overlaps a wall")
         for oid, obstacle in self._obstacles.items():
             here = obstacle.spec.pose_at(self.time - obstacle.since)
-            if oid != ignore and here.distance_to(pose) < clearance + obstacle.spec.bounding_radius:
+            if oid != ignore and obstacle.spec.distance_to(pose.x, pose.y, here) < clearance:
                 raise PoseError(f"pose ({pose.x:.2f}, {pose.y:.2f}) overlaps obstacle '{oid}'")
 
     def teleport(self, pose: Pose2D) -> None:
@@ -253,7 +253,8 @@ class Simulation:
         return self._obstacles[oid]
 
     def _check_clear_of_robot(self, spec: ObstacleSpec, pose: Pose2D) -> None:
-        if pose.distance_to(self._true) < spec.bounding_radius + self.config.robot.radius:
+        robot = self._true
+        if spec.distance_to(robot.x, robot.y, pose) < self.config.robot.radius:
             raise ObstacleError(f"obstacle '{spec.id}' would overlap the robot")
 
     def _move_dynamic_obstacles(self) -> None:

@@ -129,6 +129,19 @@ def test_dynamic_obstacle_ping_pongs_along_segment() -> None:
     assert spec.pose_at(4.0).x == pytest.approx(0.0)
 
 
+def test_obstacle_distance_is_to_its_footprint_not_its_bounding_circle() -> None:
+    door = ObstacleSpec("door", "box", Pose2D(0.0, 0.0), size_x=0.8, size_y=0.3)
+    assert door.distance_to(0.0, 0.0) == 0.0  # inside
+    assert door.distance_to(0.0, 0.5) == pytest.approx(0.35)  # off a long side
+    assert door.distance_to(0.9, 0.0) == pytest.approx(0.5)  # off a short side
+    assert door.distance_to(0.7, 0.35) == pytest.approx(math.hypot(0.3, 0.2))  # off a corner
+    turned = door.distance_to(0.0, 0.5, Pose2D(0.0, 0.0, math.pi / 2))  # the long side faces y
+    assert turned == pytest.approx(0.1)
+    pillar = ObstacleSpec("p", "cylinder", Pose2D(1.0, 1.0), radius=0.25)
+    assert pillar.distance_to(1.0, 2.0) == pytest.approx(0.75)
+    assert pillar.distance_to(1.1, 1.0) == 0.0
+
+
 def test_dock_contains() -> None:
     assert Dock(1.0, 1.0, 0.5).contains(1.3, 1.3)
     assert not Dock(1.0, 1.0, 0.5).contains(1.5, 1.5)

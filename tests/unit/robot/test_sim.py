@@ -115,6 +115,11 @@ def test_obstacle_requests_are_checked(sim: Simulation) -> None:
         sim.spawn(ObstacleSpec("far", "box", Pose2D(10.0, 0.0)))
     with pytest.raises(ObstacleError, match="overlap the robot"):
         sim.spawn(ObstacleSpec("on", "box", Pose2D(0.2, 0.0)))
+    # a long thin box whose bounding circle reaches the robot, its side 0.3 m clear: allowed
+    sim.spawn(ObstacleSpec("thin", "box", Pose2D(0.0, 0.6), size_x=1.2, size_y=0.1))
+    with pytest.raises(ObstacleError, match="overlap the robot"):  # its side touching: refused
+        sim.spawn(ObstacleSpec("near", "box", Pose2D(0.0, -0.2), size_x=1.2, size_y=0.1))
+    sim.remove("thin")
     sim.spawn(ObstacleSpec("b", "box", Pose2D(1.0, 1.0)))
     with pytest.raises(ObstacleError, match="already exists"):
         sim.spawn(ObstacleSpec("b", "box", Pose2D(1.0, -1.0)))
