@@ -150,7 +150,9 @@ class Blackboard:
         if key.startswith("@"):
             self.root().unset(key[1:])
             return
-        self._storage.pop(key, None)
+        removed = self._storage.pop(key, None)
+        if removed is not None:  # whoever still holds it sees it is gone
+            removed.has_value = False
 
     def keys(self) -> Iterator[str]:
         return iter(self._storage)

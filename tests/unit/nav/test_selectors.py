@@ -33,6 +33,29 @@ async def test_outputs_the_default_until_a_message_then_the_last_message(local_b
     assert tree.root_blackboard["planner"] == "SmacHybrid"
 
 
+async def test_the_output_is_written_again_when_another_node_changed_or_unset_it(
+    local_bus: Bus,
+) -> None:
+    tree = nav_tree(local_bus, PLANNER)
+    board = tree.root_blackboard
+    assert await tree.tick_exactly_once() is S
+    written = board.entry("planner")
+    assert written is not None
+    board["planner"] = "Overwritten"
+    assert await tree.tick_exactly_once() is S
+    assert board["planner"] == "GridBased"
+    board.unset("planner")
+    assert written.has_value is False  # a holder of the removed entry can tell
+    assert await tree.tick_exactly_once() is S
+    assert board["planner"] == "GridBased"
+    again = board.entry("planner")
+    assert again is not None
+    assert again is not written
+    sequence = again.sequence_id
+    assert await tree.tick_exactly_once() is S
+    assert again.sequence_id == sequence  # unchanged: not written again
+
+
 async def test_no_message_and_no_default_fails(local_bus: Bus) -> None:
     tree = nav_tree(local_bus, '<ControllerSelector selected_controller="{c}"/>')
     assert await tree.tick_exactly_once() is F

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from typing import Any, ClassVar
 
+from aiobt.core.blackboard import Entry
 from aiobt.core.leaves import SyncActionNode
 from aiobt.core.ports import PortInfo, input_port, output_port
 from aiobt.core.status import FAILURE, IDLE, SUCCESS, Status
@@ -47,7 +48,7 @@ class Selector(NavNode, SyncActionNode):
     once, at construction.
     """
 
-    __slots__ = ("_default", "_fixed_topic", "_output_key", "_topic", "_topic_name")
+    __slots__ = ("_default", "_fixed_topic", "_output_key", "_topic", "_topic_name", "_written")
     DEFAULT_PORT: ClassVar[str] = ""
     OUTPUT_PORT: ClassVar[str] = ""
 
@@ -56,6 +57,7 @@ class Selector(NavNode, SyncActionNode):
         self._topic: SharedTopic[String] | None = None
         self._topic_name = ""
         self._output_key = self.config.outputs.get(self.OUTPUT_PORT)
+        self._written: Entry | None = None  # the output's entry, as last written or seen
         default = self.config.inputs.get(self.DEFAULT_PORT)
         self._default: str | None = "" if default is None else default.value
         if default is not None and default.key is not None:
@@ -89,10 +91,17 @@ class Selector(NavNode, SyncActionNode):
         key = self._output_key
         if key is None:  # not connected
             return SUCCESS
-        entry = self.config.blackboard.entry(key)
-        # unchanged: not written again (Nav2 rewrites it on every tick)
+        # unchanged: not written again (Nav2 rewrites it on every tick). The entry is
+        # kept between ticks: an unset entry says so (has_value False), so is looked up again
+        written = self._written
+        if written is not None and written.has_value and written.value == selected:
+            return SUCCESS
+        board = self.config.blackboard
+        entry = board.entry(key)
         if entry is None or entry.value != selected or not entry.has_value:
-            self.config.blackboard.set(key, selected)
+            board.set(key, selected)
+            entry = board.entry(key)
+        self._written = entry
         return SUCCESS
 
 
