@@ -34,8 +34,9 @@ class Costmap:
     The master grid is brought up to date lazily, when read. Obstacle cells
     changed by scans or marks are updated incrementally: their combined value
     is recomputed and inflation is redone in the window of the inflation radius
-    around them only (the result equals a full rebuild). A new static map, a
-    clearing or a moved window rebuilds everything. ``version`` counts the
+    around them only (the result equals a full rebuild). A new static map or a
+    clearing rebuilds everything (a rolling window's move does not: see
+    :class:`RollingCostmap`). ``version`` counts the
     master's changes; :meth:`changed_since` says where they were. Without a
     static layer the master starts from ``default_value`` (NO_INFORMATION when
     ``track_unknown_space``, else FREE).

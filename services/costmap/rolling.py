@@ -8,8 +8,8 @@ import numpy as np
 
 from .costmap import Costmap
 from .grid import NO_INFORMATION, CostArray, GridGeometry
-from .inflation import InflationParams
-from .obstacle_layer import ObstacleParams
+from .inflation import InflationParams, Window, inflate_window
+from .obstacle_layer import ObstacleParams, combine_max
 from .static_layer import resample
 
 
@@ -62,13 +62,54 @@ class RollingCostmap(Costmap):
         self.geometry = g.moved_to(g.origin_x + shift_c * res, g.origin_y + shift_r * res)
         if self._static_source is not None:
             self.static = resample(*self._static_source, self.geometry)
-        self.layers_replaced()
+            self.layers_replaced()
+        else:
+            self._shift_master(shift_r, shift_c)
+
+    def _shift_master(self, shift_r: int, shift_c: int) -> None:
+        """Move the combined and inflated grids with the window, and re-inflate only
+        where that can change anything: the new cells and the radius around them, and
+        the radius inside the edges the old cells left by (their obstacles no longer
+        inflate anything). Equal to a rebuild; a rebuild if one is due anyway."""
+        if self._dirty or self._base is None or self._master is None or self._pending:
+            self.layers_replaced()  # pending cells are indices of the old window
+            return
+        height, width = self.geometry.shape
+        bound = self.geometry.cell_distance(self.inflation.inflation_radius)
+        if abs(shift_r) + bound >= height // 2 or abs(shift_c) + bound >= width // 2:
+            self.layers_replaced()  # most of the window is new: rebuilding is cheaper
+            return
+        unknown = np.full((1,), NO_INFORMATION, np.uint8)
+        fresh = int(combine_max(np.full((1,), self.default_value, np.uint8), unknown)[0])
+        self._base = _shifted(self._base, shift_r, shift_c, fill=fresh)
+        self._master = _shifted(self._master, shift_r, shift_c)
+        for window in _bands(shift_r, shift_c, bound, height, width):
+            inflate_window(self._base, self._master, window, self.geometry, self.inflation)
+        self._last_scan = None
+        self._record(None)  # the cells moved: a reader of changed windows starts over
 
 
-def _shifted(grid: CostArray, shift_r: int, shift_c: int) -> CostArray:
-    """``out[r, c] = grid[r + shift_r, c + shift_c]`` where defined, unknown elsewhere."""
+def _bands(shift_r: int, shift_c: int, bound: int, height: int, width: int) -> list[Window]:
+    """The windows (row0, row1, col0, col1) to re-inflate after a shift: along each
+    axis that moved, the new cells plus ``bound`` on their side, ``bound`` on the other."""
+    bands = [(0, height, col0, col1) for col0, col1 in _strips(shift_c, bound, width)]
+    bands += [(row0, row1, 0, width) for row0, row1 in _strips(shift_r, bound, height)]
+    return bands
+
+
+def _strips(shift: int, bound: int, size: int) -> list[tuple[int, int]]:
+    if shift == 0:
+        return []
+    new = abs(shift) + bound
+    if shift > 0:  # new cells at the high end
+        return [(size - new, size), (0, bound)]
+    return [(0, new), (size - bound, size)]
+
+
+def _shifted(grid: CostArray, shift_r: int, shift_c: int, fill: int = NO_INFORMATION) -> CostArray:
+    """``out[r, c] = grid[r + shift_r, c + shift_c]`` where defined, ``fill`` elsewhere."""
     height, width = grid.shape
-    out = np.full_like(grid, NO_INFORMATION)
+    out = np.full_like(grid, fill)
     src_r = slice(max(0, shift_r), min(height, height + shift_r))
     dst_r = slice(max(0, -shift_r), min(height, height - shift_r))
     src_c = slice(max(0, shift_c), min(width, width + shift_c))

@@ -15,6 +15,7 @@ from aiobt_services.costmap import (
     Costmap,
     GridGeometry,
     InflationParams,
+    RollingCostmap,
     Scan,
     combine_max,
     inflate,
@@ -170,3 +171,44 @@ def test_the_same_scan_again_is_skipped_until_another_change_to_the_obstacles() 
     assert costmap.mark_points([1.55], [1.55]) == 1  # on the middle ray's free stretch
     assert costmap.update_from_scan(scan) == 1  # applied again: clears that mark
     assert np.array_equal(costmap.master, full_master(costmap))
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    inflation=params(),
+    seed=st.integers(0, 2**32 - 1),
+    unknown=st.booleans(),
+    moves=st.lists(st.tuples(st.floats(-0.3, 0.3), st.floats(-0.3, 0.3)), max_size=6),
+)
+def test_a_rolling_window_moved_with_its_master_equals_a_rebuild(
+    inflation: InflationParams,
+    seed: int,
+    unknown: bool,
+    moves: list[tuple[float, float]],
+) -> None:
+    rng = np.random.default_rng(seed)
+    window = RollingCostmap(2.0, 1.6, 0.05, inflation, track_unknown_space=unknown)
+    x = y = 0.0
+    for dx, dy in [(0.0, 0.0), *moves]:
+        x, y = x + dx, y + dy
+        window.update_origin(x, y)  # a master up to date is moved, not rebuilt (mostly)
+        _assert_as_rebuilt(window)
+        window.mark_points(x + rng.uniform(-1.0, 1.0, 4), y + rng.uniform(-0.8, 0.8, 4))
+        _assert_as_rebuilt(window)
+
+
+def test_a_small_move_shifts_the_master_instead_of_rebuilding_it() -> None:
+    window = RollingCostmap(2.0, 2.0, 0.05, InflationParams(0.1, 0.3, 3.0))
+    window.update_origin(0.0, 0.0)
+    window.mark_points([0.5, -0.9, 0.2], [0.3, 0.1, -0.95])  # one near each edge
+    version = window.version
+    assert window.master.any()  # read: the marks applied
+    window.update_origin(0.23, -0.12)
+    assert window.version == version + 2  # the marks, then the shift: no rebuild pending
+    _assert_as_rebuilt(window)
+
+
+def _assert_as_rebuilt(window: RollingCostmap) -> None:
+    moved = window.master.copy()
+    window.layers_replaced()
+    np.testing.assert_array_equal(moved, window.master)
