@@ -3,14 +3,22 @@
 aiobt's test plugin (fixtures ``manual_clock``, ``stubs``, ``bt_factory``) is
 loaded through its ``pytest11`` entry point (``aiobt.testing.plugin``), the
 same way it reaches users' test suites.
+
+Hypothesis runs without its per-example deadline: a deadline is a timed
+assertion, and on two loaded cores an example that takes 200 ms is not a bug
+(each test is still bounded by pytest-timeout).
 """
 
 from collections.abc import AsyncIterator
 
 import pytest
+from hypothesis import settings
 
 from aiobt.testing.bus import open_local_bus
 from aiobt.transport import Bus
+
+settings.register_profile("aiobt", deadline=None)
+settings.load_profile("aiobt")
 
 
 @pytest.fixture
