@@ -116,11 +116,12 @@ class PlannerActions:
         table, result = ComputePathToPose.ErrorCode, ComputePathToPose.Result
         try:
             start = pose_of(goal.start, "start") if goal.use_start else None
-            target = pose_of(goal.goal, "goal")
+            targets = [pose_of(v, f"viapoint {i}") for i, v in enumerate(goal.viapoints)]
+            targets.append(pose_of(goal.goal, "goal"))
         except PlanningError as exc:
             return result(error_code=int(table[exc.reason]), error_msg=exc.message)
         out: ComputePathToPose.Result = await self._plan(
-            table, result, start, [target], goal.planner_id
+            table, result, start, targets, goal.planner_id
         )
         return out
 

@@ -22,6 +22,7 @@ Seconds = float
 class _ComputePathToPoseGoal(Msg):
     goal: PoseStamped
     start: PoseStamped = Field(default_factory=PoseStamped)
+    viapoints: list[PoseStamped] = Field(default_factory=list)  # passed in order, before goal
     use_start: bool = False
     planner_id: str = ""
 

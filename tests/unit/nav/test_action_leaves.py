@@ -71,6 +71,17 @@ async def test_a_start_pose_is_used_when_given(local_bus: Bus) -> None:
     assert seen[0].start == start
 
 
+async def test_viapoints_are_sent_with_the_goal(local_bus: Bus) -> None:
+    seen: list[Any] = []
+    planner(local_bus, seen=seen)
+    via = [PoseStamped.from_xy_yaw(1.0, 0.0, 0.0), PoseStamped.from_xy_yaw(1.5, 1.0, 0.0)]
+    tree = nav_tree(local_bus, '<ComputePathToPose goal="{goal}" viapoints="{via}"/>',
+                    goal=GOAL, via=via)  # fmt: skip
+    assert await run_to_end(tree) is S
+    assert seen[0].viapoints == via
+    assert seen[0].goal == GOAL
+
+
 async def test_a_planner_error_goes_to_the_error_ports_and_empties_the_path(
     local_bus: Bus,
 ) -> None:

@@ -57,6 +57,23 @@ async def test_plan_from_the_robot_pose() -> None:
     assert all(abs(p.x - 2.5) > 0.05 or 0.8 < p.y < 1.7 for p in result.path.poses)
 
 
+async def test_viapoints_are_passed_in_order_before_the_goal() -> None:
+    actions = PlannerActions(world())
+    via = [PoseStamped.from_xy_yaw(1.0, 4.0), PoseStamped.from_xy_yaw(4.0, 1.5)]
+    goal = ComputePathToPose.Goal(goal=PoseStamped.from_xy_yaw(4.0, 4.0), viapoints=via)
+    result = await actions.compute_path_to_pose(goal, None)
+    assert result.error_code == 0, result.error_msg
+    xy = [(p.x, p.y) for p in result.path.poses]
+    first_via, second_via = xy.index((1.0, 4.0)), xy.index((4.0, 1.5))
+    assert 0 < first_via < second_via < len(xy) - 1
+    assert xy[-1] == (4.0, 4.0)
+    bad = ComputePathToPose.Goal(
+        goal=PoseStamped.from_xy_yaw(4.0, 4.0), viapoints=[PoseStamped.from_xy_yaw(9.0, 1.0)]
+    )
+    refused = await actions.compute_path_to_pose(bad, None)
+    assert refused.error_code == To.GOAL_OUTSIDE_MAP, refused
+
+
 @pytest.mark.parametrize(
     ("goal", "code", "text"),
     [

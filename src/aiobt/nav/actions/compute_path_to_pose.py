@@ -23,12 +23,12 @@ class ComputePathToPose(BtAction):
       NO_VALID_PATH), or the server did not accept the goal in time;
     - a new ``goal`` (or ``start``) while RUNNING is sent to the planner, which
       preempts the old request; the leaf stays RUNNING.
-    ``start`` is used when given (or when ``use_start`` is true); ``viapoints``
-    are refused (this planner has none: use ComputePathThroughPoses).
+    ``start`` is used when given (or when ``use_start`` is true); the path passes
+    through ``viapoints`` (in order) before the goal.
     """
 
     ACTION = ComputePathToPoseAction
-    WATCHED = ("goal", "start")
+    WATCHED = ("goal", "start", "viapoints")
     PORTS = action_ports(
         "Compute path to pose",
         ComputePathToPoseAction.name,
@@ -41,19 +41,15 @@ class ComputePathToPose(BtAction):
     )
 
     def make_goal(self) -> Any:
-        if self.get_input("viapoints", None):
-            raise ValueError(
-                "[viapoints]: the planner server plans to one goal; "
-                "use ComputePathThroughPoses for intermediate poses"
-            )
         goal = self.get_input_or_blackboard("goal")
+        viapoints = self.get_input("viapoints", None) or []
         start = self.get_input("start", None)
         use_start = self.get_input("use_start", None)
         if use_start and start is None:
             self.log.error("%s: use_start is true but no start is given: planning from the robot",
                            self.path)  # fmt: skip
         use = bool(start is not None and (use_start is None or use_start))
-        fields: dict[str, Any] = {"goal": goal, "use_start": use}
+        fields: dict[str, Any] = {"goal": goal, "use_start": use, "viapoints": list(viapoints)}
         if use:
             fields["start"] = start
         planner_id = self.get_input("planner_id", "")
