@@ -66,7 +66,8 @@ def oriented_footprint(x: float, y: float, yaw: float, footprint: npt.ArrayLike)
 
 
 def footprint_cost(grid: CostGrid, x: float, y: float, yaw: float, footprint: npt.ArrayLike) -> int:
-    """Nav2 ``footprintCost``: the highest cost on the footprint's outline.
+    """Nav2 ``footprintCost``: the highest cost on the footprint's outline, LETHAL
+    if any cell of it is (even where others are unknown, which is higher).
 
     With fewer than 3 vertices the robot is a point (circular robots rely on
     the inflation layer's inscribed cost).
@@ -80,4 +81,5 @@ def footprint_cost(grid: CostGrid, x: float, y: float, yaw: float, footprint: np
         for a, b in zip(vertices, np.roll(vertices, -1, axis=0), strict=True)
     ]
     outline = np.concatenate(edges)
-    return int(points_cost(grid, outline[:, 0], outline[:, 1]).max())
+    costs = points_cost(grid, outline[:, 0], outline[:, 1])
+    return LETHAL if (costs == LETHAL).any() else int(costs.max())  # lethal beats unknown

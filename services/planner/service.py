@@ -25,7 +25,7 @@ from aiobt.transport import Bus
 
 from .actions import PlannerActions
 from .state import MAP_FRAMES, GlobalCostmap
-from .validity import invalid_poses, pose_costs
+from .validity import invalid_poses, parse_footprint, pose_costs
 
 log = logging.getLogger("aiobt_services.planner.service")
 COSTMAP = "global_costmap"
@@ -108,17 +108,29 @@ class PlannerService:
         return ClearCostmapResponse(message="cleared around the pose")
 
     def is_path_valid(self, req: IsPathValid.Request) -> IsPathValid.Response:
-        grid = self.world.snapshot()
+        """Nav2's IsPathValid service (see :func:`invalid_poses`); ``success`` false,
+        with the reason, for an empty path, no map yet, another frame, an unknown
+        ``layer_name`` or a bad ``footprint``."""
         poses = [(p.x, p.y, p.yaw) for p in req.path.poses]
-        if not poses:  # as Nav2's planner server: an empty path cannot be followed
-            log.warning("is_path_valid: received an empty path; it is not valid")
-            return IsPathValid.Response(is_valid=False, invalid_pose_indices=[])
-        if grid is None or req.path.header.frame_id not in MAP_FRAMES:
-            return IsPathValid.Response(
-                is_valid=False, invalid_pose_indices=list(range(len(poses)))
-            )
+        try:
+            if not poses:  # as Nav2's planner server: an empty path cannot be followed
+                raise ValueError("the path is empty")
+            if req.path.header.frame_id not in MAP_FRAMES:
+                raise ValueError(f"the path is in frame '{req.path.header.frame_id}', not 'map'")
+            grid = self.world.layer(req.layer_name)
+            footprint = parse_footprint(req.footprint) if req.footprint else None
+        except (ValueError, LookupError) as exc:
+            log.warning("is_path_valid: %s; it is not valid", exc)
+            return IsPathValid.Response(is_valid=False, success=False, message=str(exc))
         bad = invalid_poses(
-            grid, poses, req.max_cost, req.consider_unknown_as_obstacle, self.world.robot_xy()
+            grid,
+            poses,
+            req.max_cost,
+            req.consider_unknown_as_obstacle,
+            self.world.robot_xy(),
+            stop_at_first_collision=req.stop_at_first_collision,
+            max_lookahead_distance=req.max_lookahead_distance,
+            footprint=footprint,
         )
         return IsPathValid.Response(is_valid=not bad, invalid_pose_indices=bad)
 

@@ -133,6 +133,25 @@ class GlobalCostmap:
         self._traversal = (version, traversal)
         return traversal
 
+    def layer(self, name: str) -> CostGrid:
+        """The costs to check a path on: the master grid for "", or one layer's own
+        by Nav2's default plugin names ("static_layer", "obstacle_layer"; the
+        inflation layer has no costmap of its own, as in Nav2). LookupError
+        without a map yet or for any other name."""
+        grid = self.snapshot()
+        if grid is None or self.costmap is None:
+            raise LookupError("no map received yet on {ns}/map")
+        if name == "":
+            return grid
+        own = {"static_layer": self.costmap.static, "obstacle_layer": self.costmap.obstacles}
+        costs = own.get(name)
+        if costs is None:
+            raise LookupError(
+                f"layer_name '{name}': no such layer with a costmap of its own "
+                "(the global costmap's are static_layer and obstacle_layer)"
+            )
+        return CostGrid(self.costmap.geometry, costs.copy())
+
     def robot_xy(self) -> tuple[float, float] | None:
         return None if self.pose is None else (self.pose[0], self.pose[1])
 

@@ -76,14 +76,22 @@ class ClearCostmapAroundPose(_ClearService):
 
 
 class _IsPathValidRequest(Msg):
+    """nav2_msgs/IsPathValid: checked from the path's pose closest to the robot."""
+
     path: Path
     max_cost: int = Field(default=253, ge=0, le=255)
     consider_unknown_as_obstacle: bool = False
+    layer_name: str = ""  # "": the full costmap; else one layer's own costs
+    footprint: str = ""  # "[[x, y], ...]": checked with this polygon; "": the robot's
+    stop_at_first_collision: bool = True
+    max_lookahead_distance: float = -1.0  # m along the path from the closest pose; < 0: all
 
 
 class _IsPathValidResponse(Msg):
     is_valid: bool
     invalid_pose_indices: list[int] = Field(default_factory=list)
+    success: bool = True  # False: the check could not be made (``message`` says why)
+    message: str = ""
 
 
 class IsPathValid:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import logging
 from typing import Any
 
 import pytest
@@ -129,12 +130,35 @@ async def test_validate_path_fails_and_lists_the_first_collision(local_bus: Bus)
     assert tree.root_blackboard["c"] == path.poses[3:6]
 
 
-async def test_validate_path_checks_only_the_lookahead(local_bus: Bus) -> None:
+async def test_validate_path_asks_the_service_for_nav2s_whole_check(local_bus: Bus) -> None:
     requests = validity(local_bus, [])
-    tree = nav_tree(local_bus, '<ValidatePath path="{p}" max_lookahead_distance="0.55"/>',
-                    p=straight_path(2.0))  # fmt: skip
+    square = "[[0.1, 0.1], [0.1, -0.1], [-0.1, -0.1], [-0.1, 0.1]]"
+    body = (
+        '<ValidatePath path="{p}" max_lookahead_distance="0.55" layer_name="obstacle_layer" '
+        f'footprint="{square}" stop_at_first_collision="false"/>'
+    )
+    path = straight_path(2.0)
+    tree = nav_tree(local_bus, body, p=path)
     assert await run_to_end(tree) is S
-    assert len(requests[0].path.poses) == 6  # 0.0 .. 0.5 m
+    sent = requests[0]
+    assert sent.path == path  # the service measures the lookahead, from the robot
+    assert (sent.max_lookahead_distance, sent.stop_at_first_collision) == (0.55, False)
+    assert (sent.layer_name, sent.footprint) == ("obstacle_layer", square)
+
+
+async def test_validate_path_fails_when_the_service_cannot_check(
+    local_bus: Bus, caplog: pytest.LogCaptureFixture
+) -> None:
+    def handle(request: Any) -> Any:
+        return IsPathValid.Response(is_valid=False, success=False, message="no map received yet")
+
+    local_bus.serve("is_path_valid", IsPathValid.Request, IsPathValid.Response, handle)
+    tree = nav_tree(local_bus, '<ValidatePath path="{p}" collision_poses="{c}"/>',
+                    p=straight_path(2.0))  # fmt: skip
+    with caplog.at_level(logging.WARNING):
+        assert await run_to_end(tree) is F
+    assert tree.root_blackboard["c"] == []
+    assert any("no map received yet" in r.getMessage() for r in caplog.records)
 
 
 async def test_is_path_valid_is_a_condition_with_the_same_check(local_bus: Bus) -> None:

@@ -90,14 +90,51 @@ def test_is_path_valid_sees_a_new_obstacle_and_refuses_other_frames() -> None:
     path = Path(poses=poses)
     assert srv.is_path_valid(IsPathValid.Request(path=path)).is_valid
     see(grid, 0.5, 5.0 + 1.0, 5.0 + 1.0)  # an obstacle 0.5 m ahead on the path
-    reply = srv.is_path_valid(IsPathValid.Request(path=path))
-    assert not reply.is_valid
-    assert 10 in reply.invalid_pose_indices
+    first = srv.is_path_valid(IsPathValid.Request(path=path))
+    assert not first.is_valid
+    assert len(first.invalid_pose_indices) == 1  # stop_at_first_collision, Nav2's default
+    every = srv.is_path_valid(IsPathValid.Request(path=path, stop_at_first_collision=False))
+    assert every.invalid_pose_indices[0] == first.invalid_pose_indices[0]
+    assert 10 in every.invalid_pose_indices  # the obstacle's own cell
+    near = srv.is_path_valid(IsPathValid.Request(path=path, max_lookahead_distance=0.2))
+    assert near.is_valid  # the 5 poses within 0.2 m of the robot are clear
     odom = Path.model_validate({"header": {"frame_id": "odom"}, "poses": poses})
     reply = srv.is_path_valid(IsPathValid.Request(path=odom))
-    assert not reply.is_valid
-    assert reply.invalid_pose_indices == list(range(20))
-    assert not service(GlobalCostmap()).is_path_valid(IsPathValid.Request(path=path)).is_valid
+    assert (reply.is_valid, reply.success) == (False, False)
+    assert "'odom'" in reply.message
+    no_map = service(GlobalCostmap()).is_path_valid(IsPathValid.Request(path=path))
+    assert (no_map.is_valid, no_map.success) == (False, False)
+    assert "no map" in no_map.message
+
+
+def test_is_path_valid_on_one_layer_or_with_a_footprint() -> None:
+    grid = world()
+    srv = service(grid)
+    poses = [PoseStamped.from_xy_yaw(1.0 + 0.05 * i, 1.0) for i in range(20)]
+    path = Path(poses=poses)
+    see(grid, 0.5, 5.0 + 1.0, 5.0 + 1.0)  # an obstacle 0.5 m ahead on the path
+    check = IsPathValid.Request(path=path, stop_at_first_collision=False)
+    obstacles = srv.is_path_valid(check.model_copy(update={"layer_name": "obstacle_layer"}))
+    assert obstacles.success
+    assert obstacles.invalid_pose_indices == [10]  # the mark itself, not its inflation
+    static = srv.is_path_valid(check.model_copy(update={"layer_name": "static_layer"}))
+    assert (static.success, static.is_valid) == (True, True)
+    inflation = srv.is_path_valid(check.model_copy(update={"layer_name": "inflation_layer"}))
+    assert (inflation.success, inflation.is_valid) == (False, False)
+    assert "inflation_layer" in inflation.message
+    # a 0.2 m square on the obstacle layer: its outline (Nav2's footprint cost) meets the
+    # mark 0.1 m before and after its centre does
+    square = "[[0.1, 0.1], [0.1, -0.1], [-0.1, -0.1], [-0.1, 0.1]]"
+    boxed = srv.is_path_valid(
+        check.model_copy(update={"footprint": square, "layer_name": "obstacle_layer"})
+    )
+    assert boxed.success
+    assert 8 in boxed.invalid_pose_indices
+    assert 12 in boxed.invalid_pose_indices
+    assert not {0, 1, 2, 3, 4, 5, 6, 14, 15} & set(boxed.invalid_pose_indices)
+    bad = srv.is_path_valid(check.model_copy(update={"footprint": "[[0, 0], [1, 1]]"}))
+    assert (bad.success, bad.is_valid) == (False, False)
+    assert "at least 3" in bad.message
 
 
 def test_an_empty_path_is_not_valid() -> None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 from aiobt.core.node import NodeKind
@@ -31,9 +30,10 @@ class ValidatePath(BtService):
     - FAILURE: a pose costs more than ``max_cost``; ``collision_poses`` lists them
       (only the first unless ``stop_at_first_collision`` is false), or the service
       did not answer within ``server_timeout``.
-    ``max_lookahead_distance`` >= 0 checks only that length of path from its start.
-    The planner checks the full costmap with the robot's footprint: a
-    ``layer_name`` or ``footprint`` is refused with a clear error.
+    The planner checks as Nav2's planner server does: from the pose closest to
+    the robot, ``max_lookahead_distance`` m along the path from there (all if
+    < 0), on ``layer_name``'s own costs (static_layer, obstacle_layer; "" the
+    full costmap), with the ``footprint`` polygon if given (else the round robot).
     """
 
     SERVICE = IsPathValidSrv.service_name
@@ -51,17 +51,15 @@ class ValidatePath(BtService):
         self._path = Path()
 
     def make_request(self) -> Msg:
-        for unsupported in ("layer_name", "footprint"):
-            if self.get_input(unsupported, ""):
-                raise ValueError(
-                    f"[{unsupported}]: the planner's is_path_valid checks the full "
-                    "costmap with the robot's footprint; leave it empty"
-                )
-        self._path = _ahead(self.get_input_or_blackboard("path"), self._lookahead())
+        self._path = self.get_input_or_blackboard("path")
         return IsPathValidSrv.Request(
             path=self._path,
             max_cost=min(self.get_input("max_cost"), 255),
             consider_unknown_as_obstacle=self.get_input("consider_unknown_as_obstacle"),
+            layer_name=self.get_input("layer_name", "") or "",
+            footprint=self.get_input("footprint", "") or "",
+            stop_at_first_collision=self._first_only(),
+            max_lookahead_distance=self._lookahead(),
         )
 
     def _lookahead(self) -> float:
@@ -76,7 +74,12 @@ class ValidatePath(BtService):
         if response.is_valid:
             self.set_output("collision_poses", [])
             return SUCCESS
-        if self._first_only():
+        if not response.success:
+            self.log.warning("%s: the path could not be validated: %s", self.path,
+                             response.message or "the service gave no reason")  # fmt: skip
+            self.set_output("collision_poses", [])
+            return FAILURE
+        if self._first_only():  # the service stops there too; a server that did not, cut
             indices = indices[:1]
         self.log.warning("%s: path validation failed. Invalid pose indices: %s", self.path, indices)
         self.set_output("collision_poses", [self._path.poses[i] for i in indices])
@@ -100,16 +103,3 @@ class IsPathValid(ValidatePath):
 
     def _first_only(self) -> bool:
         return not self.get_input("check_full_path", False)
-
-
-def _ahead(path: Path, distance: float) -> Path:
-    """The first ``distance`` metres of ``path`` (all of it if ``distance`` < 0)."""
-    if distance < 0 or not path.poses:
-        return path
-    travelled, last = 0.0, path.poses[0]
-    for index, pose in enumerate(path.poses[1:], start=1):
-        travelled += math.hypot(pose.x - last.x, pose.y - last.y)
-        if travelled > distance:
-            return path.model_copy(update={"poses": path.poses[:index]})
-        last = pose
-    return path
