@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 from aiobt_services.controller.collision import CollisionChecker
+from aiobt_services.controller.freshness import FRESH, PoseAge
 from aiobt_services.controller.geometry import STOP, Pose2D, Velocity
 from aiobt_services.controller.latency import holding_time
 
@@ -42,11 +43,12 @@ class BehaviorInputError(ValueError):
 
 @dataclass(slots=True, frozen=True)
 class Inputs:
-    """One cycle's view of the world: clock time, odometry pose and teleop input."""
+    """One cycle's view of the world: clock time, odometry pose (and how fresh it is,
+    :class:`~aiobt_services.controller.freshness.PoseAge`) and teleop input."""
 
     now: float
     pose: Pose2D | None = None
-    pose_stamp: float = -math.inf
+    pose_age: PoseAge = FRESH
     teleop: Velocity | None = None
     teleop_stamp: float = -math.inf
     lead: float = 0.0  # clock s from ``pose`` until a command sent now acts on the base
@@ -126,13 +128,9 @@ class TimedBehavior(ABC):
                 Outcome.TF_ERROR,
                 f"no valid robot pose (odometry) within {self.safety.initial_pose_wait:.1f} s",
             )
-        age = inputs.now - inputs.pose_stamp
-        if age > self.safety.pose_timeout:
-            return self.fail(
-                Outcome.TF_ERROR,
-                f"robot pose is stale ({age:.2f} s old, pose_timeout "
-                f"{self.safety.pose_timeout:.2f} s); stopping",
-            )
+        stale = inputs.pose_age.stale("odom", self.safety.pose_timeout)
+        if stale is not None:
+            return self.fail(Outcome.TF_ERROR, stale)
         return self._cycle(inputs, inputs.pose)
 
     @abstractmethod

@@ -43,7 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--pose-timeout",
         type=positive,
         default=0.5,
-        help="stale odometry, s (default: %(default)s)",
+        help="a pose not renewed for this long (wall s) while the robot's own time "
+        "moved on as long, or the robot sent nothing, is stale, s (default: %(default)s)",
     )
     add_local_costmap_arguments(group)
 

@@ -20,6 +20,7 @@ from aiobt.msgs import AssistedTeleop as AssistedTeleopAction
 from aiobt.msgs import BackUp, DriveOnHeading, Empty, Msg, Spin, Twist, Wait
 from aiobt.transport import Bus, GoalHandle, Publisher
 from aiobt_services.controller.collision import CollisionChecker
+from aiobt_services.controller.freshness import FRESH
 from aiobt_services.controller.geometry import STOP, Velocity
 from aiobt_services.controller.local_costmap import FrameShift, LocalCostmap, frame_transform
 from aiobt_services.controller.robot_io import RobotTracker, sleep_bounded, twist_of
@@ -211,7 +212,7 @@ class BehaviorService:
 
     def _inputs(self) -> Inputs:
         self.tracker.refresh_costmap()
-        states = self.tracker.states
+        states = self.tracker.snapshot()
         odom = states.get("odom")
         if odom is not None and "map" in states:
             self._shift.transform = frame_transform(states["map"].pose, odom.pose)
@@ -219,7 +220,7 @@ class BehaviorService:
         return Inputs(
             now=self.clock.now(),
             pose=odom.pose if odom else None,
-            pose_stamp=odom.stamp if odom else float("-inf"),
+            pose_age=odom.age if odom else FRESH,
             teleop=teleop,
             teleop_stamp=teleop_stamp,
             lead=self.tracker.lead("odom"),

@@ -49,7 +49,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--pose-timeout",
         type=positive,
         default=0.5,
-        help="stale-pose limit, s (default: %(default)s)",
+        help="a pose not renewed for this long (wall s) while the robot's own time "
+        "moved on as long, or the robot sent nothing, is stale, s (default: %(default)s)",
     )
     add(
         "--failure-tolerance",

@@ -2,7 +2,8 @@
 
 :class:`RobotTracker` keeps the newest robot state per frame (``map`` from
 ``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped on the injected clock at
-arrival, so a stale pose is detected against the same clock the loop runs on.
+arrival (for the latency compensation, :meth:`RobotTracker.lead`), and whether
+each is fresh by the robot's own stamps and the wall clock (:mod:`.freshness`).
 """
 
 from __future__ import annotations
@@ -11,7 +12,9 @@ import argparse
 import asyncio
 import logging
 import math
+import time
 from collections.abc import Callable
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 from aiobt.core.clock import Clock, ManualClock, SystemClock
@@ -19,6 +22,7 @@ from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
 from aiobt.system.announce import announce
 from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
 
+from .freshness import Freshness
 from .geometry import STOP, Pose2D, Velocity
 from .latency import LoopDelay
 from .local_costmap import LocalCostmap, LocalCostmapParams
@@ -43,22 +47,45 @@ class RobotTracker:
     speed-up of 10 is 100 scans a second.
     """
 
-    __slots__ = ("_clock", "_pending_scan", "_velocity", "costmap", "delay", "states")
+    __slots__ = (
+        "_clock",
+        "_pending_scan",
+        "_velocity",
+        "costmap",
+        "delay",
+        "freshness",
+        "states",
+    )
 
-    def __init__(self, clock: Clock, costmap: LocalCostmap | None = None) -> None:
+    def __init__(
+        self,
+        clock: Clock,
+        costmap: LocalCostmap | None = None,
+        wall: Callable[[], float] = time.monotonic,
+    ) -> None:
         self._clock = clock
         self.costmap = costmap
         self.states: dict[str, RobotState] = {}
         self._velocity = STOP
         self._pending_scan: tuple[LaserScan, Pose2D] | None = None
         self.delay = LoopDelay()
+        self.freshness = Freshness(wall)
+
+    def snapshot(self) -> dict[str, RobotState]:
+        """The newest state per frame, each with its age as of now (see :mod:`.freshness`)."""
+        age = self.freshness.age
+        return {frame: replace(state, age=age(frame)) for frame, state in self.states.items()}
 
     def sent(self, cmd: Velocity) -> None:
         """Tell the delay estimate that ``cmd`` was just published."""
         self.delay.commanded(self._clock.now(), cmd, self._velocity)
 
     def lead(self, frame: str) -> float:
-        """Clock seconds from the newest pose in ``frame`` until a command sent now acts."""
+        """Clock seconds from the newest pose in ``frame`` until a command sent now acts.
+
+        Its arrival on this clock plus the command-to-odometry round trip: the round
+        trip holds the pose's own delivery lag, so this is the pose's age by its stamp
+        plus the command's way to the base, whatever the stamps' clock."""
         state = self.states.get(frame)
         age = max(0.0, self._clock.now() - state.stamp) if state is not None else 0.0
         return age + self.delay.estimate
@@ -74,13 +101,16 @@ class RobotTracker:
         pose = Pose2D(msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
         now = self._clock.now()
         self.states["odom"] = RobotState(pose, self._velocity, now)
+        self.freshness.received("odom", msg.header.stamp)
         self.delay.observed(now, self._velocity)
 
     def on_pose(self, msg: PoseStamped) -> None:
         pose = Pose2D(msg.x, msg.y, msg.yaw)
         self.states["map"] = RobotState(pose, self._velocity, self._clock.now())
+        self.freshness.received("map", msg.header.stamp)
 
     def on_scan(self, msg: LaserScan) -> None:
+        self.freshness.received("scan", msg.header.stamp)
         state = self.states.get("map")
         if self.costmap is not None and state is not None:
             self._pending_scan = (msg, state.pose)

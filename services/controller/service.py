@@ -156,7 +156,7 @@ class ControllerService:
 
     def _step(self, session: FollowPathSession) -> StepResult:
         self.tracker.refresh_costmap()
-        states = self.tracker.states
+        states = self.tracker.snapshot()
         if session.request.path.frame_id == "odom" and {"map", "odom"} <= states.keys():
             self._shift.transform = frame_transform(states["map"].pose, states["odom"].pose)
         lead = self.tracker.lead(session.request.path.frame_id)

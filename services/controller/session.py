@@ -18,6 +18,7 @@ from .checkers import CheckerRegistry, GoalChecker, ProgressChecker, default_che
 from .collision import CollisionChecker
 from .dwb import DWBController
 from .errors import ControllerError
+from .freshness import FRESH, PoseAge
 from .geometry import STOP, PlanarPath, Pose2D, Velocity
 from .rpp import RegulatedPurePursuit
 from .tracking import TrackingFeedback, project_onto_path, search_stop, tracking_feedback
@@ -35,11 +36,13 @@ class FollowRequest:
 
 @dataclass(slots=True, frozen=True)
 class RobotState:
-    """A pose (and measured velocity) in one frame, stamped on the robot clock."""
+    """A pose (and measured velocity) in one frame: ``stamp`` its arrival on the service's
+    clock, ``age`` how fresh it is (:class:`~.freshness.PoseAge`, as of this cycle)."""
 
     pose: Pose2D
     velocity: Velocity
     stamp: float
+    age: PoseAge = FRESH
 
 
 @dataclass(slots=True)
@@ -178,7 +181,7 @@ class FollowPathSession:
             )
         if path.frame_id not in states and now - self._started <= cfg.initial_pose_wait:
             return StepResult(STOP)
-        state = self._fresh_state(now, states, path.frame_id)
+        state = self._fresh_state(states, path.frame_id)
         feedback = self._track(path, state.pose)
         if self._goal_checker.is_goal_reached(state.pose, path.goal, state.velocity):
             return StepResult(STOP, feedback, succeeded=True)
@@ -195,7 +198,7 @@ class FollowPathSession:
         self._track_segment = projection.segment
         return tracking_feedback(path, pose, projection)
 
-    def _fresh_state(self, now: float, states: Mapping[str, RobotState], frame: str) -> RobotState:
+    def _fresh_state(self, states: Mapping[str, RobotState], frame: str) -> RobotState:
         state = states.get(frame)
         if state is None:
             raise ControllerError(
@@ -203,13 +206,9 @@ class FollowPathSession:
                 f"no robot pose received in frame {frame!r} "
                 f"within {self._config.initial_pose_wait:.1f} s",
             )
-        age = now - state.stamp
-        if age > self._config.pose_timeout:
-            raise ControllerError(
-                FollowPathError.TF_ERROR,
-                f"robot pose in frame {frame!r} is stale ({age:.2f} s old, "
-                f"pose_timeout {self._config.pose_timeout:.2f} s); stopping",
-            )
+        stale = state.age.stale(frame, self._config.pose_timeout)
+        if stale is not None:
+            raise ControllerError(FollowPathError.TF_ERROR, stale)
         if not state.pose.is_finite():
             raise ControllerError(
                 FollowPathError.TF_ERROR, f"robot pose in frame {frame!r} is not finite"

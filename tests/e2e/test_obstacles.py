@@ -137,15 +137,6 @@ class TargetFeed:
         return await wait_until(self.moved, lambda: self.x >= x, timeout)
 
 
-@pytest.mark.xfail(
-    strict=False,  # intermittent, under load
-    reason="open defect (issue 14): at load 15-18 the controller ends FollowPath 102 "
-    "'robot pose in frame map is stale (1.4-1.7 s old, pose_timeout 0.50 s)' and the robot "
-    "falls behind the target (h-fix at load 15-18: 3 of 5 runs failed, 2 of them seen with "
-    "this 102, 1 not captured). The goal-update race of issue 13 (ABORTED 'preempted by "
-    "goal <unknown id>') was not seen in any run; its suspected cause is fixed in the "
-    "action server",
-)
 @pytest.mark.timeout(150)
 async def test_follow_point_tree_follows_a_moving_target(world: World, goals: ServerGoals):
     # low (under the lidar plane): the planner plans to it, TruncatePath keeps 1 m back

@@ -25,13 +25,16 @@ async def start(
     world: str = "small",
     speed: str = SPEED,
     robot_args: Sequence[str] = (),
+    sim_time: bool = True,
 ) -> ServiceProcess:
-    """The robot (``world``, ``speed``) and one of our services on sim time; returns the robot."""
+    """The robot (``world``, ``speed``) and one of our services on sim time (or on the wall
+    clock: ``sim_time=False``); returns the robot."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     robot = spawn(
         ["-m", "aiobt_services.robot", "--world", world, "--speed", speed, *robot_args, *common]
     )
-    ours = spawn(["-m", f"aiobt_services.{service}", "--sim-time", *common, *extra])
+    clock = ["--sim-time"] if sim_time else []
+    ours = spawn(["-m", f"aiobt_services.{service}", *clock, *common, *extra])
     for name, proc in (("robot", robot), (service, ours)):
         if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):
             pytest.fail(f"{name} did not come up:\n{proc.output()}")

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import asyncio
 import math
+import os
+import signal
 
 import pytest
 
@@ -152,3 +154,27 @@ async def test_robot_gone_mid_spin_fails_with_tf_error(
     result = await goal.result(timeout=6.0)  # --clock-timeout 2 s of wall time
     assert result.error_code == SpinError.TF_ERROR
     assert "clock stopped" in result.error_msg
+
+
+async def test_robot_stopped_mid_spin_is_a_stale_pose_on_the_wall_clock(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    """On the wall clock a hung robot is caught by the stale-pose rule, in frame odom."""
+    odom = bus.subscribe("odom", Odometry)
+    robot = await start(spawn, bus, bus_settings, "behaviors", speed="1", sim_time=False)
+    spin = bus.action_client("spin", Spin)
+    goal = await spin.send_goal(
+        Spin.Goal(target_yaw=6 * math.pi, time_allowance=60.0), server_timeout=10.0
+    )
+    async with asyncio.timeout(30.0):
+        async for o in odom:
+            if abs(o.twist.angular.z) > 0.3:
+                break
+    os.kill(robot.pid, signal.SIGSTOP)
+    try:
+        result = await goal.result(timeout=10.0)
+    finally:
+        os.kill(robot.pid, signal.SIGCONT)
+    assert result.error_code == SpinError.TF_ERROR
+    assert "robot pose in frame 'odom' is stale: nothing new from the robot" in result.error_msg
+    assert "pose_timeout 0.50 s" in result.error_msg

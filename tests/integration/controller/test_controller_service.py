@@ -5,6 +5,8 @@ from __future__ import annotations
 import asyncio
 import itertools
 import math
+import os
+import signal
 import statistics
 
 import pytest
@@ -228,3 +230,26 @@ async def test_robot_gone_mid_goal_fails_with_tf_error(
     assert goal.status is GoalState.ABORTED
     assert result.error_code == FollowPathError.TF_ERROR
     assert "clock stopped" in result.error_msg
+
+
+async def test_robot_stopped_mid_goal_is_a_stale_pose_on_the_wall_clock(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    """On the wall clock nothing stops the loop when the robot hangs: the stale-pose rule
+    does (nothing new from the robot for --pose-timeout of wall time)."""
+    pose = bus.subscribe("pose", PoseStamped)
+    robot = await start(spawn, bus, bus_settings, "controller", speed="1", sim_time=False)
+    goal = await _follow(bus, path_through([(0.0, 0.0), (2.0, 0.0)]))
+    async with asyncio.timeout(30.0):
+        async for p in pose:
+            if p.x >= 0.1:
+                break
+    os.kill(robot.pid, signal.SIGSTOP)
+    try:
+        result = await goal.result(timeout=10.0)
+    finally:
+        os.kill(robot.pid, signal.SIGCONT)
+    assert goal.status is GoalState.ABORTED
+    assert result.error_code == FollowPathError.TF_ERROR
+    assert "robot pose in frame 'map' is stale: nothing new from the robot" in result.error_msg
+    assert "pose_timeout 0.50 s" in result.error_msg

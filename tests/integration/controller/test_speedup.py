@@ -101,13 +101,6 @@ async def test_box_spawned_on_the_path_stops_the_robot_short_at_10x(
     assert margin >= 0.2
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="open defect (issue 14): in a fresh-clone CI run after the merges of 2026-11-25 "
-    "the first spin at 10x ended 702 'robot pose is stale (0.52 s old, pose_timeout 0.50 s)' "
-    "at its start; it passed 3 runs in a row on h-sim before h-edges' subscription pacing "
-    "was merged. Accuracy is asserted whenever it runs through.",
-)
 @pytest.mark.timeout(180)
 async def test_behaviours_reach_their_targets_at_10x(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings

@@ -19,6 +19,7 @@ from aiobt_services.behaviors import (
 )
 from aiobt_services.behaviors.base import TimedBehavior
 from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
+from aiobt_services.controller.freshness import FRESH, PoseAge
 from aiobt_services.controller.geometry import Pose2D, Velocity, wrap_angle
 from aiobt_services.controller.unicycle import Unicycle
 
@@ -34,7 +35,7 @@ def run(
     now = 0.0
     commands: list[Velocity] = []
     while now <= max_time:
-        step = behavior.step(Inputs(now, robot.pose, now, teleop, now))
+        step = behavior.step(Inputs(now, robot.pose, FRESH, teleop, now))
         if step.cmd is not None:
             commands.append(step.cmd)
         if step.done:
@@ -140,7 +141,7 @@ def run_delayed(
     """Step until done, then let the base act on the commands still on their way."""
     now = 0.0
     while now < 30.0:
-        step = behavior.step(Inputs(now, robot.pose, now, lead=lead))
+        step = behavior.step(Inputs(now, robot.pose, FRESH, lead=lead))
         robot.step(step.cmd or Velocity(), DT)
         now += DT
         if step.done:
@@ -181,7 +182,7 @@ def test_a_stalled_loop_near_the_target_overshoots_by_at_most_the_approach_error
             for _ in range(10):
                 robot.step(last, DT)
                 now += DT
-        step = spin.step(Inputs(now, robot.pose, now, lead=4 * DT))
+        step = spin.step(Inputs(now, robot.pose, FRESH, lead=4 * DT))
         last = step.cmd or Velocity()
         robot.step(last, DT)
         now += DT
@@ -204,7 +205,7 @@ def test_after_a_long_stall_the_spin_turns_back_to_its_target():
             for _ in range(20):
                 robot.step(last, DT)
                 now += DT
-        step = spin.step(Inputs(now, robot.pose, now, lead=4 * DT))
+        step = spin.step(Inputs(now, robot.pose, FRESH, lead=4 * DT))
         last = step.cmd or Velocity()
         commands.append(last)
         robot.step(last, DT)
@@ -263,10 +264,15 @@ def test_bad_goals_are_invalid_input(make, message):
 
 def test_stale_odometry_stops_with_tf_error():
     spin = SpinBehavior(1.0)
-    assert not spin.step(Inputs(0.0, Pose2D(0, 0, 0), 0.0)).done
-    step = spin.step(Inputs(1.0, Pose2D(0, 0, 0), 0.2))
+    assert not spin.step(Inputs(0.0, Pose2D(0, 0, 0), FRESH)).done
+    late = PoseAge(robot=0.52, silence=0.05, quiet=0.0)  # behind another stream, not stopped
+    assert not spin.step(Inputs(0.1, Pose2D(0, 0, 0), late)).done
+    stopped = PoseAge(robot=0.02, silence=0.8, quiet=0.8)
+    step = spin.step(Inputs(1.0, Pose2D(0, 0, 0), stopped))
     assert step.outcome is Outcome.TF_ERROR
-    assert "stale" in step.message
+    assert "frame 'odom' is stale" in step.message
+    assert "0.02 s old in robot time" in step.message
+    assert "pose_timeout 0.50 s" in step.message
     assert step.cmd == Velocity(0.0, 0.0)
     drive = DriveOnHeading(1.0, 0.1)
     assert not drive.step(Inputs(0.0)).done  # odometry may still be on its way
@@ -308,10 +314,10 @@ def test_assisted_teleop_never_hits_the_wall_and_ends_on_time_allowance():
 def test_assisted_teleop_zeroes_stale_input_and_finishes_on_request():
     behavior = AssistedTeleop(time_allowance=0.0)
     pose = Pose2D(0.0, 0.0, 0.0)
-    live = behavior.step(Inputs(0.0, pose, 0.0, Velocity(0.3, 0.1), 0.0))
+    live = behavior.step(Inputs(0.0, pose, FRESH, Velocity(0.3, 0.1), 0.0))
     assert live.cmd == Velocity(0.3, 0.1)
-    stale = behavior.step(Inputs(1.0, pose, 1.0, Velocity(0.3, 0.1), 0.0))
+    stale = behavior.step(Inputs(1.0, pose, FRESH, Velocity(0.3, 0.1), 0.0))
     assert stale.cmd == Velocity(0.0, 0.0)
     assert not stale.done
     behavior.finish()
-    assert behavior.step(Inputs(1.1, pose, 1.1)).succeeded
+    assert behavior.step(Inputs(1.1, pose, FRESH)).succeeded

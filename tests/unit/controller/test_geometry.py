@@ -5,10 +5,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from aiobt_services.behaviors import Inputs, SpinBehavior
+from aiobt_services.controller.freshness import FRESH
 from aiobt_services.controller.geometry import (
     PlanarPath,
     Pose2D,
@@ -44,12 +45,13 @@ def test_arc_projection_matches_the_unicycle(x, y, yaw, v, w):
 
 
 @given(st.floats(-math.pi, math.pi), st.floats(-12.0, 12.0).filter(lambda a: abs(a) > 0.05))
+@settings(deadline=None)  # a loaded machine: up to 1000 steps per case
 def test_spin_accounts_any_angle_from_any_start(start_yaw, target):
     robot = Unicycle(Pose2D(0.0, 0.0, start_yaw), max_angular_accel=3.2)
     spin = SpinBehavior(target, time_allowance=0.0)
     now = 0.0
     for _ in range(1000):  # 50 s: far more than any of these spins needs
-        step = spin.step(Inputs(now, robot.pose, now))
+        step = spin.step(Inputs(now, robot.pose, FRESH))
         if step.done:
             break
         assert step.cmd is not None

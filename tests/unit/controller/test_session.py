@@ -12,6 +12,7 @@ from aiobt_services.controller.base import ControlContext
 from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
 from aiobt_services.controller.dwb import DWBController
 from aiobt_services.controller.errors import ControllerError
+from aiobt_services.controller.freshness import FRESH, PoseAge
 from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
 from aiobt_services.controller.rpp import RegulatedPurePursuit
 from aiobt_services.controller.session import (
@@ -29,8 +30,8 @@ def _start(request: FollowRequest, config: ControllerConfig | None = None) -> Fo
     return FollowPathSession(request, config or ControllerConfig(), 0.0, None)
 
 
-def _state(pose: Pose2D, stamp: float = 0.0) -> dict[str, RobotState]:
-    return {"map": RobotState(pose, Velocity(), stamp)}
+def _state(pose: Pose2D, stamp: float = 0.0, age: PoseAge = FRESH) -> dict[str, RobotState]:
+    return {"map": RobotState(pose, Velocity(), stamp, age)}
 
 
 @pytest.mark.parametrize(
@@ -90,12 +91,18 @@ def test_empty_ids_select_the_defaults():
 
 def test_stale_pose_stops_robot_with_tf_error():
     session = _start(FollowRequest(straight()))
-    assert session.step(0.0, _state(Pose2D(0, 0, 0), stamp=0.0)).cmd.v > 0.0
-    step = session.step(0.6, _state(Pose2D(0, 0, 0), stamp=0.0))
+    assert session.step(0.0, _state(Pose2D(0, 0, 0))).cmd.v > 0.0
+    late = PoseAge(robot=1.5, silence=0.4, quiet=0.0)  # delivered late at a speed-up
+    assert session.step(0.05, _state(Pose2D(0, 0, 0), age=late)).error is None
+    behind = PoseAge(robot=0.6, silence=0.6, quiet=0.0)  # the pose stream stopped alone
+    step = session.step(0.6, _state(Pose2D(0, 0, 0), age=behind))
     assert step.cmd == Velocity(0.0, 0.0)
     assert step.error is not None
     assert step.error.code == FollowPathError.TF_ERROR
-    assert "stale" in step.error.message
+    assert step.error.message == (
+        "robot pose in frame 'map' is stale (0.60 s old in robot time, none newer for "
+        "0.60 s of wall time, pose_timeout 0.50 s); stopping"
+    )
 
 
 def test_missing_pose_is_awaited_briefly_then_a_tf_error():
