@@ -90,7 +90,8 @@ class ControllerService:
         self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
         self._view = LocalView(
-            self.bus.publisher("local_plan", Path, reliable=True),  # the clearing one too
+            # dropped, not blocking, when congested: an observer must never hold up a cycle
+            self.bus.publisher("local_plan", Path),
             self.bus.publisher("local_costmap/costmap", OccupancyGrid),
             self.costmap.grid,
         )
