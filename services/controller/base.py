@@ -5,9 +5,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import ClassVar, Protocol
 
+import numpy as np
+
 from .collision import CollisionChecker
 from .errors import no_valid_control
-from .geometry import PlanarPath, Pose2D, Velocity
+from .geometry import FloatArray, PlanarPath, Pose2D, Velocity
+
+NO_TRAJECTORY: FloatArray = np.zeros((0, 3))
+NO_TRAJECTORY.setflags(write=False)
 
 
 @dataclass(slots=True, frozen=True)
@@ -34,24 +39,33 @@ class Controller(Protocol):
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity: ...
 
+    @property
+    def trajectory(self) -> FloatArray:
+        """Poses ``(n, 3)`` (x, y, yaw, in the plan's frame) the robot is expected to follow
+        after the last :meth:`compute_velocity` (Nav2's ``local_plan``); none before one."""
+        ...
+
 
 class PlanFollower:
     """What RPP and DWB share: the plan and the segment the robot was last projected onto."""
 
-    __slots__ = ("_path", "_segment")
+    __slots__ = ("_path", "_segment", "trajectory")
     name: ClassVar[str]  # in the "no path" error
 
     def __init__(self) -> None:
         self._path: PlanarPath | None = None
         self._segment = 0
+        self.trajectory = NO_TRAJECTORY
 
     def set_plan(self, path: PlanarPath) -> None:
         self._path = path
         self._segment = 0
+        self.trajectory = NO_TRAJECTORY
 
     def reset(self) -> None:
         self._path = None
         self._segment = 0
+        self.trajectory = NO_TRAJECTORY
 
     def _require_path(self) -> PlanarPath:
         if self._path is None:

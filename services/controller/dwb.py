@@ -17,7 +17,15 @@ import numpy as np
 from .base import ControlContext, PlanFollower
 from .collision import NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
-from .geometry import FloatArray, PlanarPath, Pose2D, Velocity, turn_rate, wrap_angle
+from .geometry import (
+    FloatArray,
+    PlanarPath,
+    Pose2D,
+    Velocity,
+    integrate_arc,
+    turn_rate,
+    wrap_angle,
+)
 from .tracking import project_onto_path, search_stop
 
 
@@ -55,7 +63,9 @@ class DWBController(PlanFollower):
         path = self._require_path()
         goal = path.goal
         if pose.distance_to(goal) < ctx.goal_xy_tolerance:
-            return self._rotate_to(wrap_angle(goal.yaw - pose.yaw), speed, ctx)
+            cmd = self._rotate_to(wrap_angle(goal.yaw - pose.yaw), speed, ctx)
+            self.trajectory = self._rolled_out(pose, cmd)
+            return cmd
         stop = search_stop(path, self._segment, self.params.local_path_length)
         self._segment = project_onto_path(path, pose, self._segment, stop).segment
         local = self._local_path(path)
@@ -68,7 +78,16 @@ class DWBController(PlanFollower):
             raise no_valid_control(
                 f"DWB found no valid trajectory among {score.size} samples (all collide)"
             )
+        # Nav2's DWB publishes the best trajectory as its local_plan
+        self.trajectory = np.vstack(
+            ([[pose.x, pose.y, pose.yaw]], np.column_stack((xs[best], ys[best], yaws[best])))
+        )
         return Velocity(float(v[best]), float(w[best]))
+
+    def _rolled_out(self, pose: Pose2D, cmd: Velocity) -> FloatArray:
+        p = self.params
+        times = np.linspace(0.0, p.sim_time, p.sim_steps + 1)
+        return integrate_arc(pose, cmd, times)
 
     def _local_path(self, path: PlanarPath) -> FloatArray:
         seg = path.segment_lengths()[self._segment :]

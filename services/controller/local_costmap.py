@@ -14,7 +14,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from aiobt.msgs import LaserScan
-from aiobt_services.costmap import InflationParams, ObstacleParams, RollingCostmap, Scan
+from aiobt_services.costmap import (
+    CostGrid,
+    InflationParams,
+    ObstacleParams,
+    RollingCostmap,
+    Scan,
+)
 
 from .collision import NO_INFORMATION, CostQuery
 from .geometry import FloatArray, Pose2D
@@ -56,6 +62,10 @@ class LocalCostmap:
     @property
     def costmap(self) -> RollingCostmap:
         return self._costmap
+
+    def grid(self) -> CostGrid:
+        """The window's costs now (a view, not a copy: read it before the next update)."""
+        return CostGrid(self._costmap.geometry, self._costmap.master)
 
     def costs_at(self, points: FloatArray) -> NDArray[np.uint8]:
         cols, rows, ok = self._costmap.geometry.world_to_cells(points[:, 0], points[:, 1])

@@ -4,7 +4,8 @@ Serves the ``follow_path`` action (controller ids ``FollowPath`` = regulated
 pure pursuit, ``DWB`` = sampling; goal checkers ``general_goal_checker``,
 ``precise_goal_checker``; progress checker ``progress_checker``) and
 ``{ns}/srv/local_costmap/clear_{entirely,except,around}_local_costmap``;
-publishes ``{ns}/cmd_vel`` and ``{ns}/tracking_feedback``; reads
+publishes ``{ns}/cmd_vel``, ``{ns}/tracking_feedback``, and while observed
+``{ns}/local_plan`` and ``{ns}/local_costmap/costmap``; reads
 ``{ns}/odom``, ``{ns}/pose`` and ``{ns}/scan``.
 """
 

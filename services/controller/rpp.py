@@ -18,7 +18,15 @@ import numpy as np
 from .base import ControlContext, PlanFollower
 from .collision import INSCRIBED, NO_INFORMATION, CollisionChecker
 from .errors import no_valid_control
-from .geometry import PlanarPath, Pose2D, Velocity, to_robot_frame, turn_rate, wrap_angle
+from .geometry import (
+    FloatArray,
+    PlanarPath,
+    Pose2D,
+    Velocity,
+    to_robot_frame,
+    turn_rate,
+    wrap_angle,
+)
 from .latency import holding_time
 from .tracking import project_onto_path, remaining_length, search_stop
 
@@ -73,8 +81,10 @@ class RegulatedPurePursuit(PlanFollower):
         self._segment = projection.segment
         goal = path.goal
         if self.params.use_rotate_to_heading and pose.distance_to(goal) < ctx.goal_xy_tolerance:
+            self.trajectory = _poses(path, self._segment, len(path))
             return self._rotate(pose, wrap_angle(goal.yaw - pose.yaw), ctx)
-        carrot = self._carrot(path, pose, self._lookahead(speed))
+        carrot, inside = self._carrot(path, pose, self._lookahead(speed))
+        self.trajectory = _up_to_carrot(path, self._segment, inside, carrot, pose)
         angle_to_carrot = math.atan2(carrot[1], carrot[0])
         if (
             self.params.use_rotate_to_heading
@@ -98,16 +108,19 @@ class RegulatedPurePursuit(PlanFollower):
             return p.lookahead_dist
         return min(max(abs(speed.v) * p.lookahead_time, p.min_lookahead_dist), p.max_lookahead_dist)
 
-    def _carrot(self, path: PlanarPath, pose: Pose2D, lookahead: float) -> tuple[float, float]:
-        """The point where the path (after the foot point) leaves the lookahead circle."""
+    def _carrot(
+        self, path: PlanarPath, pose: Pose2D, lookahead: float
+    ) -> tuple[tuple[float, float], int]:
+        """The point where the path (after the foot point) leaves the lookahead circle (robot
+        frame), and how many path poses from the foot point come before it."""
         local = to_robot_frame(pose, path.xy[self._segment :])
         dist = np.hypot(local[:, 0], local[:, 1])
         beyond = np.nonzero(dist >= lookahead)[0]
         beyond = beyond[beyond > 0]
         if beyond.size == 0:
-            return float(local[-1, 0]), float(local[-1, 1])
+            return (float(local[-1, 0]), float(local[-1, 1])), len(local)
         i = int(beyond[0])
-        return _circle_segment_intersection(local[i - 1], local[i], lookahead)
+        return _circle_segment_intersection(local[i - 1], local[i], lookahead), i
 
     def _regulated_speed(
         self, pose: Pose2D, curvature: float, remaining: float, ctx: ControlContext
@@ -174,6 +187,23 @@ class RegulatedPurePursuit(PlanFollower):
                 f"RegulatedPurePursuit detected collision ahead "
                 f"(in {check.time_to_collision:.2f} s at v={cmd.v:.2f} m/s, w={cmd.w:.2f} rad/s)"
             )
+
+
+def _poses(path: PlanarPath, start: int, stop: int) -> FloatArray:
+    return np.column_stack((path.xy[start:stop], path.yaw[start:stop]))
+
+
+def _up_to_carrot(
+    path: PlanarPath, start: int, count: int, carrot: tuple[float, float], pose: Pose2D
+) -> FloatArray:
+    """RPP's local plan (Nav2 publishes the carrot-lookahead segment): the path poses from
+    the foot point up to the carrot, then the carrot itself (robot frame -> path frame)."""
+    segment = _poses(path, start, start + count)
+    c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+    x = pose.x + c * carrot[0] - s * carrot[1]
+    y = pose.y + s * carrot[0] + c * carrot[1]
+    heading = float(path.yaw[min(start + count, len(path) - 1)])
+    return np.vstack((segment, [[x, y, heading]]))
 
 
 def _circle_segment_intersection(a: np.ndarray, b: np.ndarray, r: float) -> tuple[float, float]:

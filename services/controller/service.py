@@ -19,6 +19,7 @@ from aiobt.msgs import (
     ClearEntireCostmap,
     FollowPath,
     FollowPathError,
+    OccupancyGrid,
     Path,
     Twist,
 )
@@ -29,6 +30,7 @@ from .cycle_stats import CycleStats
 from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Velocity
 from .local_costmap import FrameShift, LocalCostmap, frame_transform
+from .observed import LocalView
 from .robot_io import RobotTracker, sleep_bounded, twist_of
 from .session import ControllerConfig, FollowPathSession, FollowRequest, StepResult
 from .wire import TrackingFeedbackMsg, tracking_feedback_msg
@@ -81,11 +83,18 @@ class ControllerService:
         self._shift = FrameShift(self.costmap)
         self._cmd: Publisher[Twist] | None = None
         self._tracking: Publisher[TrackingFeedbackMsg] | None = None
+        self._view: LocalView | None = None
 
     def start(self) -> None:
         self.tracker.attach(self.bus)
         self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
+        self._view = LocalView(
+            # dropped, not blocking, when congested: an observer must never hold up a cycle
+            self.bus.publisher("local_plan", Path),
+            self.bus.publisher("local_costmap/costmap", OccupancyGrid),
+            self.costmap.grid,
+        )
         self.bus.action_server(
             FollowPath.name, FollowPath, self.execute, preemption="replace", clock=self.clock
         )
@@ -105,10 +114,14 @@ class ControllerService:
             session.request.path.frame_id,
             goal.controller_id or self.config.default_controller,
         )
+        if self._view is not None:
+            self._view.begin()
         try:
             result = await self._run(session, handle)
         finally:
             self._publish(STOP)
+            if self._view is not None:
+                self._view.end(session.request.path.frame_id, self.clock.now())
         outcome = FollowPathError(result.error_code).name
         log.info("follow_path: goal %s ended %s %s", handle.goal_id, outcome, result.error_msg)
         return result
@@ -142,6 +155,8 @@ class ControllerService:
             step = self._step(session)
             self._publish(step.cmd)
             self._feedback(step, handle, session.request.path.frame_id)
+            if self._view is not None:
+                self._view.cycle(step.trajectory, session.request.path.frame_id, began)
             stats.record(began, time.perf_counter() - work)
             if step.finished:
                 return result_of(step.error)

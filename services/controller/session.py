@@ -13,13 +13,13 @@ from dataclasses import dataclass, field
 
 from aiobt.msgs import FollowPathError
 
-from .base import ControlContext, Controller
+from .base import NO_TRAJECTORY, ControlContext, Controller
 from .checkers import CheckerRegistry, GoalChecker, ProgressChecker, default_checkers
 from .collision import CollisionChecker
 from .dwb import DWBController
 from .errors import ControllerError
 from .freshness import FRESH, PoseAge
-from .geometry import STOP, PlanarPath, Pose2D, Velocity
+from .geometry import STOP, FloatArray, PlanarPath, Pose2D, Velocity
 from .rpp import RegulatedPurePursuit
 from .tracking import TrackingFeedback, project_onto_path, search_stop, tracking_feedback
 
@@ -64,10 +64,14 @@ class ControllerConfig:
 
 @dataclass(slots=True, frozen=True)
 class StepResult:
+    """One cycle's command; ``trajectory``: the poses ``(n, 3)`` the controller predicts for
+    it (its local plan, in the path's frame), empty when the robot is to stand still."""
+
     cmd: Velocity
     feedback: TrackingFeedback | None = None
     succeeded: bool = False
     error: ControllerError | None = None
+    trajectory: FloatArray = field(default_factory=lambda: NO_TRAJECTORY)
 
     @property
     def finished(self) -> bool:
@@ -189,7 +193,9 @@ class FollowPathSession:
             raise ControllerError(
                 FollowPathError.FAILED_TO_MAKE_PROGRESS, "failed to make progress"
             )
-        return StepResult(self._compute(now, state, lead), feedback)
+        cmd = self._compute(now, state, lead)
+        trajectory = NO_TRAJECTORY if cmd is STOP else self._controller.trajectory
+        return StepResult(cmd, feedback, trajectory=trajectory)
 
     def _track(self, path: PlanarPath, pose: Pose2D) -> TrackingFeedback:
         # search forward from the last foot point, so a U-turn's return leg is not taken early

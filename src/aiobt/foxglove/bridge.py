@@ -28,6 +28,7 @@ from aiobt.msgs import (
     NavigateToPose,
     OccupancyGrid,
     Odometry,
+    Path,
     PoseStamped,
 )
 from aiobt.transport import Bus, Subscription
@@ -69,6 +70,8 @@ class FoxgloveBridge:
         add(bus.subscribe("pose", PoseStamped, self.on_pose, queue_size=2))
         add(bus.subscribe("odom", Odometry, self.on_odom, queue_size=2))
         add(bus.subscribe("goal_pose", PoseStamped, self.on_goal, queue_size=10))
+        add(bus.subscribe("local_plan", Path, self.on_local_plan, queue_size=2))
+        add(bus.subscribe("local_costmap/costmap", OccupancyGrid, self.on_local_costmap))
         add(bus.subscribe("bt/tree", BtTree, self.on_tree, latched=True, queue_size=1))
         add(bus.subscribe("bt/transitions", BtTransitions, self.on_transitions))
         plans = bus.keys.action(ComputePathToPose.name).any_result
@@ -128,6 +131,13 @@ class FoxgloveBridge:
     def on_plan(self, result: Any) -> None:
         if result.error_code == 0 and result.path.poses:
             self.ch.plan.log(convert.poses_in_frame(result.path))
+
+    def on_local_plan(self, msg: Path) -> None:
+        """The controller's local plan; an empty one (its goal ended) clears the panel's."""
+        self.ch.local_plan.log(convert.poses_in_frame(msg))
+
+    def on_local_costmap(self, msg: OccupancyGrid) -> None:
+        self.ch.local_costmap.log(convert.grid(msg))
 
     def on_feedback(self, feedback: Any) -> None:
         self.ch.feedback.log(convert.as_json(feedback))

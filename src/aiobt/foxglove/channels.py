@@ -13,6 +13,8 @@ topic                 schema                       from (under the namespace ``n
 /tf                   foxglove.FrameTransforms     ``{ns}/pose`` and ``{ns}/odom``
 /robot                foxglove.SceneUpdate         the footprint, at every pose
 /plan                 foxglove.PosesInFrame        ``compute_path_to_pose`` results
+/local_plan           foxglove.PosesInFrame        ``{ns}/local_plan`` (the controller)
+/local_costmap        foxglove.Grid                ``{ns}/local_costmap/costmap``
 /goal                 foxglove.PoseInFrame         ``{ns}/goal_pose`` and navigation goals
 /navigator/feedback   JSON                         ``navigate_to_pose`` feedback
 /odom/speed           JSON                         ``{ns}/odom`` (speed, for the plot)
@@ -58,6 +60,8 @@ class Channels:
     tf: fc.FrameTransformsChannel
     robot: fc.SceneUpdateChannel
     plan: fc.PosesInFrameChannel
+    local_plan: fc.PosesInFrameChannel
+    local_costmap: fc.GridChannel
     goal: fc.PoseInFrameChannel
     feedback: foxglove.Channel
     speed: foxglove.Channel
@@ -75,6 +79,8 @@ class Channels:
             tf=fc.FrameTransformsChannel("/tf", context=c),
             robot=fc.SceneUpdateChannel("/robot", context=c),
             plan=fc.PosesInFrameChannel("/plan", context=c),
+            local_plan=fc.PosesInFrameChannel("/local_plan", context=c),
+            local_costmap=fc.GridChannel("/local_costmap", context=c),
             goal=fc.PoseInFrameChannel("/goal", context=c),
             feedback=foxglove.Channel("/navigator/feedback", schema=_FEEDBACK, context=c),
             speed=foxglove.Channel("/odom/speed", schema=_SPEED, context=c),

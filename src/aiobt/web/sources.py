@@ -9,8 +9,12 @@ since the last flush and hands it to the :class:`Hub`. Streams:
 ``costmap``    the map inflated as the planner's global costmap, with it
 ``pose``       ``{ns}/pose``
 ``scan``       ``{ns}/scan``, as map-frame points seen from the latest pose
-``local``      ``{ns}/cmd_vel`` driven for 1.5 s from the pose (the local
-               trajectory the controller is following)
+``local``      ``{ns}/cmd_vel`` driven for 1.5 s from the pose (where the
+               current command alone takes the robot)
+``local_plan`` ``{ns}/local_plan``: the trajectory the controller follows (its
+               local plan; empty when its goal ended), map-frame plans only
+``local_costmap`` ``{ns}/local_costmap/costmap``: the controller's rolling
+               window (Nav2's occupancy values), at the controller's 2 Hz
 ``plan``       the planner's latest path (``compute_path_to_pose`` and
                ``compute_path_through_poses`` results)
 ``goal``       ``{ns}/goal_pose`` (the page's clicks, ``aiobt goal``)
@@ -37,6 +41,7 @@ from aiobt.msgs import (
     NavigateThroughPoses,
     NavigateToPose,
     OccupancyGrid,
+    Path,
     PoseStamped,
     Twist,
 )
@@ -74,6 +79,7 @@ class Sources:
         self.tree = TreeStatus()
         self._robot = _Robot()
         self._tree_changed = False
+        self._skipped_frames: set[str] = set()
         self._subs: list[Subscription[Any]] = []
         self._goal_pub = bus.publisher("goal_pose", PoseStamped, reliable=True)
 
@@ -84,6 +90,7 @@ class Sources:
             ("map", OccupancyGrid, True), ("pose", PoseStamped, False),
             ("scan", LaserScan, False), ("cmd_vel", Twist, False),
             ("goal_pose", PoseStamped, False), ("bt/snapshot", BtSnapshot, False),
+            ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
         ]  # fmt: skip
         for name, model, latched in topics:
             sub = self.bus.subscribe(
@@ -133,8 +140,12 @@ class Sources:
 
     def _convert(self, stream: str, message: Msg) -> None:
         robot = self._robot
-        if isinstance(message, OccupancyGrid):
+        if stream == "local_costmap/costmap" and isinstance(message, OccupancyGrid):
+            self.hub.publish("local_costmap", convert.map_payload(message))
+        elif isinstance(message, OccupancyGrid):
             self._on_map(message)
+        elif isinstance(message, Path):
+            self._on_local_plan(message)
         elif stream == "pose" and isinstance(message, PoseStamped):
             robot.pose = message
             self.hub.publish("pose", convert.pose_payload(message))
@@ -158,6 +169,15 @@ class Sources:
         self._robot.grid = grid
         self.hub.publish("map", convert.map_payload(grid), on_change=True)
         self.hub.publish("costmap", convert.costmap_payload(grid, self.inflation), on_change=True)
+
+    def _on_local_plan(self, path: Path) -> None:
+        frame = path.header.frame_id
+        if frame != "map":  # the page draws in the map frame; a plan in odom would drift
+            if frame not in self._skipped_frames:
+                self._skipped_frames.add(frame)
+                log.warning("local_plan in frame %r not shown (map-frame plans only)", frame)
+            return
+        self.hub.publish("local_plan", convert.path_points(path))
 
     def _publish_local(self) -> None:
         if self._robot.pose is not None:

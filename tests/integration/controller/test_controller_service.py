@@ -19,6 +19,7 @@ from aiobt.msgs import (
     FollowPath,
     FollowPathError,
     GoalState,
+    OccupancyGrid,
     Odometry,
     Path,
     PoseStamped,
@@ -44,6 +45,17 @@ async def test_follows_a_curved_path_to_the_goal(
     pose = bus.subscribe("pose", PoseStamped)
     tracking: list[TrackingFeedbackMsg] = []
     bus.subscribe("tracking_feedback", TrackingFeedbackMsg, tracking.append)
+    local_plans: list[Path] = []
+    cleared = asyncio.Event()
+
+    def on_local_plan(msg: Path) -> None:
+        local_plans.append(msg)
+        if not msg.poses:
+            cleared.set()
+
+    bus.subscribe("local_plan", Path, on_local_plan)
+    costmaps: list[OccupancyGrid] = []
+    bus.subscribe("local_costmap/costmap", OccupancyGrid, costmaps.append)
     await start(spawn, bus, bus_settings, "controller")
     path = path_through([(0.0, 0.0), (1.0, 0.0), (1.5, 0.5), (1.5, 1.5)])
     goal = await _follow(bus, path, controller_id=controller_id)
@@ -51,6 +63,18 @@ async def test_follows_a_curved_path_to_the_goal(
     goal.on_feedback = feedback_seen.append
     result = await goal.result(timeout=40.0)
     assert goal.status is GoalState.SUCCEEDED, result
+    # the local plan: the controller's predicted poses each cycle, then an empty one
+    await asyncio.wait_for(cleared.wait(), 10.0)
+    moving = [m for m in local_plans if len(m.poses) >= 2]
+    assert len(moving) > 10, [len(m.poses) for m in local_plans]
+    assert all(m.header.frame_id == "map" for m in local_plans)
+    assert any(max(p.y for p in m.poses) > 0.5 for m in moving)  # it turned with the path
+    assert local_plans[-1].poses == []
+    # the local costmap at about 2 Hz of robot time around the robot, while the goal ran
+    assert len(costmaps) >= 2
+    stamps = [c.header.stamp for c in costmaps]
+    assert min(b - a for a, b in itertools.pairwise(stamps)) >= 0.5 - 1e-9
+    assert costmaps[0].info.width == costmaps[0].info.height == 100  # 5 m at 5 cm
     final = await pose.wait_latest(2.0)
     assert math.hypot(final.x - 1.5, final.y - 1.5) <= 0.25
     assert yaw_error(final.yaw, math.pi / 2) <= 0.3

@@ -4,16 +4,18 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import itertools
+import pathlib
 import socket
 from collections.abc import AsyncIterator, Callable, Sequence
-from pathlib import Path
 from typing import Any
 
 import pytest
 
-from aiobt.msgs import PoseStamped, Twist, Vector3
+from aiobt.msgs import FollowPath, Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess, free_port, wait_port
 from aiobt.transport import Bus, BusSettings
+from aiobt_services.controller.geometry import PlanarPath
 
 from .wsclient import FoxgloveClient
 
@@ -44,13 +46,16 @@ async def client(port: int) -> AsyncIterator[FoxgloveClient]:
         await fox.close()
 
 
-async def drive(bus: Bus, stop: asyncio.Event) -> None:
-    cmd = bus.publisher("cmd_vel", Twist, reliable=True)
-    forward = Twist(linear=Vector3(x=0.15), angular=Vector3(z=0.3))
-    while not stop.is_set():
-        cmd.put(forward)
-        with contextlib.suppress(TimeoutError):
-            await asyncio.wait_for(stop.wait(), 0.1)
+async def drive(bus: Bus) -> FollowPath.Result:
+    """The controller follows a left curve (the robot drives, the controller publishes its
+    local plan)."""
+    points = [(0.0, 0.0), (0.8, 0.0), (1.2, 0.4), (1.2, 1.2)]
+    planar = PlanarPath.through(points, 0.05)
+    poses = [PoseStamped.from_xy_yaw(float(x), float(y), float(a))
+             for (x, y), a in zip(planar.xy, planar.yaw, strict=True)]  # fmt: skip
+    client = bus.action_client("follow_path", FollowPath)
+    goal = await client.send_goal(FollowPath.Goal(path=Path(poses=poses)), server_timeout=30.0)
+    return await goal.result(timeout=90.0)
 
 
 @pytest.mark.e2e
@@ -59,40 +64,59 @@ async def test_client_receives_scan_and_moving_pose(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
     robot_args = ["-m", "aiobt_services.robot", "--world", "small", "--speed", "2"]
-    robot = spawn([*robot_args, "--connect", bus_settings.connect[0],
-                   "--namespace", bus_settings.namespace])  # fmt: skip
+    common = ["--connect", bus_settings.connect[0], "--namespace", bus_settings.namespace]
+    robot = spawn([*robot_args, *common])
+    controller = spawn(["-m", "aiobt_services.controller", "--sim-time", *common])
     bridge, port = await serving_bridge(spawn, bus_settings)
-    if not await bus.presence(bus.keys.topic("nodes/robot")).wait(60.0):
-        pytest.fail(f"robot did not come up:\n{robot.output()}")
-    stop = asyncio.Event()
-    driving = asyncio.create_task(drive(bus, stop))
+    for name, proc in (("robot", robot), ("controller", controller)):
+        if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(60.0):
+            pytest.fail(f"{name} did not come up:\n{proc.output()}")
+    driving: asyncio.Task[FollowPath.Result] | None = None
     try:
         async with client(port) as fox:
-            await fox.wait_advertised({"/scan", "/pose", "/tf", "/map"}, 20.0)
+            await fox.wait_advertised({"/scan", "/pose", "/tf", "/map", "/local_plan"}, 20.0)
             assert fox.channels["/scan"]["schemaName"] == "foxglove.LaserScan"
             assert fox.channels["/pose"]["schemaName"] == "foxglove.PoseInFrame"
-            await fox.subscribe("/scan", "/pose", "/tf")
+            assert fox.channels["/local_plan"]["schemaName"] == "foxglove.PosesInFrame"
+            await fox.subscribe("/scan", "/pose", "/tf", "/local_plan")
+            # the bridge subscribes at start; the controller's publisher sees it matched
+            driving = asyncio.create_task(drive(bus))
             scans: list[Any] = []
             xs: list[float] = []
+            local_plans: list[Any] = []
             frames: set[tuple[str, str]] = set()
             async with asyncio.timeout(60.0):
-                while not (scans and len(xs) > 1 and abs(xs[-1] - xs[0]) > 0.05):
+                while not (
+                    scans and len(xs) > 1 and abs(xs[-1] - xs[0]) > 0.05
+                    and any(len(p.poses) >= 2 for p in local_plans)
+                ):  # fmt: skip
                     got = await fox.receive()
                     if got.topic == "/scan":
                         scans.append(got.message)
                     elif got.topic == "/pose":
                         xs.append(got.message.pose.position.x)
+                    elif got.topic == "/local_plan":
+                        local_plans.append(got.message)
                     else:
                         frames |= {(t.parent_frame_id, t.child_frame_id)
                                    for t in got.message.transforms}  # fmt: skip
+        assert driving is not None
+        result = await driving  # the goal ends: its robot stopped, its local plan cleared
     finally:
-        stop.set()
-        await driving
+        if driving is not None and not driving.done():
+            driving.cancel()
+            with contextlib.suppress(asyncio.CancelledError):
+                await driving
+    assert result.error_code == 0, result
     assert scans[0].frame_id == "base_scan"
     assert len(scans[0].ranges) == 360
     assert 0.0 < min(scans[0].ranges) < 5.0
     assert abs(xs[-1] - xs[0]) > 0.05  # the robot drove between two poses
     assert {("map", "odom"), ("odom", "base_link")} <= frames, frames
+    plan = next(p for p in local_plans if len(p.poses) >= 2)
+    assert plan.frame_id == "map"
+    ahead = [q.position for q in plan.poses]
+    assert max(abs(b.x - a.x) + abs(b.y - a.y) for a, b in itertools.pairwise(ahead)) < 0.5
     assert bridge.running, bridge.output()
 
 
@@ -144,7 +168,7 @@ async def test_a_taken_port_is_named_and_every_interface_is_warned_about(
 
 @pytest.mark.timeout(60)
 async def test_an_unwritable_recording_is_named(
-    spawn: Spawn, bus_settings: BusSettings, tmp_path: Path
+    spawn: Spawn, bus_settings: BusSettings, tmp_path: pathlib.Path
 ) -> None:
     where = tmp_path / "missing" / "run.mcap"
     bridge = start_bridge(spawn, bus_settings, "--no-server", "--mcap", str(where))

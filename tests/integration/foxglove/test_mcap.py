@@ -95,6 +95,10 @@ async def test_recording_holds_every_channel_in_time_order(stack: NavStack, tmp_
     goal = recorded["/goal"][0][1]
     assert (goal.pose.position.x, goal.pose.position.y) == GOAL[:2]
     assert recorded["/plan"][-1][1].poses, "an empty plan"
+    local_plans = [m for _, m in recorded["/local_plan"]]
+    assert any(len(m.poses) >= 2 and m.frame_id == "map" for m in local_plans)
+    local_costmap = recorded["/local_costmap"][-1][1]
+    assert (local_costmap.column_count, local_costmap.cell_size.x) == (100, 0.05)
     costs = recorded["/global_costmap"][-1][1].data
     assert b"\xfe" in costs, "no lethal cell in the costmap"  # the small world's walls
     assert recorded["/navigator/feedback"][-1][1]["distance_remaining"] >= 0.0

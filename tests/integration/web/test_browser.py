@@ -96,6 +96,18 @@ async def test_page_shows_the_robot_driving_to_a_clicked_goal(browser, tmp_path)
                 )
                 assert page_value(browser, "window.aiobtState.plan.length") > 10
                 assert page_value(browser, "window.aiobtState.local.length") > 1
+                # the controller's local plan (its predicted poses) while the robot drives
+                await wait_page(
+                    browser, "window.aiobtState.localPlanMax >= 2", "a local plan of 2+ poses"
+                )
+                assert page_value(browser, "window.aiobtState.localPlanUpdates") > 0
+                local_costmap = await wait_page(
+                    browser, "window.aiobtState.localCostmap", "the local costmap"
+                )
+                assert (local_costmap["width"], local_costmap["resolution"]) == (100, 0.05)
+                toggle = browser.find_element(By.ID, "show-local-costmap")
+                await asyncio.to_thread(toggle.click)  # drawn over the map at its origin
+                assert toggle.is_selected()
                 assert page_value(browser, "window.aiobtState.scan.length") > 0
                 feedback = await wait_page(browser, "window.aiobtState.feedback", "feedback")
                 assert feedback["recoveries"] >= 0

@@ -4,6 +4,7 @@
 const state = {
   connected: false, frames: 0, updatesPerSecond: 0, poseUpdatesPerSecond: 0, poseUpdates: 0,
   robot: null, map: null, costmap: null, scan: [], plan: [], local: [], goal: null,
+  localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
   goalsSent: 0, goalReply: null,
 };
@@ -11,7 +12,7 @@ window.aiobtState = state;
 
 const canvas = document.getElementById("map");
 const ctx = canvas.getContext("2d");
-const layers = { map: null, costmap: null };
+const layers = { map: null, costmap: null, localCostmap: null };
 const TARGET_WIDTH = 900; // canvas pixels across the map
 let scale = 1; // canvas pixels per map cell
 let dirty = true;
@@ -58,6 +59,14 @@ function receive(update) {
   if ("costmap" in update) {
     state.costmap = update.costmap; layers.costmap = gridImage(update.costmap, costColour);
   }
+  if ("local_plan" in update) { // the controller's; empty when its goal ended
+    state.localPlan = update.local_plan; state.localPlanUpdates += 1;
+    state.localPlanMax = Math.max(state.localPlanMax, update.local_plan.length);
+  }
+  if ("local_costmap" in update) {
+    state.localCostmap = update.local_costmap;
+    layers.localCostmap = gridImage(update.local_costmap, localCostColour);
+  }
   if ("tree" in update) buildTree(update.tree);
   if ("status" in update && update.status) paintStatus(update.status);
   if ("nav" in update) showNav(update.nav);
@@ -77,6 +86,12 @@ function costColour(v) {
   if (v === 255 || v === 0) return [0, 0, 0, 0];
   if (v >= 253) return [200, 0, 120, 150];
   return [41, 98, 255, Math.round(30 + 110 * v / 252)];
+}
+// Nav2's costmap as an OccupancyGrid: 0 free, 1..98 inflated, 99 inscribed, 100 lethal
+function localCostColour(v) {
+  if (v === 255 || v === 0) return [0, 0, 0, 0];
+  if (v >= 99) return [230, 0, 90, 170];
+  return [0, 170, 200, Math.round(40 + 110 * v / 98)];
 }
 function gridImage(grid, colour) {
   const cells = Uint8Array.from(atob(grid.cells), (c) => c.charCodeAt(0));
@@ -150,12 +165,18 @@ function draw() {
   if (document.getElementById("show-costmap").checked && layers.costmap) {
     ctx.drawImage(layers.costmap, 0, 0, w, h);
   }
+  if (document.getElementById("show-local-costmap").checked && layers.localCostmap) {
+    const g = state.localCostmap; const [left, top] = toCanvas(g.origin[0], g.origin[1] + g.height * g.resolution);
+    const cells = g.resolution / m.resolution * scale;
+    ctx.drawImage(layers.localCostmap, left, top, g.width * cells, g.height * cells);
+  }
   if (document.getElementById("show-scan").checked) {
     ctx.fillStyle = "#e53935";
     for (const [x, y] of state.scan) { const [cx, cy] = toCanvas(x, y); ctx.fillRect(cx - 1.5, cy - 1.5, 3, 3); }
   }
   polyline(state.plan, "#2962ff", 2.5);
   polyline(state.local, "#00a86b", 3);
+  polyline(state.localPlan, "#e6007a", 3);
   if (state.goal) arrow(state.goal, "#8e24aa", 0.15);
   if (state.robot) arrow(state.robot, "#ff9800", state.footprint.radius);
 }
