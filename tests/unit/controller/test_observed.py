@@ -11,6 +11,7 @@ import pytest
 
 from aiobt.msgs import OccupancyGrid
 from aiobt_services.controller.base import NO_TRAJECTORY
+from aiobt_services.controller.freshness import PoseAge
 from aiobt_services.controller.geometry import Pose2D, Velocity
 from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
 from aiobt_services.controller.observed import (
@@ -173,6 +174,7 @@ def test_standing_still_has_no_trajectory() -> None:
     session = _session("FollowPath")
     waiting = session.step(0.0, {})  # no pose yet: the goal waits, the robot stands
     assert waiting.trajectory.shape == (0, 3)
-    stale = session.step(5.0, {"map": RobotState(Pose2D(0, 0, 0), Velocity(), 0.0)})
+    old = PoseAge(robot=5.0, silence=5.0, quiet=5.0)  # the robot went quiet 5 s ago
+    stale = session.step(5.0, {"map": RobotState(Pose2D(0, 0, 0), Velocity(), 0.0, old)})
     assert stale.error is not None
     assert len(stale.trajectory) == 0
