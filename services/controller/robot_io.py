@@ -14,7 +14,7 @@ import math
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
-from aiobt.core.clock import Clock, ManualClock, SystemClock
+from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
 from aiobt.system.announce import announce
 from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
@@ -170,7 +170,7 @@ async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower 
         return SystemClock(), None
     from aiobt.transport import SimClockFollower
 
-    follower = SimClockFollower(bus, ManualClock())
+    follower = SimClockFollower(bus)
     while True:
         try:
             await follower.wait_started(timeout=5.0)

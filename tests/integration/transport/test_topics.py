@@ -117,3 +117,25 @@ async def test_sim_clock_follower_drives_a_manual_clock(
         await asyncio.wait_for(woke.wait(), 5.0)
     assert follower.clock.now() == 2.5
     await task
+
+
+async def test_sim_clock_follower_default_clock_wakes_sleepers_when_due(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    follower = SimClockFollower(bus)  # a SimTime: the loop looks only when a sleeper is due
+    async with open_bus(bus_settings) as sim:
+        pub = sim.publisher("clock", Clock, reliable=True)
+        assert await pub.wait_for_subscribers(5.0)
+        pub.put(Clock(clock=1.0))
+        assert await follower.wait_started(5.0) == 1.0
+        sleeper = asyncio.create_task(follower.clock.sleep(1.0))
+        await asyncio.sleep(0)
+        pub.put(Clock(clock=1.5))
+        pub.put(Clock(clock=1.99))
+        await asyncio.wait_for(follower.clock.sleep(0.9), 5.0)  # due at 1.9: woken by 1.99
+        assert follower.clock.now() == 1.99
+        assert not sleeper.done()  # 1.99 < its deadline 2.0
+        pub.put(Clock(clock=2.0))
+        await asyncio.wait_for(sleeper, 5.0)
+    assert follower.clock.now() == 2.0
+    follower.close()
