@@ -12,7 +12,7 @@ import asyncio
 import logging
 import math
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
@@ -25,7 +25,7 @@ from .local_costmap import LocalCostmap, LocalCostmapParams
 from .session import RobotState
 
 if TYPE_CHECKING:
-    from aiobt.transport import Bus, SimClockFollower
+    from aiobt.transport import Bus, SimClockFollower, Subscription
 
 log = logging.getLogger("aiobt_services.controller.robot_io")
 
@@ -63,11 +63,20 @@ class RobotTracker:
         age = max(0.0, self._clock.now() - state.stamp) if state is not None else 0.0
         return age + self.delay.estimate
 
-    def attach(self, bus: Bus) -> None:
-        bus.subscribe("odom", Odometry, self.on_odom)
-        bus.subscribe("pose", PoseStamped, self.on_pose)
+    def attach(self, bus: Bus) -> list[Subscription[Any]]:
+        """Subscribe to pose, odom (and scan); the subscriptions, in that order."""
+        subs: list[Subscription[Any]] = [
+            bus.subscribe("pose", PoseStamped, self.on_pose),
+            bus.subscribe("odom", Odometry, self.on_odom),
+        ]
         if self.costmap is not None:
-            bus.subscribe("scan", LaserScan, self.on_scan)
+            subs.append(bus.subscribe("scan", LaserScan, self.on_scan))
+        return subs
+
+    def forget(self) -> None:
+        """Drop the states and the waiting scan (before attaching again)."""
+        self.states.clear()
+        self._pending_scan = None
 
     def on_odom(self, msg: Odometry) -> None:
         self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)

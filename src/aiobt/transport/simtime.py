@@ -27,11 +27,12 @@ class SimTime(ManualClock):
     restarted simulation) is ignored until the stamps pass the newest one seen.
     """
 
-    __slots__ = ("_received", "due")
+    __slots__ = ("_frozen", "_received", "due")
 
     def __init__(self, start: float = 0.0) -> None:
         super().__init__(start)
         self._received = start
+        self._frozen = False  # time already moved in this turn of the loop
         self.due = math.inf  # earliest sleeper's deadline (inf: nobody waits)
 
     def receive(self, stamp: float) -> bool:
@@ -45,9 +46,19 @@ class SimTime(ManualClock):
         self.set(self._received)
         deadline = self.next_deadline()
         self.due = math.inf if deadline is None else deadline
+        if not self._frozen:
+            self._frozen = True
+            asyncio.get_running_loop().call_soon(self._thaw)
+
+    def _thaw(self) -> None:
+        self._frozen = False
 
     def now(self) -> float:
-        if self._received > self._now:
+        """The newest stamp received, read once per turn of the loop: within one turn
+        (a woken sleeper's work up to its next ``sleep``) time stands still, as it
+        did when each stamp was a loop callback, so a loop sleeping ``period`` after
+        its work keeps its period whatever the work took."""
+        if self._received > self._now and not self._frozen:
             self.catch_up()
         return self._now
 

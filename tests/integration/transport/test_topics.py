@@ -51,6 +51,19 @@ async def test_callback_runs_in_the_event_loop(bus: Bus, bus_settings: BusSettin
     assert in_loop
 
 
+async def test_subscribing_again_after_a_close(bus: Bus, bus_settings: BusSettings) -> None:
+    first = bus.subscribe("pose", PoseStamped)
+    first.close()  # closed by its owner: the bus lets go of it
+    assert first not in bus._closables
+    again = bus.subscribe("pose", PoseStamped)
+    async with open_bus(bus_settings) as other:
+        pub = other.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        pub.put(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0))
+        assert (await again.next(timeout=5.0)).x == 1.0
+    assert first.received == 0
+
+
 async def test_latched_topic_reaches_a_late_joiner(bus: Bus, bus_settings: BusSettings) -> None:
     grid = OccupancyGrid.from_array([[0, 100], [-1, 0]], 0.5)
     latched = bus.latched_publisher("map", OccupancyGrid)

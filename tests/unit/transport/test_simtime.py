@@ -12,8 +12,19 @@ async def test_now_reads_the_newest_stamp_received() -> None:
     clock = SimTime()
     assert clock.receive(1.5) is False  # nobody sleeps: the loop need not look
     assert clock.now() == 1.5
+    await asyncio.sleep(0)
     clock.receive(1.0)  # earlier (a restarted simulation): ignored
     assert clock.now() == 1.5
+
+
+async def test_time_stands_still_within_one_turn_of_the_loop() -> None:
+    clock = SimTime()
+    clock.receive(1.0)
+    assert clock.now() == 1.0
+    clock.receive(1.2)  # arrives while this turn's work runs
+    assert clock.now() == 1.0
+    await asyncio.sleep(0)
+    assert clock.now() == 1.2  # a later turn sees it
 
 
 async def test_receive_says_when_a_sleeper_is_due() -> None:
