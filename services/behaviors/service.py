@@ -19,6 +19,7 @@ from aiobt.core.clock import Clock
 from aiobt.msgs import AssistedTeleop as AssistedTeleopAction
 from aiobt.msgs import BackUp, DriveOnHeading, Empty, Msg, Spin, Twist, Wait
 from aiobt.transport import Bus, GoalHandle, Publisher
+from aiobt.transport.on_demand import OnDemand
 from aiobt_services.controller.collision import CollisionChecker
 from aiobt_services.controller.freshness import FRESH
 from aiobt_services.controller.geometry import STOP, Velocity
@@ -108,6 +109,7 @@ class BehaviorService:
             self.options.safety or Safety(), cycle_period=self.options.cycle_period
         )
         self.tracker = RobotTracker(clock, self.costmap)
+        self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
         self._shift = FrameShift(self.costmap)
         self.checker = CollisionChecker(self._shift)
         self._owner: _Run | None = None
@@ -116,7 +118,6 @@ class BehaviorService:
         self._cmd: Publisher[Twist] | None = None
 
     def start(self) -> None:
-        self.tracker.attach(self.bus)
         self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self.bus.subscribe("cmd_vel_teleop", Twist, self._on_teleop)
         self.bus.subscribe("preempt_teleop", Empty, self._on_preempt_teleop)
@@ -161,7 +162,8 @@ class BehaviorService:
             self._teleop_run = behavior
         log.info("%s: goal %s started", spec.name, handle.goal_id)
         try:
-            result = await self._loop(spec, behavior, run, handle, started)
+            async with self.feed.active(self.options.clock_timeout):  # pose, odom, scan
+                result = await self._loop(spec, behavior, run, handle, started)
             log.info(
                 "%s: goal %s ended %d %s (command-to-odometry delay %.3f s)",
                 spec.name,

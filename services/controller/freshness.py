@@ -83,6 +83,11 @@ class Freshness:
         self._stamps[stream] = stamp  # also backwards: a reset starts the stream over
         self._arrived[stream] = self._wall()
 
+    def clear(self) -> None:
+        """Forget every stream (the service stopped listening to the robot)."""
+        self._stamps.clear()
+        self._arrived.clear()
+
     def robot_time(self) -> float:
         """The newest robot time received on any stream (0 before the first)."""
         return max(self._stamps.values(), default=0.0)

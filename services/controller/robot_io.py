@@ -15,9 +15,9 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from aiobt.core.clock import Clock, ManualClock, SystemClock
+from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
 from aiobt.system.announce import announce
 from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
@@ -29,7 +29,7 @@ from .local_costmap import LocalCostmap, LocalCostmapParams
 from .session import RobotState
 
 if TYPE_CHECKING:
-    from aiobt.transport import Bus, SimClockFollower
+    from aiobt.transport import Bus, SimClockFollower, Subscription
 
 log = logging.getLogger("aiobt_services.controller.robot_io")
 
@@ -90,11 +90,22 @@ class RobotTracker:
         age = max(0.0, self._clock.now() - state.stamp) if state is not None else 0.0
         return age + self.delay.estimate
 
-    def attach(self, bus: Bus) -> None:
-        bus.subscribe("odom", Odometry, self.on_odom)
-        bus.subscribe("pose", PoseStamped, self.on_pose)
+    def attach(self, bus: Bus) -> list[Subscription[Any]]:
+        """Subscribe to pose, odom (and scan); the subscriptions, in that order."""
+        subs: list[Subscription[Any]] = [
+            bus.subscribe("pose", PoseStamped, self.on_pose),
+            bus.subscribe("odom", Odometry, self.on_odom),
+        ]
         if self.costmap is not None:
-            bus.subscribe("scan", LaserScan, self.on_scan)
+            subs.append(bus.subscribe("scan", LaserScan, self.on_scan))
+        return subs
+
+    def forget(self) -> None:
+        """Drop the states, the streams' stamps and the waiting scan (before attaching
+        again: nothing heard before the service stopped listening counts)."""
+        self.states.clear()
+        self.freshness.clear()
+        self._pending_scan = None
 
     def on_odom(self, msg: Odometry) -> None:
         self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)
@@ -200,7 +211,7 @@ async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower 
         return SystemClock(), None
     from aiobt.transport import SimClockFollower
 
-    follower = SimClockFollower(bus, ManualClock())
+    follower = SimClockFollower(bus)
     while True:
         try:
             await follower.wait_started(timeout=5.0)

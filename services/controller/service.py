@@ -24,6 +24,7 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.transport import Bus, GoalHandle, Publisher
+from aiobt.transport.on_demand import OnDemand
 
 from .collision import CollisionChecker
 from .cycle_stats import CycleStats
@@ -80,13 +81,13 @@ class ControllerService:
         self.costmap = costmap or LocalCostmap()
         self.options = options or ServiceOptions()
         self.tracker = RobotTracker(clock, self.costmap)
+        self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
         self._shift = FrameShift(self.costmap)
         self._cmd: Publisher[Twist] | None = None
         self._tracking: Publisher[TrackingFeedbackMsg] | None = None
         self._view: LocalView | None = None
 
     def start(self) -> None:
-        self.tracker.attach(self.bus)
         self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
         self._view = LocalView(
@@ -117,7 +118,8 @@ class ControllerService:
         if self._view is not None:
             self._view.begin()
         try:
-            result = await self._run(session, handle)
+            async with self.feed.active(self.options.clock_timeout):  # pose, odom, scan
+                result = await self._run(session, handle)
         finally:
             self._publish(STOP)
             if self._view is not None:
@@ -218,14 +220,15 @@ class ControllerService:
         self.costmap.clear_entirely()
         return ClearCostmapResponse(success=True, message="local costmap cleared")
 
-    def _clear_except(self, req: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
-        return self._clear_region(req.reset_distance, keep_inside=True)
+    async def _clear_except(self, req: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
+        return await self._clear_region(req.reset_distance, keep_inside=True)
 
-    def _clear_around(self, req: ClearCostmapAroundRobot.Request) -> ClearCostmapResponse:
-        return self._clear_region(req.reset_distance, keep_inside=False)
+    async def _clear_around(self, req: ClearCostmapAroundRobot.Request) -> ClearCostmapResponse:
+        return await self._clear_region(req.reset_distance, keep_inside=False)
 
-    def _clear_region(self, distance: float, keep_inside: bool) -> ClearCostmapResponse:
-        state = self.tracker.states.get("map")
+    async def _clear_region(self, distance: float, keep_inside: bool) -> ClearCostmapResponse:
+        async with self.feed.active(self.options.clock_timeout):  # the pose now, if idle
+            state = self.tracker.states.get("map")
         if state is None:
             return ClearCostmapResponse(success=False, message="no robot pose in 'map' yet")
         if keep_inside:

@@ -83,16 +83,42 @@ class SharedTopics:
                 )
             return found
         topic: SharedTopic[M] = SharedTopic(f"{self.namespace}/{name}", model, latched)
-        topic.subscription = self.bus.subscribe(
-            name, model, topic.deliver, latched=latched, namespace=self.namespace
-        )
+        self._declare(name, topic)
         self._topics[name] = topic
-        log.debug("subscribed to %s (%s)", topic.key, model.__name__)
         return topic
+
+    def _declare(self, name: str, topic: SharedTopic[M]) -> Subscription[M]:
+        topic.subscription = self.bus.subscribe(
+            name, topic.model, topic.deliver, latched=topic.latched, namespace=self.namespace
+        )
+        log.debug("subscribed to %s (%s)", topic.key, topic.model.__name__)
+        return topic.subscription
+
+    def pause(self) -> None:
+        """Close the subscriptions of the topics not latched (the robot's streams) and
+        forget their last message, until :meth:`resume`; listeners stay registered."""
+        for topic in self._topics.values():
+            if topic.latched or topic.subscription is None:
+                continue
+            topic.subscription.close()
+            topic.subscription = None
+            topic.latest = None
+
+    def resume(self) -> dict[str, Subscription[Any]]:
+        """Subscribe again to the paused topics; every topic's subscription, by name."""
+        subs: dict[str, Subscription[Any]] = {}
+        for name, topic in self._topics.items():
+            sub = topic.subscription
+            subs[name] = sub if sub is not None else self._declare(name, topic)
+        return subs
 
     def subscribed(self) -> list[str]:
         """The keys subscribed so far."""
         return [topic.key for topic in self._topics.values()]
+
+    def live(self) -> list[str]:
+        """The keys subscribed now (not paused)."""
+        return [topic.key for topic in self._topics.values() if topic.subscription is not None]
 
     def shared(self, name: str, make: Callable[[SharedTopics], Any]) -> Any:
         """One ``make(self)`` per bus and namespace (e.g. the odometry smoother)."""

@@ -134,7 +134,8 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
         btlog_dir=args.btlog_dir,
     )
     stream = TreeStatusStream(BusStatusSink(bus))
-    return Navigator(library, NavRobotState(nav), clock, stream, options)
+    robot = NavRobotState(nav, clock, args.pose_timeout)
+    return Navigator(library, robot, clock, stream, options)
 
 
 async def serve(args: argparse.Namespace) -> int:
@@ -154,7 +155,8 @@ async def serve(args: argparse.Namespace) -> int:
         async with contextlib.AsyncExitStack() as stack:
             if args.groot2 is not None and not await _groot2(args.groot2, navigator, stack):
                 return 1
-            service = NavigatorService(bus, navigator, made[0])
+            robot = navigator.robot if isinstance(navigator.robot, NavRobotState) else None
+            service = NavigatorService(bus, navigator, made[0], robot)
             service.start(args.snapshot_period)
             announce(bus, "navigator", sim_time=args.sim_time)
             time = "sim" if args.sim_time else "wall"

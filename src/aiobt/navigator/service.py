@@ -10,6 +10,7 @@ status stream. Goals published on ``{ns}/goal_pose`` are sent to its own
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import logging
 from typing import Any
 
@@ -35,8 +36,9 @@ from aiobt.navigator.goals import (
     NavRequest,
 )
 from aiobt.navigator.navigator import Navigator
-from aiobt.transport import Bus
+from aiobt.transport import Bus, Subscription
 from aiobt.transport.actions.goals import GoalHandle
+from aiobt.transport.on_demand import OnDemand
 
 log = logging.getLogger("aiobt.navigator.service")
 SELF_GOAL_TIMEOUT = 2.0  # s for the navigator's own server to take a goal_pose goal
@@ -52,11 +54,24 @@ class NavRobotState:
     """The robot as the navigator sees it, from the Nav2 nodes' shared robot state
     (one subscription per key in the process): map pose, smoothed speed."""
 
-    def __init__(self, nav: NavContext) -> None:
+    def __init__(self, nav: NavContext, clock: Clock, pose_timeout: float) -> None:
         self._robot = robot_state(nav, "navigator")
-        self._robot.prepare(POSE, ODOM)  # subscribed now: data before the first goal
+        self._robot.prepare(POSE, ODOM)
         self._pose_seen = asyncio.Event()
         self._robot.topics.topic(POSE, PoseStamped).listen(lambda _: self._pose_seen.set())
+        topics = self._robot.topics
+        topics.pause()  # the robot's streams only while a navigation runs (``active``)
+        self._feed = OnDemand(self._attach, self._pose_seen.clear, clock, released=topics.pause)
+        self._pose_timeout = pose_timeout
+
+    def _attach(self) -> list[Subscription[Any]]:
+        subs = self._robot.topics.resume()
+        return [subs[POSE], subs[ODOM]]
+
+    def active(self) -> contextlib.AbstractAsyncContextManager[bool]:
+        """The robot's streams subscribed around a navigation (a fresh pose and
+        odometry waited for, bounded by ``pose_timeout``), let go after it."""
+        return self._feed.active(self._pose_timeout)
 
     def current_pose(self) -> PoseStamped | None:
         return self._robot.pose_in(GLOBAL_FRAME)
@@ -113,10 +128,13 @@ class _HandleChannel:
 class NavigatorService:
     """Serves ``navigate_to_pose`` and ``navigate_through_poses`` on ``bus``."""
 
-    def __init__(self, bus: Bus, navigator: Navigator, clock: Clock) -> None:
+    def __init__(
+        self, bus: Bus, navigator: Navigator, clock: Clock, robot: NavRobotState | None = None
+    ) -> None:
         self.bus = bus
         self.navigator = navigator
         self.clock = clock
+        self.robot = robot  # its streams subscribed while a goal runs
         self._tasks: set[asyncio.Task[None]] = set()
 
     def start(self, snapshot_period: float) -> None:
@@ -167,7 +185,10 @@ class NavigatorService:
     ) -> ActionResult:
         request = to_request(action, handle.goal_id, goal)
         log.info("%s goal %s accepted", action, request.goal_id)
-        return await self.navigator.navigate(request, _HandleChannel(action, handle))
+        if self.robot is None:
+            return await self.navigator.navigate(request, _HandleChannel(action, handle))
+        async with self.robot.active():
+            return await self.navigator.navigate(request, _HandleChannel(action, handle))
 
     # -- topics ----------------------------------------------------------------------------
     def _on_map(self, grid: OccupancyGrid) -> None:

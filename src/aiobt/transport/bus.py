@@ -59,6 +59,12 @@ class Bus:
         self._closables.append(entity)
         return entity
 
+    def _untrack(self, entity: Any) -> None:
+        """``entity`` was closed by its owner: the bus need not keep it."""
+        if not self._closed:
+            with contextlib.suppress(ValueError):
+                self._closables.remove(entity)
+
     def publisher(
         self, name: str, model: type[M], *, reliable: bool = False
     ) -> publishers.Publisher[M]:
@@ -99,6 +105,7 @@ class Bus:
             latched=latched,
             queue_size=queue_size,
         )
+        sub.on_close = lambda: self._untrack(sub)  # one subscribed while needed, then closed
         return self._track(sub)
 
     def serve(

@@ -85,6 +85,7 @@ class Subscription(Generic[M]):
         self._errors = RepeatedErrors(log, f"{key}: subscriber callback")
         self._first = asyncio.Event()
         self._undeclare: Callable[[], None] = lambda: None
+        self.on_close: Callable[[], None] | None = None  # told once, when closed
 
     @property
     def queue_size(self) -> int:
@@ -248,6 +249,9 @@ class Subscription(Generic[M]):
         self._closed = True
         self._errors.flush()
         self._wake()
+        on_close, self.on_close = self.on_close, None
+        if on_close is not None:
+            on_close()
 
 
 def declare_subscription(

@@ -51,6 +51,19 @@ async def test_callback_runs_in_the_event_loop(bus: Bus, bus_settings: BusSettin
     assert in_loop
 
 
+async def test_subscribing_again_after_a_close(bus: Bus, bus_settings: BusSettings) -> None:
+    first = bus.subscribe("pose", PoseStamped)
+    first.close()  # closed by its owner: the bus lets go of it
+    assert first not in bus._closables
+    again = bus.subscribe("pose", PoseStamped)
+    async with open_bus(bus_settings) as other:
+        pub = other.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        pub.put(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0))
+        assert (await again.next(timeout=5.0)).x == 1.0
+    assert first.received == 0
+
+
 async def test_latched_topic_reaches_a_late_joiner(bus: Bus, bus_settings: BusSettings) -> None:
     grid = OccupancyGrid.from_array([[0, 100], [-1, 0]], 0.5)
     latched = bus.latched_publisher("map", OccupancyGrid)
@@ -117,3 +130,25 @@ async def test_sim_clock_follower_drives_a_manual_clock(
         await asyncio.wait_for(woke.wait(), 5.0)
     assert follower.clock.now() == 2.5
     await task
+
+
+async def test_sim_clock_follower_default_clock_wakes_sleepers_when_due(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    follower = SimClockFollower(bus)  # a SimTime: the loop looks only when a sleeper is due
+    async with open_bus(bus_settings) as sim:
+        pub = sim.publisher("clock", Clock, reliable=True)
+        assert await pub.wait_for_subscribers(5.0)
+        pub.put(Clock(clock=1.0))
+        assert await follower.wait_started(5.0) == 1.0
+        sleeper = asyncio.create_task(follower.clock.sleep(1.0))
+        await asyncio.sleep(0)
+        pub.put(Clock(clock=1.5))
+        pub.put(Clock(clock=1.99))
+        await asyncio.wait_for(follower.clock.sleep(0.9), 5.0)  # due at 1.9: woken by 1.99
+        assert follower.clock.now() == 1.99
+        assert not sleeper.done()  # 1.99 < its deadline 2.0
+        pub.put(Clock(clock=2.0))
+        await asyncio.wait_for(sleeper, 5.0)
+    assert follower.clock.now() == 2.0
+    follower.close()

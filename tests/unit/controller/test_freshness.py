@@ -128,3 +128,15 @@ def test_the_tracker_ages_each_frame_by_its_stamps():
     # nothing new for 0.6 s of wall time: the robot went quiet, both frames are stale
     assert "nothing new from the robot for 0.60 s" in str(states["map"].age.stale("map", TIMEOUT))
     assert states["odom"].age.stale("odom", TIMEOUT) is not None
+
+
+def test_a_tracker_that_stopped_listening_forgets_the_robots_stamps():
+    wall = [0.0]
+    tracker = RobotTracker(ManualClock(), wall=lambda: wall[0])
+    tracker.on_pose(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=30.0))
+    tracker.forget()  # detached; the robot restarts from time 0 meanwhile
+    wall[0] = 10.0
+    tracker.on_pose(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=0.5))
+    states = tracker.snapshot()
+    assert states["map"].age.robot == 0.0  # not 29.5 s behind the forgotten stamp
+    assert states["map"].age.stale("map", TIMEOUT) is None

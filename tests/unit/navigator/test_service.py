@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from aiobt.core.clock import SystemClock
+from aiobt.core.clock import ManualClock, SystemClock
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import (
     BtSnapshot,
@@ -20,8 +20,10 @@ from aiobt.msgs import (
     PoseStamped,
 )
 from aiobt.nav import register_nav2_nodes
+from aiobt.nav.shared_topics import shared_topics
 from aiobt.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 from aiobt.transport import Bus
+from aiobt.transport.on_demand import LINGER
 
 from .harness import WAIT, Rig, make_rig, pose
 
@@ -115,11 +117,21 @@ async def test_a_second_goal_of_the_same_action_takes_the_navigation_over(
 @pytest.mark.timeout(60)
 async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus: Bus) -> None:
     nav = register_nav2_nodes(BehaviorTreeFactory(), local_bus)
-    robot = NavRobotState(nav)
+    clock = ManualClock()
+    robot = NavRobotState(nav, clock, pose_timeout=WAIT)
+    assert shared_topics(nav, "test").live() == []  # nothing subscribed while idle
     assert robot.current_pose() is None
     assert robot.linear_speed() == 0.0
     assert not await robot.wait_for_pose(0.05)
     waiting = asyncio.create_task(robot.wait_for_pose(WAIT))
+    release = asyncio.Event()
+
+    async def navigation() -> bool:  # the streams are subscribed while a goal runs
+        async with robot.active() as fresh:
+            await release.wait()
+        return fresh
+
+    goal = asyncio.create_task(navigation())
     poses = local_bus.publisher("pose", PoseStamped)
     odometry = local_bus.publisher("odom", Odometry)
     moving = Odometry.model_validate({"twist": {"linear": {"x": 0.3, "y": 0.4}}})
@@ -134,6 +146,11 @@ async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus
     assert current.pose.position.x == 1.0
     assert robot.linear_speed() == pytest.approx(0.5)
     assert await asyncio.wait_for(waiting, WAIT)
+    release.set()
+    assert await asyncio.wait_for(goal, WAIT) is True
+    await clock.forward(LINGER + 0.1)  # the goal ended a linger ago: streams let go
+    assert robot.current_pose() is None
+    assert shared_topics(nav, "test").live() == []
 
 
 @pytest.mark.timeout(60)

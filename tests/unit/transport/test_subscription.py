@@ -157,3 +157,12 @@ async def test_concurrent_readers_each_get_a_message() -> None:
     feed(sub, *xs(1, 2))
     got = sorted(message.x for message in await asyncio.gather(*readers))
     assert got == [1.0, 2.0]
+
+
+async def test_close_tells_its_owner_once() -> None:
+    sub = subscription()
+    told: list[str] = []
+    sub.on_close = lambda: told.append(sub.key)
+    sub.close()
+    sub.close()  # idempotent: the owner (the bus) is told once
+    assert told == [KEY]

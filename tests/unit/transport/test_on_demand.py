@@ -1,0 +1,119 @@
+"""OnDemand: the robot's streams subscribed while goals run, let go after a linger."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+
+from aiobt.core.clock import ManualClock
+from aiobt.transport.on_demand import OnDemand
+
+
+class FakeStream:
+    def __init__(self) -> None:
+        self.arrived = asyncio.Event()
+        self.closed = False
+
+    async def wait_latest(self, timeout: float | None = None) -> object:  # noqa: ASYNC109
+        await self.arrived.wait()
+        return object()
+
+    def close(self) -> None:
+        self.closed = True
+
+
+class Robot:
+    """Counts attaches and forgets; its streams have a message at once unless told."""
+
+    def __init__(self, silent: bool = False) -> None:
+        self.attached: list[list[FakeStream]] = []
+        self.forgotten = 0
+        self.silent = silent
+
+    def attach(self) -> list[FakeStream]:
+        streams = [FakeStream() for _ in range(3)]
+        if not self.silent:
+            for stream in streams[:2]:
+                stream.arrived.set()
+        self.attached.append(streams)
+        return streams
+
+    def forget(self) -> None:
+        self.forgotten += 1
+
+
+def feed_of(robot: Robot, clock: ManualClock, linger: float = 5.0) -> OnDemand:
+    return OnDemand(robot.attach, robot.forget, clock, linger=linger)
+
+
+async def test_nothing_is_subscribed_until_a_goal_starts() -> None:
+    robot = Robot()
+    feed = feed_of(robot, ManualClock())
+    assert not feed.attached
+    assert robot.attached == []
+    assert await feed.acquire(1.0) is True
+    assert feed.attached
+    assert len(robot.attached) == 1
+    assert robot.forgotten == 1
+    feed.detach()
+
+
+async def test_streams_close_a_linger_after_the_last_goal() -> None:
+    robot, clock = Robot(), ManualClock()
+    feed = feed_of(robot, clock, linger=5.0)
+    async with feed.active(1.0):
+        async with feed.active(1.0):  # a second goal at once: the same streams
+            pass
+        await clock.forward(10.0)
+        assert feed.attached  # one goal still runs
+    await clock.forward(4.9)
+    assert feed.attached
+    await clock.forward(0.2)
+    assert not feed.attached
+    assert all(stream.closed for stream in robot.attached[0])
+    assert len(robot.attached) == 1
+
+
+async def test_a_goal_within_the_linger_keeps_the_streams() -> None:
+    robot, clock = Robot(), ManualClock()
+    feed = feed_of(robot, clock, linger=5.0)
+    async with feed.active(1.0):
+        pass
+    await clock.forward(3.0)
+    async with feed.active(1.0):
+        await clock.forward(10.0)
+        assert feed.attached
+    assert len(robot.attached) == 1
+    assert robot.forgotten == 1
+    feed.detach()
+    assert all(stream.closed for stream in robot.attached[0])
+
+
+async def test_after_a_detach_the_next_goal_forgets_and_attaches_again() -> None:
+    robot, clock = Robot(), ManualClock()
+    feed = feed_of(robot, clock, linger=1.0)
+    async with feed.active(1.0):
+        pass
+    await clock.forward(2.0)
+    assert not feed.attached
+    async with feed.active(1.0):
+        assert feed.attached
+    assert len(robot.attached) == 2
+    assert robot.forgotten == 2
+    feed.detach()
+
+
+@pytest.mark.timeout(10)
+async def test_no_samples_within_the_timeout_says_so() -> None:
+    robot = Robot(silent=True)
+    feed = feed_of(robot, ManualClock())
+    async with feed.active(0.05) as fresh:
+        assert fresh is False
+        assert feed.attached  # the goal runs on; it sees no fresh pose
+    feed.detach()
+
+
+async def test_a_negative_linger_is_refused() -> None:
+    with pytest.raises(ValueError, match="linger"):
+        OnDemand(list, lambda: None, ManualClock(), linger=-1.0)
