@@ -5,9 +5,12 @@ process and the robot (transport, a loaded machine) becomes ``speed`` times as
 much sim time, so a stop decided "now" takes effect noticeably later in sim
 time. :class:`LoopDelay` measures that delay from the services' own traffic:
 when a command sets a base at rest moving, the time until odometry first shows
-the base moving is one sample (it holds both directions: the command to the
-robot and the odometry back). Controller and behaviors add the estimate to
-their look-ahead (see :attr:`LoopDelay.estimate`).
+the base moving is one sample. Timed by the odometry's arrival it holds both
+directions (the command to the robot and the odometry back); timed by the
+odometry's own stamp, on a clock following the robot's (``--sim-time``), it is
+the command's way only (plus how far this clock trails the robot's). Controller
+and behaviors add the estimate to the pose's age (:func:`command_lead`) for their
+look-ahead.
 """
 
 from __future__ import annotations
@@ -38,6 +41,17 @@ def holding_time(lead: float) -> float:
     return min(STALL_CAP, STALL_LEADS * lead) + lead
 
 
+def command_lead(now: float, stamp: float, delay: float) -> float:
+    """Clock seconds from a pose taken at ``stamp`` until a command sent at ``now`` acts,
+    the command taking ``delay`` to the base: the travel the pose does not show yet.
+
+    With ``stamp`` the pose's own robot time and ``now`` a clock following the robot's,
+    a pose delivered late is older by its lateness, so the lead (and the stop decided
+    on it) follows each pose; ``now`` may trail the robot (its clock message is older
+    than the pose): ``delay``, measured on the same clock, holds that lag too."""
+    return max(0.0, now - stamp + delay)
+
+
 def _moving(v: Velocity) -> bool:
     return abs(v.v) > MOVING or abs(v.w) > MOVING
 
@@ -46,7 +60,8 @@ class LoopDelay:
     """Command-to-odometry delay in clock seconds: the newest samples smoothed.
 
     ``commanded`` is told every command published with the base's measured
-    velocity; ``observed`` every odometry arrival. A sample starts when a
+    velocity; ``observed`` every odometry, with its arrival on the clock (a round
+    trip) or its own stamp on the robot's time (one way). A sample starts when a
     moving command is sent to a base at rest and ends at the first odometry
     showing motion; samples above ``max_delay`` (a stalled robot, a refused
     command) are dropped.

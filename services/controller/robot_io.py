@@ -1,9 +1,10 @@
 """What the controller and behavior services read from the robot, and time-keeping.
 
 :class:`RobotTracker` keeps the newest robot state per frame (``map`` from
-``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped on the injected clock at
-arrival (for the latency compensation, :meth:`RobotTracker.lead`), and whether
-each is fresh by the robot's own stamps and the wall clock (:mod:`.freshness`).
+``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped for the latency compensation
+(:meth:`RobotTracker.lead`): by its own header stamp when the service runs on the
+robot's time (``--sim-time``), else by its arrival on the injected clock; and
+whether each is fresh by the robot's own stamps and the wall clock (:mod:`.freshness`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signa
 
 from .freshness import Freshness
 from .geometry import STOP, Pose2D, Velocity
-from .latency import LoopDelay
+from .latency import LoopDelay, command_lead
 from .local_costmap import LocalCostmap, LocalCostmapParams
 from .session import RobotState
 
@@ -45,11 +46,15 @@ class RobotTracker:
     (called by each control cycle of a running goal) integrates the newest one.
     An idle service so spends nothing on the lidar stream, which at a sim
     speed-up of 10 is 100 scans a second.
+
+    ``robot_time``: the clock follows the robot's own (``--sim-time``), so the
+    robot's header stamps are on it and every pose is aged by its own stamp.
     """
 
     __slots__ = (
         "_clock",
         "_pending_scan",
+        "_robot_time",
         "_velocity",
         "costmap",
         "delay",
@@ -62,8 +67,10 @@ class RobotTracker:
         clock: Clock,
         costmap: LocalCostmap | None = None,
         wall: Callable[[], float] = time.monotonic,
+        robot_time: bool = False,
     ) -> None:
         self._clock = clock
+        self._robot_time = robot_time
         self.costmap = costmap
         self.states: dict[str, RobotState] = {}
         self._velocity = STOP
@@ -83,12 +90,20 @@ class RobotTracker:
     def lead(self, frame: str) -> float:
         """Clock seconds from the newest pose in ``frame`` until a command sent now acts.
 
-        Its arrival on this clock plus the command-to-odometry round trip: the round
-        trip holds the pose's own delivery lag, so this is the pose's age by its stamp
-        plus the command's way to the base, whatever the stamps' clock."""
+        On the robot's time (``robot_time``), per pose: the pose's age by its own stamp
+        plus the command's one-way delay (:class:`LoopDelay` measured by the stamp of the
+        first odometry showing motion), so a pose delivered later than usual gets a
+        longer lead. On the wall clock, the robot's stamps are on another clock: the
+        pose's arrival plus the command-to-odometry round trip, right on average only.
+        See :func:`.latency.command_lead`."""
         state = self.states.get(frame)
-        age = max(0.0, self._clock.now() - state.stamp) if state is not None else 0.0
-        return age + self.delay.estimate
+        if state is None:
+            return self.delay.estimate
+        return command_lead(self._clock.now(), state.stamp, self.delay.estimate)
+
+    def _stamp(self, header_stamp: float) -> float:
+        """When a message's state held, on this clock (see :meth:`lead`)."""
+        return header_stamp if self._robot_time else self._clock.now()
 
     def attach(self, bus: Bus) -> None:
         bus.subscribe("odom", Odometry, self.on_odom)
@@ -99,14 +114,14 @@ class RobotTracker:
     def on_odom(self, msg: Odometry) -> None:
         self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)
         pose = Pose2D(msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
-        now = self._clock.now()
-        self.states["odom"] = RobotState(pose, self._velocity, now)
+        at = self._stamp(msg.header.stamp)
+        self.states["odom"] = RobotState(pose, self._velocity, at)
         self.freshness.received("odom", msg.header.stamp)
-        self.delay.observed(now, self._velocity)
+        self.delay.observed(at, self._velocity)
 
     def on_pose(self, msg: PoseStamped) -> None:
         pose = Pose2D(msg.x, msg.y, msg.yaw)
-        self.states["map"] = RobotState(pose, self._velocity, self._clock.now())
+        self.states["map"] = RobotState(pose, self._velocity, self._stamp(msg.header.stamp))
         self.freshness.received("map", msg.header.stamp)
 
     def on_scan(self, msg: LaserScan) -> None:
