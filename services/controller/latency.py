@@ -9,8 +9,7 @@ the base moving is one sample. Timed by the odometry's arrival it holds both
 directions (the command to the robot and the odometry back); timed by the
 odometry's own stamp, on a clock following the robot's (``--sim-time``), it is
 the command's way only (plus how far this clock trails the robot's). Controller
-and behaviors add the estimate to the pose's age (:func:`command_lead`) for their
-look-ahead.
+and behaviors add it to the pose's age (:func:`command_lead`) for their look-ahead.
 """
 
 from __future__ import annotations
@@ -60,14 +59,15 @@ class LoopDelay:
     """Command-to-odometry delay in clock seconds: the newest samples smoothed.
 
     ``commanded`` is told every command published with the base's measured
-    velocity; ``observed`` every odometry, with its arrival on the clock (a round
-    trip) or its own stamp on the robot's time (one way). A sample starts when a
+    velocity; ``observed`` every odometry, with its arrival on the clock (the round
+    trip, :attr:`estimate`) and, on the robot's time, its own stamp (the command's
+    way, :attr:`one_way`). A sample starts when a
     moving command is sent to a base at rest and ends at the first odometry
     showing motion; samples above ``max_delay`` (a stalled robot, a refused
     command) are dropped.
     """
 
-    __slots__ = ("_estimate", "_max_delay", "_sent", "_weight", "samples")
+    __slots__ = ("_estimate", "_max_delay", "_one_way", "_sent", "_weight", "samples")
 
     def __init__(self, max_delay: float = 1.0, weight: float = 0.5) -> None:
         if not (math.isfinite(max_delay) and max_delay > 0.0):
@@ -77,6 +77,7 @@ class LoopDelay:
         self._max_delay = max_delay
         self._weight = weight
         self._estimate = 0.0
+        self._one_way = 0.0
         self._sent: float | None = None
         self.samples = 0
 
@@ -85,22 +86,30 @@ class LoopDelay:
         """Smoothed delay in clock seconds (0 until the first sample)."""
         return self._estimate
 
+    @property
+    def one_way(self) -> float:
+        """Smoothed command-to-motion delay by the odometry's stamps (0 without them)."""
+        return self._one_way
+
     def commanded(self, now: float, cmd: Velocity, measured: Velocity) -> None:
         if not _moving(cmd):
             self._sent = None
         elif self._sent is None and not _moving(measured):
             self._sent = now
 
-    def observed(self, now: float, measured: Velocity) -> None:
+    def observed(self, now: float, measured: Velocity, stamp: float | None = None) -> None:
+        """An odometry arrived at ``now``; ``stamp``: its own, on this clock's time."""
         if self._sent is None or not _moving(measured):
             return
-        sample = now - self._sent
-        self._sent = None
+        sent, self._sent = self._sent, None
+        sample = now - sent
         if not 0.0 <= sample <= self._max_delay:
             return
-        first = self.samples == 0
         self.samples += 1
-        self._estimate = (
-            sample if first else self._estimate + self._weight * (sample - self._estimate)
-        )
+        self._estimate = self._smoothed(self._estimate, sample)
+        if stamp is not None and 0.0 <= stamp - sent <= sample:
+            self._one_way = self._smoothed(self._one_way, stamp - sent)
         log.debug("command-to-odometry delay %.3f s (estimate %.3f s)", sample, self._estimate)
+
+    def _smoothed(self, estimate: float, sample: float) -> float:
+        return sample if self.samples == 1 else estimate + self._weight * (sample - estimate)

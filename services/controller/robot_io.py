@@ -1,10 +1,10 @@
 """What the controller and behavior services read from the robot, and time-keeping.
 
 :class:`RobotTracker` keeps the newest robot state per frame (``map`` from
-``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped for the latency compensation
-(:meth:`RobotTracker.lead`): by its own header stamp when the service runs on the
-robot's time (``--sim-time``), else by its arrival on the injected clock; and
-whether each is fresh by the robot's own stamps and the wall clock (:mod:`.freshness`).
+``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped on the injected clock at
+arrival and with its own stamp (for the latency compensation,
+:meth:`RobotTracker.lead`), and whether each is fresh by the robot's own stamps
+and the wall clock (:mod:`.freshness`).
 """
 
 from __future__ import annotations
@@ -55,6 +55,7 @@ class RobotTracker:
         "_clock",
         "_pending_scan",
         "_robot_time",
+        "_taken",
         "_velocity",
         "costmap",
         "delay",
@@ -71,6 +72,7 @@ class RobotTracker:
     ) -> None:
         self._clock = clock
         self._robot_time = robot_time
+        self._taken: dict[str, float] = {}  # frame -> the newest state's own stamp
         self.costmap = costmap
         self.states: dict[str, RobotState] = {}
         self._velocity = STOP
@@ -90,20 +92,21 @@ class RobotTracker:
     def lead(self, frame: str) -> float:
         """Clock seconds from the newest pose in ``frame`` until a command sent now acts.
 
-        On the robot's time (``robot_time``), per pose: the pose's age by its own stamp
-        plus the command's one-way delay (:class:`LoopDelay` measured by the stamp of the
-        first odometry showing motion), so a pose delivered later than usual gets a
-        longer lead. On the wall clock, the robot's stamps are on another clock: the
-        pose's arrival plus the command-to-odometry round trip, right on average only.
+        Its arrival on this clock plus the command-to-odometry round trip: right on
+        average (the round trip holds a typical pose's delivery lag). On the robot's time
+        (``robot_time``) also per pose: its age by its own stamp plus the command's way
+        (:attr:`LoopDelay.one_way`), and the longer of the two, so a pose delivered
+        later than usual gets a longer lead (an earlier stop), an on-time one the same.
         See :func:`.latency.command_lead`."""
         state = self.states.get(frame)
         if state is None:
             return self.delay.estimate
-        return command_lead(self._clock.now(), state.stamp, self.delay.estimate)
-
-    def _stamp(self, header_stamp: float) -> float:
-        """When a message's state held, on this clock (see :meth:`lead`)."""
-        return header_stamp if self._robot_time else self._clock.now()
+        now = self._clock.now()
+        lead = command_lead(now, state.stamp, self.delay.estimate)
+        taken = self._taken.get(frame)
+        if not self._robot_time or taken is None:
+            return lead
+        return max(lead, command_lead(now, taken, self.delay.one_way))
 
     def attach(self, bus: Bus) -> None:
         bus.subscribe("odom", Odometry, self.on_odom)
@@ -114,14 +117,16 @@ class RobotTracker:
     def on_odom(self, msg: Odometry) -> None:
         self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)
         pose = Pose2D(msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
-        at = self._stamp(msg.header.stamp)
-        self.states["odom"] = RobotState(pose, self._velocity, at)
-        self.freshness.received("odom", msg.header.stamp)
-        self.delay.observed(at, self._velocity)
+        now, stamp = self._clock.now(), msg.header.stamp
+        self.states["odom"] = RobotState(pose, self._velocity, now)
+        self._taken["odom"] = stamp
+        self.freshness.received("odom", stamp)
+        self.delay.observed(now, self._velocity, stamp if self._robot_time else None)
 
     def on_pose(self, msg: PoseStamped) -> None:
         pose = Pose2D(msg.x, msg.y, msg.yaw)
-        self.states["map"] = RobotState(pose, self._velocity, self._stamp(msg.header.stamp))
+        self.states["map"] = RobotState(pose, self._velocity, self._clock.now())
+        self._taken["map"] = msg.header.stamp
         self.freshness.received("map", msg.header.stamp)
 
     def on_scan(self, msg: LaserScan) -> None:

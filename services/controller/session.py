@@ -36,9 +36,8 @@ class FollowRequest:
 
 @dataclass(slots=True, frozen=True)
 class RobotState:
-    """A pose (and measured velocity) in one frame: ``stamp`` when it held on the service's
-    clock (its own stamp on the robot's time, else its arrival), ``age`` how fresh it is
-    (:class:`~.freshness.PoseAge`, as of this cycle)."""
+    """A pose (and measured velocity) in one frame: ``stamp`` its arrival on the service's
+    clock, ``age`` how fresh it is (:class:`~.freshness.PoseAge`, as of this cycle)."""
 
     pose: Pose2D
     velocity: Velocity

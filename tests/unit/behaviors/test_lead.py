@@ -36,20 +36,26 @@ def test_command_lead_is_the_age_by_stamp_plus_the_way():
     assert command_lead(10.0, 10.2, 0.05) == 0.0
 
 
-def test_on_robot_time_the_delay_is_one_way_and_each_pose_is_aged_by_its_stamp():
+def test_on_robot_time_a_pose_later_than_usual_gets_a_longer_lead():
     clock = ManualClock(10.0)
     tracker = RobotTracker(clock, robot_time=True)
     tracker.on_odom(odometry(10.0, Pose2D(0.0, 0.0, 0.0), STOP))
     tracker.sent(Velocity(0.3, 0.0))
-    clock.advance(0.2)  # the odometry showing motion arrives late: only its stamp counts
+    clock.advance(0.1)  # the odometry showing motion, taken at 10.08, arrives 0.02 s later
     tracker.on_odom(odometry(10.08, Pose2D(0.0, 0.0, 0.0), Velocity(0.02, 0.0)))
-    assert tracker.delay.estimate == pytest.approx(0.08)
-    tracker.on_odom(odometry(10.2, Pose2D(0.01, 0.0, 0.0), Velocity(0.1, 0.0)))
+    assert tracker.delay.estimate == pytest.approx(0.1)  # the round trip
+    assert tracker.delay.one_way == pytest.approx(0.08)  # the command's way
+    clock.advance(0.1)
+    tracker.on_odom(odometry(10.18, Pose2D(0.01, 0.0, 0.0), Velocity(0.1, 0.0)))  # usual lag
     on_time = tracker.lead("odom")
-    assert on_time == pytest.approx(0.08)
+    assert on_time == pytest.approx(0.1)  # as by arrival: the round trip
     clock.advance(0.05)
     tracker.on_odom(odometry(10.1, Pose2D(0.02, 0.0, 0.0), Velocity(0.1, 0.0)))  # 0.15 s late
-    assert tracker.lead("odom") == pytest.approx(on_time + 0.15)
+    assert tracker.lead("odom") == pytest.approx(0.15 + 0.08)  # by its stamp
+    by_arrival = RobotTracker(ManualClock(10.25))
+    by_arrival.delay = tracker.delay
+    by_arrival.on_odom(odometry(10.1, Pose2D(0.02, 0.0, 0.0), Velocity(0.1, 0.0)))
+    assert by_arrival.lead("odom") == pytest.approx(on_time)  # on the wall clock: unseen
 
 
 class Link:
