@@ -77,7 +77,7 @@ class LoopDelay:
         self._max_delay = max_delay
         self._weight = weight
         self._estimate = 0.0
-        self._one_way = 0.0
+        self._one_way: float | None = None  # no sample by stamps yet
         self._sent: float | None = None
         self.samples = 0
 
@@ -89,7 +89,7 @@ class LoopDelay:
     @property
     def one_way(self) -> float:
         """Smoothed command-to-motion delay by the odometry's stamps (0 without them)."""
-        return self._one_way
+        return 0.0 if self._one_way is None else self._one_way
 
     def commanded(self, now: float, cmd: Velocity, measured: Velocity) -> None:
         if not _moving(cmd):
@@ -106,10 +106,11 @@ class LoopDelay:
         if not 0.0 <= sample <= self._max_delay:
             return
         self.samples += 1
-        self._estimate = self._smoothed(self._estimate, sample)
-        if stamp is not None and 0.0 <= stamp - sent <= sample:
+        self._estimate = self._smoothed(self._estimate if self.samples > 1 else None, sample)
+        if stamp is not None and 0.0 <= stamp - sent <= self._max_delay:  # may exceed
+            # the sample: this clock (the robot's clock messages) may trail the odometry
             self._one_way = self._smoothed(self._one_way, stamp - sent)
         log.debug("command-to-odometry delay %.3f s (estimate %.3f s)", sample, self._estimate)
 
-    def _smoothed(self, estimate: float, sample: float) -> float:
-        return sample if self.samples == 1 else estimate + self._weight * (sample - estimate)
+    def _smoothed(self, estimate: float | None, sample: float) -> float:
+        return sample if estimate is None else estimate + self._weight * (sample - estimate)
