@@ -55,7 +55,10 @@ async def serve(args: argparse.Namespace) -> None:
             simulate_ahead_time=args.simulate_ahead_time, pose_timeout=args.pose_timeout
         )
         options = BehaviorOptions(
-            cycle_period=1.0 / args.rate, clock_timeout=args.clock_timeout, safety=safety
+            cycle_period=1.0 / args.rate,
+            clock_timeout=args.clock_timeout,
+            safety=safety,
+            robot_time=args.sim_time,
         )
         BehaviorService(bus, clock, local_costmap_from(args), options).start()
 

@@ -42,6 +42,7 @@ class BehaviorOptions:
     cycle_period: float = 0.05
     clock_timeout: float = 2.0
     safety: Safety | None = None
+    robot_time: bool = False  # the clock follows the robot's (--sim-time): leads by stamps
 
 
 @dataclass(slots=True, frozen=True)
@@ -108,7 +109,7 @@ class BehaviorService:
         self.safety = replace(
             self.options.safety or Safety(), cycle_period=self.options.cycle_period
         )
-        self.tracker = RobotTracker(clock, self.costmap)
+        self.tracker = RobotTracker(clock, self.costmap, robot_time=self.options.robot_time)
         self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
         self._shift = FrameShift(self.costmap)
         self.checker = CollisionChecker(self._shift)

@@ -85,7 +85,7 @@ def config_from(args: argparse.Namespace) -> ControllerConfig:
 
 async def serve(args: argparse.Namespace) -> None:
     def start(bus: Bus, clock: Clock) -> None:
-        options = ServiceOptions(args.clock_timeout)
+        options = ServiceOptions(args.clock_timeout, robot_time=args.sim_time)
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 
     await serve_on_clock(args, "controller", start, f" at {args.rate:g} Hz", log)

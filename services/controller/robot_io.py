@@ -2,8 +2,9 @@
 
 :class:`RobotTracker` keeps the newest robot state per frame (``map`` from
 ``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped on the injected clock at
-arrival (for the latency compensation, :meth:`RobotTracker.lead`), and whether
-each is fresh by the robot's own stamps and the wall clock (:mod:`.freshness`).
+arrival and with its own stamp (for the latency compensation,
+:meth:`RobotTracker.lead`), and whether each is fresh by the robot's own stamps
+and the wall clock (:mod:`.freshness`).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signa
 
 from .freshness import Freshness
 from .geometry import STOP, Pose2D, Velocity
-from .latency import LoopDelay
+from .latency import LoopDelay, command_lead
 from .local_costmap import LocalCostmap, LocalCostmapParams
 from .session import RobotState
 
@@ -45,11 +46,16 @@ class RobotTracker:
     (called by each control cycle of a running goal) integrates the newest one.
     An idle service so spends nothing on the lidar stream, which at a sim
     speed-up of 10 is 100 scans a second.
+
+    ``robot_time``: the clock follows the robot's own (``--sim-time``), so the
+    robot's header stamps are on it and every pose is aged by its own stamp.
     """
 
     __slots__ = (
         "_clock",
         "_pending_scan",
+        "_robot_time",
+        "_taken",
         "_velocity",
         "costmap",
         "delay",
@@ -62,8 +68,11 @@ class RobotTracker:
         clock: Clock,
         costmap: LocalCostmap | None = None,
         wall: Callable[[], float] = time.monotonic,
+        robot_time: bool = False,
     ) -> None:
         self._clock = clock
+        self._robot_time = robot_time
+        self._taken: dict[str, float] = {}  # frame -> the newest state's own stamp
         self.costmap = costmap
         self.states: dict[str, RobotState] = {}
         self._velocity = STOP
@@ -83,12 +92,21 @@ class RobotTracker:
     def lead(self, frame: str) -> float:
         """Clock seconds from the newest pose in ``frame`` until a command sent now acts.
 
-        Its arrival on this clock plus the command-to-odometry round trip: the round
-        trip holds the pose's own delivery lag, so this is the pose's age by its stamp
-        plus the command's way to the base, whatever the stamps' clock."""
+        Its arrival on this clock plus the command-to-odometry round trip: right on
+        average (the round trip holds a typical pose's delivery lag). On the robot's time
+        (``robot_time``) also per pose: its age by its own stamp plus the command's way
+        (:attr:`LoopDelay.one_way`), and the longer of the two, so a pose delivered
+        later than usual gets a longer lead (an earlier stop), an on-time one the same.
+        See :func:`.latency.command_lead`."""
         state = self.states.get(frame)
-        age = max(0.0, self._clock.now() - state.stamp) if state is not None else 0.0
-        return age + self.delay.estimate
+        if state is None:
+            return self.delay.estimate
+        now = self._clock.now()
+        lead = command_lead(now, state.stamp, self.delay.estimate)
+        taken = self._taken.get(frame)
+        if not self._robot_time or taken is None:
+            return lead
+        return max(lead, command_lead(now, taken, self.delay.one_way))
 
     def attach(self, bus: Bus) -> list[Subscription[Any]]:
         """Subscribe to pose, odom (and scan); the subscriptions, in that order."""
@@ -110,14 +128,16 @@ class RobotTracker:
     def on_odom(self, msg: Odometry) -> None:
         self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)
         pose = Pose2D(msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
-        now = self._clock.now()
+        now, stamp = self._clock.now(), msg.header.stamp
         self.states["odom"] = RobotState(pose, self._velocity, now)
-        self.freshness.received("odom", msg.header.stamp)
-        self.delay.observed(now, self._velocity)
+        self._taken["odom"] = stamp
+        self.freshness.received("odom", stamp)
+        self.delay.observed(now, self._velocity, stamp if self._robot_time else None)
 
     def on_pose(self, msg: PoseStamped) -> None:
         pose = Pose2D(msg.x, msg.y, msg.yaw)
         self.states["map"] = RobotState(pose, self._velocity, self._clock.now())
+        self._taken["map"] = msg.header.stamp
         self.freshness.received("map", msg.header.stamp)
 
     def on_scan(self, msg: LaserScan) -> None:

@@ -62,6 +62,7 @@ def result_of(error: ControllerError | None) -> FollowPath.Result:
 class ServiceOptions:
     clock_timeout: float = 2.0
     clear_default_distance: float = 1.0
+    robot_time: bool = False  # the clock follows the robot's (--sim-time): leads by stamps
 
 
 class ControllerService:
@@ -80,7 +81,7 @@ class ControllerService:
         self.config = config or ControllerConfig()
         self.costmap = costmap or LocalCostmap()
         self.options = options or ServiceOptions()
-        self.tracker = RobotTracker(clock, self.costmap)
+        self.tracker = RobotTracker(clock, self.costmap, robot_time=self.options.robot_time)
         self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
         self._shift = FrameShift(self.costmap)
         self._cmd: Publisher[Twist] | None = None

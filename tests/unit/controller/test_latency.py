@@ -70,3 +70,18 @@ def test_scans_wait_for_a_refresh():
     assert costmap.costs_at(ahead)[0] == 0  # kept, not integrated
     tracker.refresh_costmap()
     assert costmap.costs_at(ahead)[0] >= INSCRIBED
+
+
+def test_one_way_delay_by_stamps_smoothed_from_its_own_first_sample():
+    delay = LoopDelay(weight=0.5)
+    delay.commanded(1.0, GO, STOP)
+    delay.observed(1.2, Velocity(0.02, 0.0), stamp=0.9)  # taken before the command: no
+    assert delay.estimate == pytest.approx(0.2)
+    assert delay.one_way == 0.0
+    delay.commanded(2.0, GO, STOP)
+    delay.observed(2.1, Velocity(0.02, 0.0), stamp=2.06)
+    assert delay.one_way == pytest.approx(0.06)
+    delay.commanded(3.0, GO, STOP)
+    delay.observed(3.1, Velocity(0.02, 0.0), stamp=3.14)  # the clock trails the robot
+    assert delay.one_way == pytest.approx(0.1)
+    assert delay.estimate == pytest.approx(0.125)
