@@ -31,7 +31,7 @@ from aiobt.msgs import (
     Path,
     PoseStamped,
 )
-from aiobt.transport import Bus, Subscription
+from aiobt.transport import Bus, Publisher, Subscription
 from aiobt.transport.topics import declare_subscription
 
 log = logging.getLogger("aiobt.foxglove.bridge")
@@ -49,13 +49,17 @@ class FoxgloveBridge:
         context: foxglove.Context,
         footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS,
         costmap_period: float = DEFAULT_COSTMAP_PERIOD,
+        forwards_goals: bool = True,
     ) -> None:
         if not footprint_radius > 0.0 or not math.isfinite(footprint_radius):
             raise ValueError(f"footprint radius must be > 0 m, not {footprint_radius!r}")
         self.bus = bus
         self.ch = Channels.create(context)
         self.radius = footprint_radius
-        self.goals = bus.publisher("goal_pose", PoseStamped, reliable=True)
+        # declared up front: a put right after a publisher's declaration may be lost
+        self.goals: Publisher[PoseStamped] | None = None
+        if forwards_goals:
+            self.goals = bus.publisher("goal_pose", PoseStamped, reliable=True)
         self.costmap = CostmapMirror(costmap_period) if costmap_period > 0.0 else None
         self._pose: PoseStamped | None = None
         self._odom: Odometry | None = None
@@ -165,6 +169,9 @@ class FoxgloveBridge:
             goal = convert.goal_from_json(payload)
         except (MessageError, ValueError) as exc:
             self.note(f"goal on {topic} refused: {exc}", fm.LogLevel.Warning)
+            return
+        if self.goals is None:
+            self.note(f"goal on {topic} refused: this bridge only records", fm.LogLevel.Warning)
             return
         self.goals.put(goal)
         p = goal.pose.position

@@ -14,6 +14,7 @@ import argparse
 import asyncio
 import contextlib
 import logging
+from functools import partial
 from pathlib import Path
 
 from aiobt.core.clock import Clock
@@ -106,6 +107,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add("--btlog-dir", type=Path, metavar="DIR", help="write a .btlog per navigation in DIR")
     add(
+        "--mcap-dir",
+        type=Path,
+        metavar="DIR",
+        help="record each navigation to an MCAP in DIR (the channels of `aiobt foxglove`, "
+        "to open in Foxglove)",
+    )
+    add(
         "--groot2",
         type=port_argument,
         nargs="?",
@@ -132,10 +140,16 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
         clock_timeout=args.clock_timeout if args.sim_time else None,
         pose_timeout=args.pose_timeout,
         btlog_dir=args.btlog_dir,
+        mcap_dir=args.mcap_dir,
     )
     stream = TreeStatusStream(BusStatusSink(bus))
     robot = NavRobotState(nav, clock, args.pose_timeout)
-    return Navigator(library, robot, clock, stream, options)
+    navigator = Navigator(library, robot, clock, stream, options)
+    if args.mcap_dir is not None:
+        from aiobt.foxglove.recording import McapRecording  # foxglove only when asked
+
+        navigator.recorder = partial(McapRecording, bus)
+    return navigator
 
 
 async def serve(args: argparse.Namespace) -> int:

@@ -31,6 +31,12 @@ if TYPE_CHECKING:
 log = logging.getLogger("aiobt.navigator.navigation")
 
 
+class Recording(Protocol):
+    """A per-navigation recording (an MCAP of the bridged channels): closed at the end."""
+
+    def close(self) -> None: ...
+
+
 class GoalChannel(Protocol):
     """The action goal a navigation serves: newer goals that take it over, feedback."""
 
@@ -54,6 +60,7 @@ class Navigation:
         self._stop: ActionResult | None = None
         self._progress = PathProgress()
         self._btlog: BtlogLogger | None = None
+        self._recording: Recording | None = None
         self._stalled = False
 
     # -- control from outside ----------------------------------------------------------
@@ -203,6 +210,7 @@ class Navigation:
         self.tree, self.tree_source = tree, source
         self.navigator.stream.attach(tree, action=request.action, source=source)
         self._btlog = self.navigator.open_btlog(tree, request)
+        self._recording = self.navigator.open_recording(request)
         for show in self.navigator.tree_viewers:
             show(tree)
         log.info("goal %s: running tree %s from %s", request.goal_id, tree.tree_id, source)
@@ -218,6 +226,9 @@ class Navigation:
             if self._btlog is not None:
                 self._btlog.close()
                 self._btlog = None
+            if self._recording is not None:
+                self._recording.close()
+                self._recording = None
 
     # -- feedback ------------------------------------------------------------------------
     def _feedback(self) -> Msg:

@@ -25,7 +25,7 @@ from aiobt.msgs.bt import NavigationState
 from aiobt.nav.context import DEFAULT_BT_LOOP_DURATION
 from aiobt.navigator.errors import ERROR_CODE_PREFIXES, navigator_codes
 from aiobt.navigator.goals import MapBounds, NavRequest, pose_problem
-from aiobt.navigator.navigation import GoalChannel, Navigation
+from aiobt.navigator.navigation import GoalChannel, Navigation, Recording
 from aiobt.navigator.status import TreeStatusStream
 from aiobt.navigator.trees import DEFAULT_THROUGH_POSES_TREE, DEFAULT_TO_POSE_TREE, TreeLibrary
 
@@ -57,6 +57,7 @@ class NavigatorOptions:
     pose_timeout: float = 2.0  # wall s a goal waits for a first robot pose (then TF_ERROR)
     error_code_prefixes: tuple[str, ...] = ERROR_CODE_PREFIXES
     btlog_dir: Path | None = None
+    mcap_dir: Path | None = None  # one MCAP per navigation (with a ``recorder``)
 
 
 class Navigator:
@@ -83,6 +84,8 @@ class Navigator:
         self._last: tuple[NavRequest, ActionResult] | None = None
         # called with each navigation's new tree (e.g. a Groot2 publisher's attach)
         self.tree_viewers: list[Callable[[Tree], None]] = []
+        # starts recording to a file, with mcap_dir (e.g. aiobt.foxglove's McapRecording)
+        self.recorder: Callable[[Path], Recording] | None = None
 
     # -- goals ---------------------------------------------------------------------------
     def tree_of(self, request: NavRequest) -> str:
@@ -178,14 +181,33 @@ class Navigator:
 
     def open_btlog(self, tree: Tree, request: NavRequest) -> BtlogLogger | None:
         """A ``.btlog`` for this navigation's tree, when ``btlog_dir`` is set."""
-        directory = self.options.btlog_dir
-        if directory is None:
-            return None
-        stamp = time.strftime("%Y%m%d-%H%M%S")  # a file name, not robot time
-        path = directory / f"{stamp}_{self.stream.run:04d}_{request.action}_{request.goal_id}.btlog"
+        path = self._file_for(self.options.btlog_dir, request, "btlog")
         try:
-            directory.mkdir(parents=True, exist_ok=True)
-            return BtlogLogger(tree, path)
+            return None if path is None else BtlogLogger(tree, path)
         except (OSError, ValueError) as exc:
             log.error("no .btlog for goal %s: %s", request.goal_id, exc)
             return None
+
+    def open_recording(self, request: NavRequest) -> Recording | None:
+        """An MCAP recording of this navigation, when ``mcap_dir`` and a recorder are set."""
+        path = self._file_for(self.options.mcap_dir, request, "mcap")
+        if path is None or self.recorder is None:
+            return None
+        try:
+            return self.recorder(path)
+        except (OSError, ValueError) as exc:
+            log.error("no recording of goal %s: %s", request.goal_id, exc)
+            return None
+
+    def _file_for(self, directory: Path | None, request: NavRequest, suffix: str) -> Path | None:
+        """``DIR/<date>-<time>_<run>_<action>_<goal id>.<suffix>`` (DIR made), or None."""
+        if directory is None:
+            return None
+        stamp = time.strftime("%Y%m%d-%H%M%S")  # a file name, not robot time
+        name = f"{stamp}_{self.stream.run:04d}_{request.action}_{request.goal_id}.{suffix}"
+        try:
+            directory.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            log.error("no .%s for goal %s: %s", suffix, request.goal_id, exc)
+            return None
+        return directory / name

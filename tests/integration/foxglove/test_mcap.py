@@ -102,3 +102,30 @@ async def test_recording_holds_every_channel_in_time_order(stack: NavStack, tmp_
     costs = recorded["/global_costmap"][-1][1].data
     assert b"\xfe" in costs, "no lethal cell in the costmap"  # the small world's walls
     assert recorded["/navigator/feedback"][-1][1]["distance_remaining"] >= 0.0
+
+
+@pytest.mark.timeout(240)
+async def test_the_navigator_records_each_navigation_to_its_own_mcap(tmp_path: Path) -> None:
+    runs = tmp_path / "runs"
+    config = StackConfig(world="small", speed=2.0, extra={"navigator": ["--mcap-dir", str(runs)]})
+    with running_stack(config) as stack:
+        async with open_bus(stack.settings()) as bus:
+            await stack.wait_ready(bus, timeout=90.0)
+            client = bus.action_client(NavigateToPose.name, NavigateToPose)
+            assert await client.wait_for_server(60.0), stack.logs()
+            for goal in (GOAL, (0.0, 0.0, 0.0)):  # there and back: two navigations
+                sent = await client.send_goal(
+                    NavigateToPose.Goal(pose=PoseStamped.from_xy_yaw(*goal)), server_timeout=10.0
+                )
+                result = await sent.result(120.0)
+                assert sent.status is GoalState.SUCCEEDED, f"{result}\n{stack.logs()}"
+        files = sorted(runs.glob("*.mcap"))  # each closed before its result was sent
+        assert [f.name.split("_", 2)[-1][:16] for f in files] == ["navigate_to_pose"] * 2
+        for path in files:
+            recorded = read_back(path)
+            missing = every_topic() - recorded.keys() - {"/goal"}  # goals sent as actions
+            assert not missing, f"{path.name}: no messages on {sorted(missing)}"
+            times = [t for t, _ in recorded["/pose"]]
+            assert times == sorted(times), f"{path.name}: /pose out of order"
+        first, second = (read_back(f)["/pose"] for f in files)
+        assert first[-1][0] <= second[0][0], "the second navigation's recording started first"

@@ -41,6 +41,13 @@ def test_options_reach_the_navigator(local_bus: Bus, tmp_path: Path) -> None:
     assert options.btlog_dir == tmp_path
     assert options.clock_timeout == 3.0
     assert build_navigator(parse(), local_bus, ManualClock()).options.clock_timeout is None
+    assert navigator.recorder is None  # no --mcap-dir: nothing records
+
+
+def test_mcap_dir_makes_the_navigator_record(local_bus: Bus, tmp_path: Path) -> None:
+    navigator = build_navigator(parse("--mcap-dir", str(tmp_path)), local_bus, ManualClock())
+    assert navigator.options.mcap_dir == tmp_path
+    assert navigator.recorder is not None
 
 
 @pytest.mark.parametrize(

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import logging
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -226,6 +227,36 @@ async def test_a_btlog_per_navigation(tmp_path: Path) -> None:
         "navigate_to_pose_b.btlog",
     ]
     assert all(f.read_bytes().startswith(b"BTCPP4-FileLogger2") for f in files)
+
+
+async def test_a_recording_per_navigation_closed_at_its_end(tmp_path: Path) -> None:
+    rig = make_rig(tmp_path, TREES)
+    rig.navigator.options = replace(rig.navigator.options, mcap_dir=tmp_path / "runs")
+    opened: list[Path] = []
+    closed: list[Path] = []
+
+    class Recorder:
+        def __init__(self, path: Path) -> None:
+            self.path = path
+            opened.append(path)
+
+        def close(self) -> None:
+            closed.append(self.path)
+
+    rig.navigator.recorder = Recorder
+    for goal_id in ("a", "b"):
+        task = start(rig, to_pose(goal_id))
+        await rig.gates.wait_started("drive")
+        assert len(opened) == len(closed) + 1  # recording while the tree runs
+        rig.gates.open("drive")
+        await asyncio.wait_for(task, WAIT)
+    assert closed == opened
+    assert [p.name.split("_", 2)[-1] for p in opened] == [
+        "navigate_to_pose_a.mcap",
+        "navigate_to_pose_b.mcap",
+    ]
+    assert all(p.parent == tmp_path / "runs" for p in opened)
+    assert (tmp_path / "runs").is_dir()
 
 
 async def test_a_stalled_clock_does_not_stall_the_loop(
