@@ -3,14 +3,19 @@
 from __future__ import annotations
 
 import math
+import os
+import signal
 from collections.abc import Callable, Sequence
+from typing import Any, TypeVar
 
 import pytest
 
-from aiobt.msgs import Path, PoseStamped
+from aiobt.msgs import ActionResult, Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess
-from aiobt.transport import Bus, BusSettings
+from aiobt.transport import Bus, BusSettings, ClientGoal
 from aiobt_services.controller.geometry import PlanarPath
+
+R = TypeVar("R", bound=ActionResult)
 
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 SPEED = "4"
@@ -53,3 +58,12 @@ def path_through(points: Sequence[tuple[float, float]], spacing: float = 0.05) -
 
 def yaw_error(a: float, b: float) -> float:
     return abs((a - b + math.pi) % (2 * math.pi) - math.pi)
+
+
+async def result_while_frozen(robot: ServiceProcess, goal: ClientGoal[Any, R, Any]) -> R:
+    """SIGSTOP the robot process, wait (10 s at most) for ``goal``'s result, SIGCONT it."""
+    os.kill(robot.pid, signal.SIGSTOP)
+    try:
+        return await goal.result(timeout=10.0)
+    finally:
+        os.kill(robot.pid, signal.SIGCONT)

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import asyncio
 import math
-import os
-import signal
 
 import pytest
 
@@ -24,7 +22,7 @@ from aiobt.msgs import (
 from aiobt.msgs import DriveOnHeading as DriveOnHeadingAction
 from aiobt.transport import Bus, BusSettings
 
-from .helpers import Spawn, start, yaw_error
+from .helpers import Spawn, result_while_frozen, start, yaw_error
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 
@@ -170,11 +168,7 @@ async def test_robot_stopped_mid_spin_is_a_stale_pose_on_the_wall_clock(
         async for o in odom:
             if abs(o.twist.angular.z) > 0.3:
                 break
-    os.kill(robot.pid, signal.SIGSTOP)
-    try:
-        result = await goal.result(timeout=10.0)
-    finally:
-        os.kill(robot.pid, signal.SIGCONT)
+    result = await result_while_frozen(robot, goal)
     assert result.error_code == SpinError.TF_ERROR
     assert "robot pose in frame 'odom' is stale: nothing new from the robot" in result.error_msg
     assert "pose_timeout 0.50 s" in result.error_msg

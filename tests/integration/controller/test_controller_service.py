@@ -5,8 +5,6 @@ from __future__ import annotations
 import asyncio
 import itertools
 import math
-import os
-import signal
 import statistics
 
 import pytest
@@ -28,7 +26,7 @@ from aiobt.msgs import (
 from aiobt.msgs import TrackingFeedback as TrackingFeedbackMsg
 from aiobt.transport import Bus, BusSettings
 
-from .helpers import Spawn, path_through, start, yaw_error
+from .helpers import Spawn, path_through, result_while_frozen, start, yaw_error
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 
@@ -268,11 +266,7 @@ async def test_robot_stopped_mid_goal_is_a_stale_pose_on_the_wall_clock(
         async for p in pose:
             if p.x >= 0.1:
                 break
-    os.kill(robot.pid, signal.SIGSTOP)
-    try:
-        result = await goal.result(timeout=10.0)
-    finally:
-        os.kill(robot.pid, signal.SIGCONT)
+    result = await result_while_frozen(robot, goal)
     assert goal.status is GoalState.ABORTED
     assert result.error_code == FollowPathError.TF_ERROR
     assert "robot pose in frame 'map' is stale: nothing new from the robot" in result.error_msg

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import given
 from hypothesis import strategies as st
 
 from aiobt_services.behaviors import Inputs, SpinBehavior
@@ -45,7 +45,6 @@ def test_arc_projection_matches_the_unicycle(x, y, yaw, v, w):
 
 
 @given(st.floats(-math.pi, math.pi), st.floats(-12.0, 12.0).filter(lambda a: abs(a) > 0.05))
-@settings(deadline=None)  # a loaded machine: up to 1000 steps per case
 def test_spin_accounts_any_angle_from_any_start(start_yaw, target):
     robot = Unicycle(Pose2D(0.0, 0.0, start_yaw), max_angular_accel=3.2)
     spin = SpinBehavior(target, time_allowance=0.0)
