@@ -7,11 +7,21 @@ The navigator's ``--mcap-dir`` records each navigation to its own file with it;
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import foxglove
 
 from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
 from aiobt.transport import Bus
+
+
+def open_mcap(path: Path, context: foxglove.Context, overwrite: bool = False) -> Any:
+    """The SDK's MCAP writer of ``context``'s channels to ``path``; ``OSError`` naming
+    the file if it cannot be written."""
+    try:
+        return foxglove.open_mcap(path, allow_overwrite=overwrite, context=context)
+    except (OSError, RuntimeError) as exc:  # the SDK's FoxgloveError is a RuntimeError
+        raise OSError(f"{path}: cannot record: {exc}") from None
 
 
 class McapRecording:
@@ -27,12 +37,7 @@ class McapRecording:
         costmap_period: float = DEFAULT_COSTMAP_PERIOD,
     ) -> None:
         context = self._context = foxglove.Context()  # its channels close when it goes
-        try:
-            self._writer: foxglove.mcap.MCAPWriter | None = foxglove.open_mcap(
-                path, allow_overwrite=False, context=context
-            )
-        except (OSError, RuntimeError) as exc:  # the SDK's FoxgloveError is a RuntimeError
-            raise OSError(f"{path}: cannot record: {exc}") from None
+        self._writer: foxglove.mcap.MCAPWriter | None = open_mcap(path, context)
         self.path = path
         self._bridge = FoxgloveBridge(
             bus, context, footprint_radius, costmap_period, forwards_goals=False

@@ -26,6 +26,7 @@ from foxglove.websocket import (
 
 from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
 from aiobt.foxglove.channels import GOAL_TOPIC
+from aiobt.foxglove.recording import open_mcap
 from aiobt.system.announce import announce
 from aiobt.transport import Bus
 
@@ -98,11 +99,9 @@ async def running_bridge(bus: Bus, options: BridgeOptions) -> AsyncIterator[Foxg
         if options.mcap is not None:
             path = recording_path(options.mcap, options.overwrite)
             try:
-                writer = foxglove.open_mcap(
-                    path, allow_overwrite=options.overwrite, context=context
-                )
-            except (OSError, RuntimeError) as exc:
-                raise OSError(f"--mcap {path}: cannot record: {exc}") from None
+                writer = open_mcap(path, context, options.overwrite)
+            except OSError as exc:
+                raise OSError(f"--mcap {exc}") from None
             stack.callback(writer.close)
             log.info("recording to %s", path)
         if options.port is not None:
