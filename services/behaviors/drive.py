@@ -28,6 +28,10 @@ class DriveParams:
     deceleration_limit: float = 2.5  # m/s^2 (Nav2 writes it negative: -2.5)
     minimum_speed: float = 0.10  # m/s: slower commands are raised to this
     approach_error: float = 0.01  # m: a stall's overshoot bound (not Nav2's; see approach_limit)
+    settle_tolerance: float = 0.01  # m: once stopped, farther off than this drives on or back
+
+
+STILL = 5e-4  # m: the base moved less than this since the last cycle
 
 
 class DriveOnHeading(TimedBehavior):
@@ -40,12 +44,16 @@ class DriveOnHeading(TimedBehavior):
     ``minimum_speed``; under a sim speed-up (a long ``lead``) the approach is
     slowed so that a stall of the loop cannot carry the base past the distance.
     The stop is sent where the base, still moving for the loop's ``lead``, ends
-    at the distance. Each cycle the rest of the way (at most
+    at the distance. Once the base has stood still for a cycle (or the ``lead``,
+    if longer) it is done within ``settle_tolerance`` of the distance along the
+    heading; farther off (a stall or a stop delayed beyond the lead, as under a
+    loaded sim speed-up) it drives on or back, slowly. Each cycle the rest of the way (at most
     ``simulate_ahead_time`` plus the holding time at the speed) is checked;
     a collision fails the goal with COLLISION_AHEAD before the robot gets there.
     """
 
-    __slots__ = ("_last", "_start", "_traveled", "distance", "params", "speed")
+    __slots__ = ("_along", "_last", "_settling", "_start", "_traveled", "distance", "params",
+                 "speed")  # fmt: skip
 
     def __init__(
         self,
@@ -69,7 +77,9 @@ class DriveOnHeading(TimedBehavior):
         self.params = params or DriveParams()
         self._start: Pose2D | None = None
         self._traveled = 0.0
+        self._along = 0.0  # signed travel along the start heading, in the drive's sense
         self._last = 0.0
+        self._settling: float | None = None  # clock time the base was last seen moving
 
     def progress(self) -> float:
         return self._traveled
@@ -78,18 +88,32 @@ class DriveOnHeading(TimedBehavior):
         if self._start is None:
             self._start = pose
         self._traveled = pose.distance_to(self._start)
-        remaining = abs(self.distance) - self._traveled
-        coming = self.in_flight(inputs.now, inputs.lead)
-        if remaining <= self.stop_ahead(inputs.now, inputs.lead, self._last):
+        along, self._along = self._along, self._progress_along(pose)
+        remaining = abs(self.distance) - self._along  # < 0: past the distance
+        if self._settling is not None:
+            if abs(self._along - along) > STILL:
+                self._settling = inputs.now  # still moving after the stop
+            if inputs.now - self._settling < max(self.safety.cycle_period, inputs.lead):
+                return BehaviorStep(STOP, self._traveled)
+            if abs(remaining) <= self.params.settle_tolerance:
+                return BehaviorStep(STOP, self._traveled, done=True)
+            self._settling = None  # a stall or a late stop left it off: drive on or back
+        sense = math.copysign(1.0, remaining) * math.copysign(1.0, self.speed)
+        crossed = self._last != 0.0 and sense != math.copysign(1.0, self._last)
+        if abs(remaining) <= self.stop_ahead(inputs.now, inputs.lead, self._last) or crossed:
+            self._settling = inputs.now
             self._last = 0.0
-            return BehaviorStep(STOP, self._traveled, done=True)
-        cmd = Velocity(self._next_speed(max(0.0, remaining - coming), inputs.lead), 0.0)
+            self.sent(inputs.now, 0.0)
+            return BehaviorStep(STOP, self._traveled)
+        coming = self.in_flight(inputs.now, inputs.lead)
+        speed = self._next_speed(max(0.0, abs(remaining) - coming), inputs.lead)
+        cmd = Velocity(sense * speed, 0.0)
         checker = self.collision()
         if checker is not None:
             horizon = self.safety.simulate_ahead_time + holding_time(inputs.lead)
-            check = checker.check_arc(pose, cmd, horizon, remaining)
+            check = checker.check_arc(pose, cmd, horizon, abs(remaining))
             if check.collides:
-                away = abs(cmd.v) * check.time_to_collision
+                away = speed * check.time_to_collision
                 return self.fail(
                     Outcome.COLLISION_AHEAD,
                     f"collision ahead: obstacle {away:.2f} m away along the drive",
@@ -98,10 +122,18 @@ class DriveOnHeading(TimedBehavior):
         self.sent(inputs.now, cmd.v)
         return BehaviorStep(cmd, self._traveled)
 
+    def _progress_along(self, pose: Pose2D) -> float:
+        """Travel from the start along its heading, positive in the drive's direction."""
+        start = self._start
+        assert start is not None
+        ahead = (pose.x - start.x) * math.cos(start.yaw) + (pose.y - start.y) * math.sin(start.yaw)
+        return math.copysign(1.0, self.speed) * ahead
+
     def _next_speed(self, remaining: float, lead: float) -> float:
         """Nav2's: the speed (raised to ``minimum_speed``) within the acceleration limits,
         then slowed to ``sqrt(2 a d)`` to stop at the end, no lower than ``minimum_speed``;
-        last, at most the approach limit (see :meth:`TimedBehavior.approach_limit`)."""
+        last, at most the approach limit (see :meth:`TimedBehavior.approach_limit`).
+        A magnitude: the caller gives it the sense (on, or back after an overshoot)."""
         p, period = self.params, self.safety.cycle_period
         current = abs(self._last)
         raised = max(abs(self.speed), p.minimum_speed)
@@ -111,7 +143,7 @@ class DriveOnHeading(TimedBehavior):
         )
         stopping = math.sqrt(2.0 * p.deceleration_limit * remaining)
         limit = self.approach_limit(remaining, lead, p.approach_error)
-        return math.copysign(min(max(min(ramped, stopping), p.minimum_speed), limit), self.speed)
+        return min(max(min(ramped, stopping), p.minimum_speed), limit)
 
 
 def back_up(

@@ -31,7 +31,8 @@ class SpinBehavior(TimedBehavior):
     ``sqrt(2 a remaining)`` clamped to [min, max] (and, under a sim speed-up,
     slowed so that a stall of the loop cannot carry it past the target); the stop is sent where the
     base, still turning for the loop's ``lead``, ends at the
-    target. Once stopped (the yaw still), it is done within ``settle_tolerance``;
+    target. Once stopped (the yaw still for a cycle, or the ``lead`` if longer: a
+    pose not yet updated is not a stop), it is done within ``settle_tolerance``;
     farther off (a stall, a late stop) it turns on or back. Fails COLLISION_AHEAD when
     the robot's cell is in collision (a circular robot sweeps nothing new).
     """
@@ -52,7 +53,7 @@ class SpinBehavior(TimedBehavior):
         self._turned = 0.0
         self._last_yaw: float | None = None
         self._last_w = 0.0
-        self._settling = False
+        self._settling: float | None = None  # clock time the base was last seen turning
 
     def progress(self) -> float:
         return abs(self._turned)
@@ -66,17 +67,19 @@ class SpinBehavior(TimedBehavior):
         direction = math.copysign(1.0, self.target_yaw)
         p = self.params
         remaining = abs(self.target_yaw) - self._turned * direction  # < 0: past the target
-        if self._settling:
+        if self._settling is not None:
             if abs(delta) > STILL:
-                return BehaviorStep(STOP, self.progress())  # still turning after the stop
+                self._settling = inputs.now  # still turning after the stop
+            if inputs.now - self._settling < max(self.safety.cycle_period, inputs.lead):
+                return BehaviorStep(STOP, self.progress())
             if abs(remaining) <= p.settle_tolerance:
                 return BehaviorStep(STOP, self.progress(), done=True)
-            self._settling = False  # a stall or a late stop left it off: turn on or back
+            self._settling = None  # a stall or a late stop left it off: turn on or back
         sense = math.copysign(1.0, remaining) * direction
         ahead = self.stop_ahead(inputs.now, inputs.lead, self._last_w)
         crossed = self._last_w != 0.0 and sense != math.copysign(1.0, self._last_w)
         if abs(remaining) <= max(ahead, p.angle_tolerance) or crossed:
-            self._settling = True
+            self._settling = inputs.now
             self._last_w = 0.0
             self.sent(inputs.now, 0.0)
             return BehaviorStep(STOP, self.progress())
