@@ -8,7 +8,16 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry, IntArray
+from .grid import (
+    FREE,
+    LETHAL,
+    NO_INFORMATION,
+    BoolArray,
+    CostArray,
+    FloatArray,
+    GridGeometry,
+    IntArray,
+)
 
 
 @dataclass(frozen=True, slots=True)
@@ -88,6 +97,10 @@ def clear_and_mark(
     Rays are sampled every half cell; the cell of a hit is never cleared by
     its own ray. Points outside the grid are ignored. Returns the flat indices
     of the cells whose value changed (empty when the scan changed nothing).
+
+    The samples are taken as one (rays x samples) matrix, those beyond a ray's
+    length masked, and the cells collected in per-cell masks: no gather of the
+    samples, no sort (the same cells, from the same arithmetic, as sample lists).
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
@@ -96,34 +109,40 @@ def clear_and_mark(
     flat = grid.reshape(-1)
     step = geometry.resolution * 0.5
     longest = float(clear_len.max(initial=0.0))
-    cleared: IntArray = np.empty(0, dtype=np.intp)
+    cleared = np.zeros(flat.size + 1, dtype=np.bool_)  # the last entry: outside the grid
     if longest > 0.0:
         t = np.arange(0.0, longest, step)
         inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
-        rays, samples = np.nonzero(inside)
-        cleared = _cells(geometry, scan.sensor_x + dx[rays] * t[samples],
-                         scan.sensor_y + dy[rays] * t[samples])  # fmt: skip
+        xs = scan.sensor_x + dx[:, None] * t[None, :]
+        ys = scan.sensor_y + dy[:, None] * t[None, :]
+        cleared[_cell_index(geometry, xs, ys, inside)] = True
     marks = hit > 0
-    marked = _cells(geometry, scan.sensor_x + dx[marks] * ranges[marks],
-                    scan.sensor_y + dy[marks] * ranges[marks])  # fmt: skip
-    touched = np.zeros(flat.size, dtype=np.bool_)  # the cells once each, without a sort
-    touched[cleared] = True
-    touched[marked] = True
-    cells = np.flatnonzero(touched)
+    marked = np.zeros(flat.size + 1, dtype=np.bool_)
+    marked[_cell_index(geometry, scan.sensor_x + dx[marks] * ranges[marks],
+                       scan.sensor_y + dy[marks] * ranges[marks])] = True  # fmt: skip
+    clear_mask, mark_mask = cleared[:-1], marked[:-1]
+    cells = np.flatnonzero(clear_mask | mark_mask)
     before = flat[cells]
-    flat[cleared] = FREE
-    flat[marked] = LETHAL
+    flat[clear_mask] = FREE
+    flat[mark_mask] = LETHAL
     changed: IntArray = cells[flat[cells] != before]
     return changed
 
 
-def _cells(geometry: GridGeometry, xs: FloatArray, ys: FloatArray) -> IntArray:
-    """Flat indices of the cells holding the (finite) points inside the grid."""
-    cols = np.floor((xs - geometry.origin_x) / geometry.resolution)
-    rows = np.floor((ys - geometry.origin_y) / geometry.resolution)
+def _cell_index(
+    geometry: GridGeometry, xs: FloatArray, ys: FloatArray, keep: BoolArray | None = None
+) -> IntArray:
+    """Flat cell index of each (finite) point inside the grid and kept; ``width * height``
+    for the others (one past the grid's last cell)."""
+    cols = (xs - geometry.origin_x) / geometry.resolution  # >= 0 here: truncating floors
+    rows = (ys - geometry.origin_y) / geometry.resolution
     ok = (cols >= 0) & (cols < geometry.width) & (rows >= 0) & (rows < geometry.height)
-    flat: IntArray = (rows[ok] * geometry.width + cols[ok]).astype(np.intp)
-    return flat
+    if keep is not None:
+        ok &= keep
+    with np.errstate(invalid="ignore"):  # non-finite points are cast but not kept
+        flat = rows.astype(np.intp) * geometry.width + cols.astype(np.intp)
+    index: IntArray = np.where(ok, flat, geometry.width * geometry.height)
+    return index
 
 
 def combine_max(master: CostArray, layer: CostArray) -> CostArray:
