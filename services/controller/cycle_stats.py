@@ -1,4 +1,5 @@
-"""Per-goal control-loop statistics: cycles, achieved rate (robot time), cycle compute time."""
+"""Per-goal control-loop statistics (cycles, achieved rate in robot time, cycle compute
+time) and the loop's schedule."""
 
 from __future__ import annotations
 
@@ -51,3 +52,31 @@ class CycleStats:
             f"cycle p50 {self.percentile(50) * 1e3:.2f} ms p99 {self.percentile(99) * 1e3:.2f} ms "
             f"max {self.percentile(100) * 1e3:.2f} ms"
         )
+
+
+class CycleSchedule:
+    """When the next control cycle is due: a period after the previous cycle's deadline
+    (rclcpp's ``Rate``, which Nav2's controller server loops on), not a period after the
+    work ended, so the work and a late wake-up do not stretch the period.
+
+    A cycle more than a whole period behind starts the schedule over at once (no burst
+    of cycles to catch up); after a clock that went back (a simulation restarted) the
+    next cycle is a period from now."""
+
+    __slots__ = ("_deadline", "period")
+
+    def __init__(self, period: float, start: float) -> None:
+        if not (math.isfinite(period) and period > 0.0):
+            raise ValueError(f"control period must be finite and > 0, got {period!r}")
+        self.period = period
+        self._deadline = start
+
+    def delay(self, now: float) -> float:
+        """Seconds from ``now`` until the next cycle (0: due already); moves the schedule."""
+        if now < self._deadline - self.period:  # the clock went back
+            self._deadline = now + self.period
+        else:
+            self._deadline += self.period
+            if now - self._deadline > self.period:  # overran by more than a period
+                self._deadline = now
+        return max(0.0, self._deadline - now)

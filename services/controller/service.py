@@ -27,7 +27,7 @@ from aiobt.transport import Bus, GoalHandle, Publisher
 from aiobt.transport.on_demand import OnDemand
 
 from .collision import CollisionChecker
-from .cycle_stats import CycleStats
+from .cycle_stats import CycleSchedule, CycleStats
 from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Velocity
 from .local_costmap import FrameShift, LocalCostmap, frame_transform
@@ -146,7 +146,7 @@ class ControllerService:
     async def _loop(
         self, session: FollowPathSession, handle: Handle, stats: CycleStats
     ) -> FollowPath.Result:
-        period = self.config.control_period
+        schedule = CycleSchedule(self.config.control_period, self.clock.now())
         while True:
             began, work = self.clock.now(), time.perf_counter()
             newer = handle.take_new_goal()
@@ -163,7 +163,8 @@ class ControllerService:
             stats.record(began, time.perf_counter() - work)
             if step.finished:
                 return result_of(step.error)
-            if not await sleep_bounded(self.clock, period, self.options.clock_timeout):
+            delay = schedule.delay(self.clock.now())
+            if not await sleep_bounded(self.clock, delay, self.options.clock_timeout):
                 return result_of(
                     ControllerError(
                         FollowPathError.TF_ERROR,

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from aiobt_services.controller.cycle_stats import CycleStats
+from aiobt_services.controller.cycle_stats import CycleSchedule, CycleStats
 
 
 def test_rate_is_cycles_per_robot_second_and_percentiles_are_nearest_rank() -> None:
@@ -30,3 +30,23 @@ def test_too_few_cycles_have_no_rate_and_a_bad_period_is_refused() -> None:
     assert math.isnan(stats.rate())
     with pytest.raises(ValueError, match="control period"):
         CycleStats(0.0)
+
+
+def test_the_schedule_keeps_the_period_from_deadline_to_deadline() -> None:
+    schedule = CycleSchedule(0.05, 1.0)
+    assert schedule.delay(1.0) == pytest.approx(0.05)  # the work took no clock time
+    assert schedule.delay(1.07) == pytest.approx(0.03)  # woke 0.02 late, worked: due 1.10
+    assert schedule.delay(1.12) == pytest.approx(0.03)  # due 1.15
+    assert schedule.delay(1.17) == pytest.approx(0.03)  # due 1.20
+    assert schedule.delay(1.27) == 0.0  # 1.25 was due already: the next at once
+    assert schedule.delay(1.27) == pytest.approx(0.03)  # on schedule again: due 1.30
+
+
+def test_a_cycle_a_period_behind_starts_the_schedule_over_and_so_does_a_clock_reset() -> None:
+    schedule = CycleSchedule(0.05, 0.0)
+    assert schedule.delay(0.3) == 0.0  # 0.25 s late: no burst of catch-up cycles
+    assert schedule.delay(0.3) == pytest.approx(0.05)  # from 0.3 on
+    assert schedule.delay(0.01) == pytest.approx(0.05)  # the clock went back: from now
+    assert schedule.delay(0.06) == pytest.approx(0.05)
+    with pytest.raises(ValueError, match="period"):
+        CycleSchedule(0.0, 0.0)
