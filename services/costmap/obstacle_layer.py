@@ -100,7 +100,8 @@ def clear_and_mark(
 
     The samples are taken as one (rays x samples) matrix, those beyond a ray's
     length masked, and the cells collected in per-cell masks: no gather of the
-    samples, no sort (the same cells, from the same arithmetic, as sample lists).
+    samples, no sort, no temporaries of the matrix's size (the same cells, from the
+    same arithmetic, as sample lists).
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
@@ -113,13 +114,12 @@ def clear_and_mark(
     if longest > 0.0:
         t = np.arange(0.0, longest, step)
         inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
-        xs = scan.sensor_x + dx[:, None] * t[None, :]
-        ys = scan.sensor_y + dy[:, None] * t[None, :]
-        cleared[_cell_index(geometry, xs, ys, inside)] = True
+        offsets = (np.multiply.outer(dx, t), np.multiply.outer(dy, t))
+        cleared[_cell_index(geometry, scan, *offsets, inside)] = True
     marks = hit > 0
     marked = np.zeros(flat.size + 1, dtype=np.bool_)
-    marked[_cell_index(geometry, scan.sensor_x + dx[marks] * ranges[marks],
-                       scan.sensor_y + dy[marks] * ranges[marks])] = True  # fmt: skip
+    offsets = (dx[marks] * ranges[marks], dy[marks] * ranges[marks])
+    marked[_cell_index(geometry, scan, *offsets)] = True
     clear_mask, mark_mask = cleared[:-1], marked[:-1]
     cells = np.flatnonzero(clear_mask | mark_mask)
     before = flat[cells]
@@ -130,18 +130,32 @@ def clear_and_mark(
 
 
 def _cell_index(
-    geometry: GridGeometry, xs: FloatArray, ys: FloatArray, keep: BoolArray | None = None
+    geometry: GridGeometry,
+    scan: Scan,
+    along_x: FloatArray,
+    along_y: FloatArray,
+    keep: BoolArray | None = None,
 ) -> IntArray:
-    """Flat cell index of each (finite) point inside the grid and kept; ``width * height``
-    for the others (one past the grid's last cell)."""
-    cols = (xs - geometry.origin_x) / geometry.resolution  # >= 0 here: truncating floors
-    rows = (ys - geometry.origin_y) / geometry.resolution
-    ok = (cols >= 0) & (cols < geometry.width) & (rows >= 0) & (rows < geometry.height)
+    """Flat cell index of each point ``sensor + along`` (finite, inside the grid and
+    kept); ``width * height`` for the others (one past the grid's last cell). The
+    ``along`` arrays are reused (the arithmetic in place: no temporaries this size)."""
+    cols, rows = along_x, along_y
+    for values, sensor, origin in ((cols, scan.sensor_x, geometry.origin_x),
+                                   (rows, scan.sensor_y, geometry.origin_y)):  # fmt: skip
+        values += sensor
+        values -= origin
+        values /= geometry.resolution  # a cell coordinate; >= 0 inside: truncating floors
+    ok = cols >= 0
+    ok &= cols < geometry.width
+    ok &= rows >= 0
+    ok &= rows < geometry.height
     if keep is not None:
         ok &= keep
     with np.errstate(invalid="ignore"):  # non-finite points are cast but not kept
-        flat = rows.astype(np.intp) * geometry.width + cols.astype(np.intp)
-    index: IntArray = np.where(ok, flat, geometry.width * geometry.height)
+        index: IntArray = rows.astype(np.intp)
+        index *= geometry.width
+        index += cols.astype(np.intp)
+    index[~ok] = geometry.width * geometry.height
     return index
 
 
