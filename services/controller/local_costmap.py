@@ -85,9 +85,11 @@ class LocalCostmap:
         """Keep the window centred on the robot."""
         self._costmap.update_origin(pose.x, pose.y)
 
-    def add_scan(self, scan: LaserScan, sensor: Pose2D) -> None:
-        """Clear and mark from a scan taken at ``sensor`` (the robot pose in map)."""
-        self.follow(sensor)
+    def add_scan(self, scan: LaserScan, sensor: Pose2D, centre: Pose2D | None = None) -> None:
+        """Clear and mark from a scan taken at ``sensor`` (the robot pose in map), the
+        window centred on ``centre`` first (default: the sensor; a newer robot pose, so
+        that the window moves before the scan, not after with its cells pending)."""
+        self.follow(centre or sensor)
         self._costmap.update_from_scan(
             Scan.create(
                 (sensor.x, sensor.y, sensor.yaw),

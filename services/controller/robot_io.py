@@ -160,14 +160,16 @@ class RobotTracker:
         if not self._updates.due(self._clock.now()):
             return
         pending, self._pending_scan = self._pending_scan, None
-        if pending is not None:
-            try:
-                self.costmap.add_scan(*pending)
-            except ValueError as exc:
-                log.warning("scan dropped: %s", exc)
         state = self.states.get("map")
-        if state is not None:
-            self.costmap.follow(state.pose)
+        centre = state.pose if state is not None else None
+        if pending is None:
+            if centre is not None:
+                self.costmap.follow(centre)
+            return
+        try:
+            self.costmap.add_scan(*pending, centre=centre)
+        except ValueError as exc:
+            log.warning("scan dropped: %s", exc)
 
 
 def add_clock_arguments(parser: argparse.ArgumentParser) -> None:

@@ -148,7 +148,7 @@ class ControllerService:
     ) -> FollowPath.Result:
         schedule = CycleSchedule(self.config.control_period, self.clock.now())
         while True:
-            began, work = self.clock.now(), time.perf_counter()
+            began, work, cpu = self.clock.now(), time.perf_counter(), time.thread_time()
             newer = handle.take_new_goal()
             if newer is not None:
                 try:
@@ -160,7 +160,7 @@ class ControllerService:
             self._feedback(step, handle, session.request.path.frame_id)
             if self._view is not None:
                 self._view.cycle(step.trajectory, session.request.path.frame_id, began)
-            stats.record(began, time.perf_counter() - work)
+            stats.record(began, time.perf_counter() - work, time.thread_time() - cpu)
             if step.finished:
                 return result_of(step.error)
             delay = schedule.delay(self.clock.now())
