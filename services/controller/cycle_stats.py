@@ -11,7 +11,7 @@ class CycleStats:
     its work took (seconds of wall time spent computing, not waiting) and how much of
     that the loop's thread ran (CPU seconds; the rest it waited for a core)."""
 
-    __slots__ = ("_cpu", "_durations", "_first", "_last", "period")
+    __slots__ = ("_cpu", "_durations", "_first", "_last", "_updates", "period")
 
     def __init__(self, period: float) -> None:
         if not (math.isfinite(period) and period > 0.0):
@@ -19,6 +19,7 @@ class CycleStats:
         self.period = period
         self._durations: list[float] = []
         self._cpu: list[float] = []
+        self._updates: list[float] = []  # local costmap updates between cycles, wall s
         self._first = math.nan
         self._last = math.nan
 
@@ -28,6 +29,10 @@ class CycleStats:
         self._last = began
         self._durations.append(duration)
         self._cpu.append(cpu)
+
+    def record_update(self, duration: float) -> None:
+        """A local costmap update made between two cycles took ``duration`` wall s."""
+        self._updates.append(duration)
 
     @property
     def cycles(self) -> int:
@@ -50,12 +55,14 @@ class CycleStats:
 
     def summary(self) -> str:
         """One line: ``N cycles, rate R of C Hz, cycle p50 A ms p99 B ms max M ms, cpu p50
-        D ms p99 E ms``."""
+        D ms p99 E ms, costmap updates U p50 F ms p99 G ms``."""
+        updates = [_nearest_rank(self._updates, q) * 1e3 for q in (50, 99)]
         return (
             f"{self.cycles} cycles, rate {self.rate():.2f} of {1.0 / self.period:.2f} Hz, "
             f"cycle p50 {self.percentile(50) * 1e3:.2f} ms p99 {self.percentile(99) * 1e3:.2f} ms "
             f"max {self.percentile(100) * 1e3:.2f} ms, cpu p50 {self.cpu_percentile(50) * 1e3:.2f}"
-            f" ms p99 {self.cpu_percentile(99) * 1e3:.2f} ms"
+            f" ms p99 {self.cpu_percentile(99) * 1e3:.2f} ms, costmap updates {len(self._updates)}"
+            f" p50 {updates[0]:.2f} ms p99 {updates[1]:.2f} ms"
         )
 
 

@@ -151,25 +151,27 @@ class RobotTracker:
         if self.costmap is not None and state is not None:
             self._pending_scan = (msg, state.pose)
 
-    def refresh_costmap(self) -> None:
-        """Centre the local costmap on the robot and integrate the newest scan, if any;
-        at most once per update period of robot time (the first call with a pose or a
-        scan at once), as Nav2's costmap updates at its ``update_frequency``."""
+    def refresh_costmap(self) -> bool:
+        """Centre the local costmap on the robot and integrate the newest scan, if any,
+        inflated (nothing left for a reader to do); at most once per update period of
+        robot time (the first call with a pose or a scan at once), as Nav2's costmap
+        updates at its ``update_frequency``. True if it updated."""
         if self.costmap is None or (self._pending_scan is None and "map" not in self.states):
-            return
+            return False
         if not self._updates.due(self._clock.now()):
-            return
+            return False
         pending, self._pending_scan = self._pending_scan, None
         state = self.states.get("map")
         centre = state.pose if state is not None else None
-        if pending is None:
-            if centre is not None:
-                self.costmap.follow(centre)
-            return
-        try:
-            self.costmap.add_scan(*pending, centre=centre)
-        except ValueError as exc:
-            log.warning("scan dropped: %s", exc)
+        if pending is not None:
+            try:
+                self.costmap.add_scan(*pending, centre=centre)
+            except ValueError as exc:
+                log.warning("scan dropped: %s", exc)
+        elif centre is not None:
+            self.costmap.follow(centre)
+        self.costmap.grid()  # the master brought up to date now, not by the next reader
+        return True
 
 
 def add_clock_arguments(parser: argparse.ArgumentParser) -> None:

@@ -147,6 +147,7 @@ class ControllerService:
         self, session: FollowPathSession, handle: Handle, stats: CycleStats
     ) -> FollowPath.Result:
         schedule = CycleSchedule(self.config.control_period, self.clock.now())
+        self.tracker.refresh_costmap()  # the first cycle sees the lidar as of now
         while True:
             began, work, cpu = self.clock.now(), time.perf_counter(), time.thread_time()
             newer = handle.take_new_goal()
@@ -163,6 +164,7 @@ class ControllerService:
             stats.record(began, time.perf_counter() - work, time.thread_time() - cpu)
             if step.finished:
                 return result_of(step.error)
+            self._update_costmap(stats)
             delay = schedule.delay(self.clock.now())
             if not await sleep_bounded(self.clock, delay, self.options.clock_timeout):
                 return result_of(
@@ -173,8 +175,14 @@ class ControllerService:
                     )
                 )
 
+    def _update_costmap(self, stats: CycleStats) -> None:
+        """The local costmap's update, when due, after the cycle's command is out (as
+        Nav2's costmap updates beside the control loop): the next cycle reads it."""
+        began = time.perf_counter()
+        if self.tracker.refresh_costmap():
+            stats.record_update(time.perf_counter() - began)
+
     def _step(self, session: FollowPathSession) -> StepResult:
-        self.tracker.refresh_costmap()
         states = self.tracker.snapshot()
         if session.request.path.frame_id == "odom" and {"map", "odom"} <= states.keys():
             self._shift.transform = frame_transform(states["map"].pose, states["odom"].pose)

@@ -18,9 +18,11 @@ def test_rate_is_cycles_per_robot_second_and_percentiles_are_nearest_rank() -> N
     assert stats.percentile(50) == pytest.approx(0.006)
     assert stats.percentile(99) == pytest.approx(0.011)
     assert stats.cpu_percentile(99) == pytest.approx(0.0055)
+    for update in (0.003, 0.004, 0.002):
+        stats.record_update(update)
     assert stats.summary() == (
         "11 cycles, rate 16.67 of 20.00 Hz, cycle p50 6.00 ms p99 11.00 ms max 11.00 ms, "
-        "cpu p50 3.00 ms p99 5.50 ms"
+        "cpu p50 3.00 ms p99 5.50 ms, costmap updates 3 p50 3.00 ms p99 4.00 ms"
     )
 
 

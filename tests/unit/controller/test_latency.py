@@ -77,14 +77,14 @@ def test_the_costmap_takes_scans_at_its_update_frequency_of_robot_time():
     costmap = LocalCostmap(LocalCostmapParams(update_frequency=5.0))
     tracker = RobotTracker(clock, costmap)
     tracker.on_pose(PoseStamped.from_xy_yaw(0.0, 0.0, 0.0))
-    tracker.refresh_costmap()  # the first update at once: the window, no scan yet
+    assert tracker.refresh_costmap()  # the first update at once: the window, no scan yet
     ahead = np.array([[1.0, 0.0]])
     tracker.on_scan(_scan_with_wall_ahead(1.0))
     clock.advance(0.15)
-    tracker.refresh_costmap()
+    assert not tracker.refresh_costmap()
     assert costmap.costs_at(ahead)[0] == 0  # 0.15 s after the last update: not yet
     clock.advance(0.05)
-    tracker.refresh_costmap()
+    assert tracker.refresh_costmap()
     assert costmap.costs_at(ahead)[0] >= INSCRIBED  # 0.2 s: the newest scan is in
     tracker.forget()
     tracker.on_pose(PoseStamped.from_xy_yaw(0.0, 0.0, 0.0))
