@@ -35,15 +35,24 @@ class LocalCostmapParams:
     cost_scaling_factor: float = 3.0
     obstacle_max_range: float = 2.5
     raytrace_max_range: float = 3.0
+    update_frequency: float = 5.0  # Hz of robot time (Nav2's local costmap default)
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.update_frequency) and self.update_frequency > 0.0):
+            raise ValueError(
+                f"local costmap update_frequency must be finite and > 0 Hz, "
+                f"got {self.update_frequency!r}"
+            )
 
 
 class LocalCostmap:
     """A rolling window around the robot; outside the window reads as unknown."""
 
-    __slots__ = ("_costmap",)
+    __slots__ = ("_costmap", "update_period")
 
     def __init__(self, params: LocalCostmapParams | None = None) -> None:
         p = params or LocalCostmapParams()
+        self.update_period = 1.0 / p.update_frequency  # robot s between updates from the robot
         self._costmap = RollingCostmap(
             p.size,
             p.size,
@@ -76,9 +85,11 @@ class LocalCostmap:
         """Keep the window centred on the robot."""
         self._costmap.update_origin(pose.x, pose.y)
 
-    def add_scan(self, scan: LaserScan, sensor: Pose2D) -> None:
-        """Clear and mark from a scan taken at ``sensor`` (the robot pose in map)."""
-        self.follow(sensor)
+    def add_scan(self, scan: LaserScan, sensor: Pose2D, centre: Pose2D | None = None) -> None:
+        """Clear and mark from a scan taken at ``sensor`` (the robot pose in map), the
+        window centred on ``centre`` first (default: the sensor; a newer robot pose, so
+        that the window moves before the scan, not after with its cells pending)."""
+        self.follow(centre or sensor)
         self._costmap.update_from_scan(
             Scan.create(
                 (sensor.x, sensor.y, sensor.yaw),

@@ -27,6 +27,7 @@ from .freshness import Freshness
 from .geometry import STOP, Pose2D, Velocity
 from .latency import LoopDelay, command_lead
 from .local_costmap import LocalCostmap, LocalCostmapParams
+from .observed import RateGate
 from .session import RobotState
 
 if TYPE_CHECKING:
@@ -43,9 +44,10 @@ class RobotTracker:
     """Newest pose per frame, the measured velocity, and the lidar into a local costmap.
 
     Scans are kept, not integrated, as they arrive: :meth:`refresh_costmap`
-    (called by each control cycle of a running goal) integrates the newest one.
-    An idle service so spends nothing on the lidar stream, which at a sim
-    speed-up of 10 is 100 scans a second.
+    (called by each control cycle of a running goal) integrates the newest one,
+    at the local costmap's update frequency (Nav2's ``update_frequency``, 5 Hz of
+    robot time by default). An idle service so spends nothing on the lidar
+    stream, which at a sim speed-up of 10 is 100 scans a second.
 
     ``robot_time``: the clock follows the robot's own (``--sim-time``), so the
     robot's header stamps are on it and every pose is aged by its own stamp.
@@ -56,6 +58,7 @@ class RobotTracker:
         "_pending_scan",
         "_robot_time",
         "_taken",
+        "_updates",
         "_velocity",
         "costmap",
         "delay",
@@ -77,6 +80,7 @@ class RobotTracker:
         self.states: dict[str, RobotState] = {}
         self._velocity = STOP
         self._pending_scan: tuple[LaserScan, Pose2D] | None = None
+        self._updates = RateGate(costmap.update_period if costmap is not None else 1.0)
         self.delay = LoopDelay()
         self.freshness = Freshness(wall)
 
@@ -124,6 +128,7 @@ class RobotTracker:
         self.states.clear()
         self.freshness.clear()
         self._pending_scan = None
+        self._updates.reset()
 
     def on_odom(self, msg: Odometry) -> None:
         self._velocity = Velocity(msg.twist.linear.x, msg.twist.angular.z)
@@ -146,19 +151,27 @@ class RobotTracker:
         if self.costmap is not None and state is not None:
             self._pending_scan = (msg, state.pose)
 
-    def refresh_costmap(self) -> None:
-        """Centre the local costmap on the robot and integrate the newest scan, if any."""
-        if self.costmap is None:
-            return
+    def refresh_costmap(self) -> bool:
+        """Centre the local costmap on the robot and integrate the newest scan, if any,
+        inflated (nothing left for a reader to do); at most once per update period of
+        robot time (the first call with a pose or a scan at once), as Nav2's costmap
+        updates at its ``update_frequency``. True if it updated."""
+        if self.costmap is None or (self._pending_scan is None and "map" not in self.states):
+            return False
+        if not self._updates.due(self._clock.now()):
+            return False
         pending, self._pending_scan = self._pending_scan, None
+        state = self.states.get("map")
+        centre = state.pose if state is not None else None
         if pending is not None:
             try:
-                self.costmap.add_scan(*pending)
+                self.costmap.add_scan(*pending, centre=centre)
             except ValueError as exc:
                 log.warning("scan dropped: %s", exc)
-        state = self.states.get("map")
-        if state is not None:
-            self.costmap.follow(state.pose)
+        elif centre is not None:
+            self.costmap.follow(centre)
+        self.costmap.grid()  # the master brought up to date now, not by the next reader
+        return True
 
 
 def add_clock_arguments(parser: argparse.ArgumentParser) -> None:
@@ -187,6 +200,14 @@ def add_local_costmap_arguments(group: argparse._ArgumentGroup) -> None:
         default=5.0,
         help="local window side, m (default: %(default)s)",
     )
+    add(
+        "--costmap-update-frequency",
+        type=positive,
+        default=5.0,
+        metavar="HZ",
+        help="local costmap updates from the lidar per robot second, as Nav2's "
+        "update_frequency (default: %(default)s)",
+    )
 
 
 def local_costmap_from(args: argparse.Namespace) -> LocalCostmap:
@@ -195,6 +216,7 @@ def local_costmap_from(args: argparse.Namespace) -> LocalCostmap:
             size=args.costmap_size,
             robot_radius=args.robot_radius,
             inflation_radius=max(args.inflation_radius, args.robot_radius),
+            update_frequency=args.costmap_update_frequency,
         )
     )
 

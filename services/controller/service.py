@@ -27,7 +27,7 @@ from aiobt.transport import Bus, GoalHandle, Publisher
 from aiobt.transport.on_demand import OnDemand
 
 from .collision import CollisionChecker
-from .cycle_stats import CycleStats
+from .cycle_stats import CycleSchedule, CycleStats
 from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Velocity
 from .local_costmap import FrameShift, LocalCostmap, frame_transform
@@ -146,9 +146,10 @@ class ControllerService:
     async def _loop(
         self, session: FollowPathSession, handle: Handle, stats: CycleStats
     ) -> FollowPath.Result:
-        period = self.config.control_period
+        schedule = CycleSchedule(self.config.control_period, self.clock.now())
+        self.tracker.refresh_costmap()  # the first cycle sees the lidar as of now
         while True:
-            began, work = self.clock.now(), time.perf_counter()
+            began, work, cpu = self.clock.now(), time.perf_counter(), time.thread_time()
             newer = handle.take_new_goal()
             if newer is not None:
                 try:
@@ -160,10 +161,12 @@ class ControllerService:
             self._feedback(step, handle, session.request.path.frame_id)
             if self._view is not None:
                 self._view.cycle(step.trajectory, session.request.path.frame_id, began)
-            stats.record(began, time.perf_counter() - work)
+            stats.record(began, time.perf_counter() - work, time.thread_time() - cpu)
             if step.finished:
                 return result_of(step.error)
-            if not await sleep_bounded(self.clock, period, self.options.clock_timeout):
+            self._update_costmap(stats)
+            delay = schedule.delay(self.clock.now())
+            if not await sleep_bounded(self.clock, delay, self.options.clock_timeout):
                 return result_of(
                     ControllerError(
                         FollowPathError.TF_ERROR,
@@ -172,8 +175,14 @@ class ControllerService:
                     )
                 )
 
+    def _update_costmap(self, stats: CycleStats) -> None:
+        """The local costmap's update, when due, after the cycle's command is out (as
+        Nav2's costmap updates beside the control loop): the next cycle reads it."""
+        began = time.perf_counter()
+        if self.tracker.refresh_costmap():
+            stats.record_update(time.perf_counter() - began)
+
     def _step(self, session: FollowPathSession) -> StepResult:
-        self.tracker.refresh_costmap()
         states = self.tracker.snapshot()
         if session.request.path.frame_id == "odom" and {"map", "odom"} <= states.keys():
             self._shift.transform = frame_transform(states["map"].pose, states["odom"].pose)

@@ -49,6 +49,7 @@ class Costmap:
         "_last_scan",
         "_master",
         "_pending",
+        "_stale",
         "default_value",
         "geometry",
         "inflation",
@@ -77,6 +78,7 @@ class Costmap:
         self._master: CostArray | None = None
         self._base: CostArray | None = None  # static and obstacles combined, not inflated
         self._pending: list[IntArray] = []  # obstacle cells changed since the last refresh
+        self._stale: list[Window] = []  # master windows to re-inflate at the next refresh
         self._history: deque[tuple[int, Window | None]] = deque(maxlen=HISTORY)
         self._dirty = True
         self._last_scan: Scan | None = None  # the newest scan, while re-applying it is a no-op
@@ -188,8 +190,9 @@ class Costmap:
     def _refresh(self) -> CostArray:
         if self._dirty or self._master is None or self._base is None:
             self._rebuild()
-        elif self._pending:
-            self._update_cells(np.unique(np.concatenate(self._pending)))
+        elif self._pending or self._stale:
+            pending = self._pending or [np.empty(0, dtype=np.intp)]
+            self._update_cells(np.unique(np.concatenate(pending)))
         assert self._master is not None
         return self._master
 
@@ -203,27 +206,27 @@ class Costmap:
         self._master = inflate(self._base, self.geometry, self.inflation)
         self._dirty = False
         self._pending.clear()
+        self._stale.clear()
         self._record(None)
 
     def _update_cells(self, flat: IntArray) -> None:
         """Recombine the changed obstacle cells and re-inflate around those whose
-        combined value changed."""
+        combined value changed, together with the stale windows (one inflation over
+        the window holding them all)."""
         assert self._base is not None
         assert self._master is not None
         self._pending.clear()
-        start = (
-            self.static.flat[flat]
-            if self.static is not None
-            else np.full(flat.shape, self.default_value, dtype=np.uint8)
-        )
-        combined = combine_max(start, self.obstacles.flat[flat])
-        differs = combined != self._base.flat[flat]
-        if not differs.any():
+        windows, self._stale = self._stale, []
+        changed = self._recombine(flat)
+        if changed.size:
+            bound = self.geometry.cell_distance(self.inflation.inflation_radius)
+            windows.append(
+                grown(bounding_window(changed, self.geometry.width), bound, self.geometry.shape)
+            )
+        if not windows:
             return
-        changed = flat[differs]
-        self._base.flat[changed] = combined[differs]
-        bound = self.geometry.cell_distance(self.inflation.inflation_radius)
-        window = grown(bounding_window(changed, self.geometry.width), bound, self.geometry.shape)
+        window = (min(w[0] for w in windows), max(w[1] for w in windows),
+                  min(w[2] for w in windows), max(w[3] for w in windows))  # fmt: skip
         row0, row1, col0, col1 = window
         before = self._master[row0:row1, col0:col1].copy()
         inflate_window(self._base, self._master, window, self.geometry, self.inflation)
@@ -231,6 +234,20 @@ class Costmap:
         if moved.size:
             inner = bounding_window(moved, col1 - col0)
             self._record((inner[0] + row0, inner[1] + row0, inner[2] + col0, inner[3] + col0))
+
+    def _recombine(self, flat: IntArray) -> IntArray:
+        """Static and obstacles combined again at ``flat``; the cells whose value changed."""
+        assert self._base is not None
+        start = (
+            self.static.flat[flat]
+            if self.static is not None
+            else np.full(flat.shape, self.default_value, dtype=np.uint8)
+        )
+        combined = combine_max(start, self.obstacles.flat[flat])
+        differs = combined != self._base.flat[flat]
+        changed: IntArray = flat[differs]
+        self._base.flat[changed] = combined[differs]
+        return changed
 
     def _record(self, window: Window | None) -> None:
         self.version += 1

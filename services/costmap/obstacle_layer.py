@@ -8,7 +8,16 @@ from dataclasses import dataclass
 import numpy as np
 import numpy.typing as npt
 
-from .grid import FREE, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry, IntArray
+from .grid import (
+    FREE,
+    LETHAL,
+    NO_INFORMATION,
+    BoolArray,
+    CostArray,
+    FloatArray,
+    GridGeometry,
+    IntArray,
+)
 
 
 @dataclass(frozen=True, slots=True)
@@ -88,6 +97,11 @@ def clear_and_mark(
     Rays are sampled every half cell; the cell of a hit is never cleared by
     its own ray. Points outside the grid are ignored. Returns the flat indices
     of the cells whose value changed (empty when the scan changed nothing).
+
+    The samples are taken as one (rays x samples) matrix, those beyond a ray's
+    length masked, and the cells collected in per-cell masks: no gather of the
+    samples, no sort, no temporaries of the matrix's size (the same cells, from the
+    same arithmetic, as sample lists).
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
@@ -96,34 +110,53 @@ def clear_and_mark(
     flat = grid.reshape(-1)
     step = geometry.resolution * 0.5
     longest = float(clear_len.max(initial=0.0))
-    cleared: IntArray = np.empty(0, dtype=np.intp)
+    cleared = np.zeros(flat.size + 1, dtype=np.bool_)  # the last entry: outside the grid
     if longest > 0.0:
         t = np.arange(0.0, longest, step)
         inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
-        rays, samples = np.nonzero(inside)
-        cleared = _cells(geometry, scan.sensor_x + dx[rays] * t[samples],
-                         scan.sensor_y + dy[rays] * t[samples])  # fmt: skip
+        offsets = (np.multiply.outer(dx, t), np.multiply.outer(dy, t))
+        cleared[_cell_index(geometry, scan, *offsets, inside)] = True
     marks = hit > 0
-    marked = _cells(geometry, scan.sensor_x + dx[marks] * ranges[marks],
-                    scan.sensor_y + dy[marks] * ranges[marks])  # fmt: skip
-    touched = np.zeros(flat.size, dtype=np.bool_)  # the cells once each, without a sort
-    touched[cleared] = True
-    touched[marked] = True
-    cells = np.flatnonzero(touched)
+    marked = np.zeros(flat.size + 1, dtype=np.bool_)
+    offsets = (dx[marks] * ranges[marks], dy[marks] * ranges[marks])
+    marked[_cell_index(geometry, scan, *offsets)] = True
+    clear_mask, mark_mask = cleared[:-1], marked[:-1]
+    cells = np.flatnonzero(clear_mask | mark_mask)
     before = flat[cells]
-    flat[cleared] = FREE
-    flat[marked] = LETHAL
+    flat[clear_mask] = FREE
+    flat[mark_mask] = LETHAL
     changed: IntArray = cells[flat[cells] != before]
     return changed
 
 
-def _cells(geometry: GridGeometry, xs: FloatArray, ys: FloatArray) -> IntArray:
-    """Flat indices of the cells holding the (finite) points inside the grid."""
-    cols = np.floor((xs - geometry.origin_x) / geometry.resolution)
-    rows = np.floor((ys - geometry.origin_y) / geometry.resolution)
-    ok = (cols >= 0) & (cols < geometry.width) & (rows >= 0) & (rows < geometry.height)
-    flat: IntArray = (rows[ok] * geometry.width + cols[ok]).astype(np.intp)
-    return flat
+def _cell_index(
+    geometry: GridGeometry,
+    scan: Scan,
+    along_x: FloatArray,
+    along_y: FloatArray,
+    keep: BoolArray | None = None,
+) -> IntArray:
+    """Flat cell index of each point ``sensor + along`` (finite, inside the grid and
+    kept); ``width * height`` for the others (one past the grid's last cell). The
+    ``along`` arrays are reused (the arithmetic in place: no temporaries this size)."""
+    cols, rows = along_x, along_y
+    for values, sensor, origin in ((cols, scan.sensor_x, geometry.origin_x),
+                                   (rows, scan.sensor_y, geometry.origin_y)):  # fmt: skip
+        values += sensor
+        values -= origin
+        values /= geometry.resolution  # a cell coordinate; >= 0 inside: truncating floors
+    ok = cols >= 0
+    ok &= cols < geometry.width
+    ok &= rows >= 0
+    ok &= rows < geometry.height
+    if keep is not None:
+        ok &= keep
+    with np.errstate(invalid="ignore"):  # non-finite points are cast but not kept
+        index: IntArray = rows.astype(np.intp)
+        index *= geometry.width
+        index += cols.astype(np.intp)
+    index[~ok] = geometry.width * geometry.height
+    return index
 
 
 def combine_max(master: CostArray, layer: CostArray) -> CostArray:

@@ -8,7 +8,7 @@ import numpy as np
 
 from .costmap import Costmap
 from .grid import NO_INFORMATION, CostArray, GridGeometry
-from .inflation import InflationParams, Window, inflate_window
+from .inflation import InflationParams, Window
 from .obstacle_layer import ObstacleParams, combine_max
 from .static_layer import resample
 
@@ -67,12 +67,19 @@ class RollingCostmap(Costmap):
             self._shift_master(shift_r, shift_c)
 
     def _shift_master(self, shift_r: int, shift_c: int) -> None:
-        """Move the combined and inflated grids with the window, and re-inflate only
-        where that can change anything: the new cells and the radius around them, and
-        the radius inside the edges the old cells left by (their obstacles no longer
-        inflate anything). Equal to a rebuild; a rebuild if one is due anyway."""
-        if self._dirty or self._base is None or self._master is None or self._pending:
-            self.layers_replaced()  # pending cells are indices of the old window
+        """Move the combined and inflated grids with the window, and re-inflate (at the
+        next read, with the cells a scan changes meanwhile) only where that can change
+        anything: the new cells and the radius around them, and the radius inside the
+        edges the old cells left by (their obstacles no longer inflate anything). Equal
+        to a rebuild; a rebuild if one is due anyway."""
+        if (
+            self._dirty
+            or self._base is None
+            or self._master is None
+            or self._pending
+            or self._stale
+        ):
+            self.layers_replaced()  # pending cells and stale windows are of the old window
             return
         height, width = self.geometry.shape
         bound = self.geometry.cell_distance(self.inflation.inflation_radius)
@@ -83,8 +90,7 @@ class RollingCostmap(Costmap):
         fresh = int(combine_max(np.full((1,), self.default_value, np.uint8), unknown)[0])
         self._base = _shifted(self._base, shift_r, shift_c, fill=fresh)
         self._master = _shifted(self._master, shift_r, shift_c)
-        for window in _bands(shift_r, shift_c, bound, height, width):
-            inflate_window(self._base, self._master, window, self.geometry, self.inflation)
+        self._stale.extend(_bands(shift_r, shift_c, bound, height, width))
         self._last_scan = None
         self._record(None)  # the cells moved: a reader of changed windows starts over
 

@@ -10,7 +10,7 @@ from aiobt.msgs import Odometry, PoseStamped
 from aiobt_services.controller.collision import INSCRIBED
 from aiobt_services.controller.geometry import STOP, Velocity
 from aiobt_services.controller.latency import LoopDelay
-from aiobt_services.controller.local_costmap import LocalCostmap
+from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
 from aiobt_services.controller.robot_io import RobotTracker
 
 from .test_local_costmap import _scan_with_wall_ahead
@@ -70,6 +70,32 @@ def test_scans_wait_for_a_refresh():
     assert costmap.costs_at(ahead)[0] == 0  # kept, not integrated
     tracker.refresh_costmap()
     assert costmap.costs_at(ahead)[0] >= INSCRIBED
+
+
+def test_the_costmap_takes_scans_at_its_update_frequency_of_robot_time():
+    clock = ManualClock()
+    costmap = LocalCostmap(LocalCostmapParams(update_frequency=5.0))
+    tracker = RobotTracker(clock, costmap)
+    tracker.on_pose(PoseStamped.from_xy_yaw(0.0, 0.0, 0.0))
+    assert tracker.refresh_costmap()  # the first update at once: the window, no scan yet
+    ahead = np.array([[1.0, 0.0]])
+    tracker.on_scan(_scan_with_wall_ahead(1.0))
+    clock.advance(0.15)
+    assert not tracker.refresh_costmap()
+    assert costmap.costs_at(ahead)[0] == 0  # 0.15 s after the last update: not yet
+    clock.advance(0.05)
+    assert tracker.refresh_costmap()
+    assert costmap.costs_at(ahead)[0] >= INSCRIBED  # 0.2 s: the newest scan is in
+    tracker.forget()
+    tracker.on_pose(PoseStamped.from_xy_yaw(0.0, 0.0, 0.0))
+    tracker.on_scan(_scan_with_wall_ahead(0.5))
+    tracker.refresh_costmap()  # attached again: at once
+    assert costmap.costs_at(np.array([[0.5, 0.0]]))[0] >= INSCRIBED
+
+
+def test_a_bad_update_frequency_is_refused():
+    with pytest.raises(ValueError, match="update_frequency"):
+        LocalCostmapParams(update_frequency=0.0)
 
 
 def test_one_way_delay_by_stamps_smoothed_from_its_own_first_sample():

@@ -30,10 +30,21 @@ def test_options_configure_rate_speed_tolerances_and_costmap():
     assert config.controllers["FollowPath"]().params.desired_linear_vel == 0.3  # type: ignore[attr-defined]
     assert config.controllers["DWB"]().params.max_vel_x == 0.3  # type: ignore[attr-defined]
     assert costmap_from(args).costmap.inflation.inscribed_radius == 0.3
+    assert costmap_from(args).update_period == pytest.approx(0.2)  # Nav2's 5 Hz
+    faster = _parser(add_arguments).parse_args(["--costmap-update-frequency", "20"])
+    assert costmap_from(faster).update_period == pytest.approx(0.05)
 
 
 @pytest.mark.parametrize("add", [add_arguments, add_behavior_arguments])
-@pytest.mark.parametrize("bad", [["--rate", "0"], ["--rate", "nan"], ["--pose-timeout", "-1"]])
+@pytest.mark.parametrize(
+    "bad",
+    [
+        ["--rate", "0"],
+        ["--rate", "nan"],
+        ["--pose-timeout", "-1"],
+        ["--costmap-update-frequency", "0"],
+    ],
+)
 def test_bad_option_values_are_refused_naming_the_flag(add, bad, capsys):
     with pytest.raises(SystemExit):
         _parser(add).parse_args(bad)

@@ -197,6 +197,52 @@ def test_a_rolling_window_moved_with_its_master_equals_a_rebuild(
         _assert_as_rebuilt(window)
 
 
+@settings(max_examples=80, deadline=None)
+@given(
+    inflation=params(),
+    seed=st.integers(0, 2**32 - 1),
+    unknown=st.booleans(),
+    steps=st.lists(
+        st.tuples(
+            st.floats(-0.3, 0.3),
+            st.floats(-0.3, 0.3),
+            st.sampled_from(["mark", "scan"]),
+            st.booleans(),
+            st.booleans(),
+        ),
+        max_size=6,
+    ),
+)
+def test_a_window_moved_then_scanned_before_a_read_equals_a_rebuild(
+    inflation: InflationParams,
+    seed: int,
+    unknown: bool,
+    steps: list[tuple[float, float, str, bool, bool]],
+) -> None:
+    """The moved window's edges are re-inflated at the next read, in one go with the
+    cells a scan or a mark changed meanwhile (or after a second move, rebuilt)."""
+    rng = np.random.default_rng(seed)
+    window = RollingCostmap(2.0, 1.6, 0.05, inflation, track_unknown_space=unknown)
+    window.update_origin(0.0, 0.0)
+    window.mark_points(rng.uniform(-1.0, 1.0, 6), rng.uniform(-0.8, 0.8, 6))
+    window.master  # noqa: B018 - built
+    x = y = 0.0
+    for dx, dy, change, move_again, read in steps:
+        x, y = x + dx, y + dy
+        window.update_origin(x, y)
+        if change == "mark":
+            window.mark_points(x + rng.uniform(-1.0, 1.0, 4), y + rng.uniform(-0.8, 0.8, 4))
+        else:
+            ranges = rng.uniform(0.05, 1.5, size=24)
+            pose = (x + rng.uniform(-0.5, 0.5), y + rng.uniform(-0.5, 0.5), rng.uniform(-3, 3))
+            window.update_from_scan(Scan.create(pose, -math.pi, math.pi / 12, ranges, 0.0, 2.0))
+        if move_again:
+            window.update_origin(x + 0.06, y - 0.06)
+        if read:
+            _assert_as_rebuilt(window)
+    _assert_as_rebuilt(window)
+
+
 def test_a_small_move_shifts_the_master_instead_of_rebuilding_it() -> None:
     window = RollingCostmap(2.0, 2.0, 0.05, InflationParams(0.1, 0.3, 3.0))
     window.update_origin(0.0, 0.0)
