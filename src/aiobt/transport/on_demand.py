@@ -7,6 +7,10 @@ has no use for them. :class:`OnDemand` subscribes when the first user comes
 be fresh, and lets go ``linger`` robot seconds after the last user left (a tree
 sending goal after goal keeps the streams). What was received before is
 forgotten on each attach: a goal never starts on a pose from before.
+
+A :class:`SimTime` clock listening on demand is held from each ``acquire`` to its
+``release`` (and, by its sleeper, through the ``linger``); the streams are
+attached once its time is fresh, so the first poses are stamped on it.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from collections.abc import AsyncIterator, Callable, Sequence
 from typing import Protocol
 
 from aiobt.core.clock import Clock
+from aiobt.transport.simtime import SimTime
 
 log = logging.getLogger("aiobt.transport.on_demand")
 LINGER = 5.0  # robot s the streams stay after the last goal (the next is often near)
@@ -73,14 +78,18 @@ class OnDemand:
         if self._detacher is not None:
             self._detacher.cancel()
             self._detacher = None
-        if not self._streams:
-            self._forget()
-            self._streams = tuple(self._attach())
-            log.debug("streams attached")
-        waits = [stream.wait_latest() for stream in self._streams[: self._waited]]
+        sim_time = self._clock if isinstance(self._clock, SimTime) else None
+        if sim_time is not None:
+            sim_time.hold()
         try:
             async with asyncio.timeout(timeout):
-                await asyncio.gather(*waits)
+                if sim_time is not None:
+                    await sim_time.wait_fresh(None)
+                if not self._streams:
+                    self._forget()
+                    self._streams = tuple(self._attach())
+                    log.debug("streams attached")
+                await asyncio.gather(*(s.wait_latest() for s in self._streams[: self._waited]))
         except TimeoutError:
             log.warning("no first message within %.1f s of attaching", timeout)
             return False
@@ -89,6 +98,8 @@ class OnDemand:
     def release(self) -> None:
         """One user fewer; the last schedules the detach after ``linger``."""
         self._users -= 1
+        if isinstance(self._clock, SimTime):
+            self._clock.release()
         if self._users == 0 and self._streams and self._detacher is None:
             self._detacher = asyncio.ensure_future(self._detach_later())
 
