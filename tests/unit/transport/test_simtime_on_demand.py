@@ -183,7 +183,9 @@ async def test_the_gate_starts_at_once_when_fresh_and_in_order_once_fresh() -> N
     clock, sim = await bound()
     sim.tick()
     started: list[tuple[str, float]] = []
-    gate = FreshGate(clock, lambda name: started.append((name, clock.now())), timeout=1.0)
+    gate: FreshGate[str] = FreshGate(
+        clock, lambda name: started.append((name, clock.now())), timeout=1.0
+    )
     gate("a")
     assert [(n, round(t, 6)) for n, t in started] == [("a", 0.01)]
     await asyncio.wait_for(sim.detached.wait(), 2.0)
