@@ -42,7 +42,9 @@ class OnDemand:
     ``attach()`` subscribes and returns the streams to close on detach, the first
     ``waited`` of them to be waited for (e.g. pose and odometry, not the lidar);
     ``forget()`` drops what was received before; ``released()`` (if given) is
-    called after a detach closed the streams.
+    called after a detach closed the streams. ``wait_on_attach_only``: a user
+    arriving while the streams are attached does not wait (a silent publisher
+    costs only the user that attached a wait).
     """
 
     def __init__(
@@ -54,6 +56,7 @@ class OnDemand:
         linger: float = LINGER,
         waited: int = 2,
         released: Callable[[], None] | None = None,
+        wait_on_attach_only: bool = False,
     ) -> None:
         if not linger >= 0.0:
             raise ValueError(f"on-demand subscriptions: linger must be >= 0 s, got {linger!r}")
@@ -63,6 +66,7 @@ class OnDemand:
         self._linger = linger
         self._waited = waited
         self._released = released
+        self._wait_on_attach_only = wait_on_attach_only  # attached: take what came, if any
         self._streams: Sequence[Stream] = ()
         self._users = 0
         self._detacher: asyncio.Task[None] | None = None
@@ -85,6 +89,8 @@ class OnDemand:
             async with asyncio.timeout(timeout):
                 if sim_time is not None:
                     await sim_time.wait_fresh(None)
+                if self._streams and self._wait_on_attach_only:
+                    return True
                 if not self._streams:
                     self._forget()
                     self._streams = tuple(self._attach())
