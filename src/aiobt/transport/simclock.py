@@ -57,7 +57,6 @@ class SimClockFollower:
         self._validate = wire_validator(ClockMsg)
         self._latest: float | None = None
         self._wake_due = False
-        self._awaiting = True  # no stamp yet since (re)subscribing
         self._first = asyncio.Event()
         self.dropped_invalid = 0
         self.attaches = 0  # subscriptions declared so far
@@ -71,9 +70,13 @@ class SimClockFollower:
         """Subscribe to the stamps (nothing once closed or already subscribed)."""
         if self._closed or self._sub is not None:
             return
-        self._awaiting = True
         self.attaches += 1
-        self._sub = self._session.declare_subscriber(self._key, callback(self._on_sample))
+        awaiting = [True]  # this subscription's own: a late stamp of the last one is not it
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            self._on_sample(sample, awaiting)
+
+        self._sub = self._session.declare_subscriber(self._key, callback(on_sample))
 
     def detach(self) -> None:
         """Stop receiving stamps until :meth:`attach`."""
@@ -85,8 +88,9 @@ class SimClockFollower:
     def attached(self) -> bool:
         return self._sub is not None
 
-    def _on_sample(self, sample: zenoh.Sample) -> None:
-        """Zenoh thread: decode the stamp; wake the loop only when it has work."""
+    def _on_sample(self, sample: zenoh.Sample, awaiting: list[bool]) -> None:
+        """Zenoh thread: decode the stamp; wake the loop only when it has work (a
+        sleeper due, or the subscription's first valid stamp: ``awaiting``)."""
         payload = sample.payload.to_bytes()
         try:
             if len(payload) > self._bridge.max_payload:
@@ -95,8 +99,8 @@ class SimClockFollower:
         except (ValidationError, ValueError) as exc:
             self._bridge.call(self._reject, exc)
             return
-        first, self._awaiting = self._awaiting, False
         self._latest = stamp
+        first, awaiting[0] = awaiting[0], False
         due = self._sim_time.receive(stamp) if self._sim_time is not None else True
         if (due or first) and not self._wake_due:
             self._wake_due = True
