@@ -67,6 +67,8 @@ class OnDemand:
         self._waited = waited
         self._released = released
         self._wait_on_attach_only = wait_on_attach_only  # attached: take what came, if any
+        self._settled = asyncio.Event()  # the attaching user's wait is over
+        self._settled.set()
         self._streams: Sequence[Stream] = ()
         self._users = 0
         self._detacher: asyncio.Task[None] | None = None
@@ -90,12 +92,17 @@ class OnDemand:
                 if sim_time is not None:
                     await sim_time.wait_fresh(None)
                 if self._streams and self._wait_on_attach_only:
+                    await self._settled.wait()  # a user attaching meanwhile: its wait
                     return True
                 if not self._streams:
                     self._forget()
                     self._streams = tuple(self._attach())
+                    self._settled.clear()
                     log.debug("streams attached")
-                await asyncio.gather(*(s.wait_latest() for s in self._streams[: self._waited]))
+                try:
+                    await asyncio.gather(*(s.wait_latest() for s in self._streams[: self._waited]))
+                finally:
+                    self._settled.set()
         except TimeoutError:
             log.warning("no first message within %.1f s of attaching", timeout)
             return False

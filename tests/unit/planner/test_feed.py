@@ -111,3 +111,18 @@ async def test_without_a_robot_only_the_attaching_request_waits() -> None:
 def test_the_timeout_must_be_positive() -> None:
     with pytest.raises(ValueError, match="timeout"):
         RobotFeed(cast(Bus, FakeBus()), world(), ManualClock(), timeout=0.0)
+
+
+async def test_a_request_arriving_while_another_attaches_waits_with_it() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    first = asyncio.ensure_future(feed.call(lambda _: feed._world.pose)(None))
+    await asyncio.sleep(0)
+    second = asyncio.ensure_future(feed.call(lambda _: feed._world.pose)(None))
+    await asyncio.sleep(0)
+    assert not second.done()  # not answered on the pose forgotten at attach
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(2.0, 1.0, 0.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(second, 1.0) == (2.0, 1.0, 0.0)
+    assert await asyncio.wait_for(first, 1.0) == (2.0, 1.0, 0.0)
+    feed.close()
