@@ -138,6 +138,9 @@ class BehaviorService:
         self.bus.action_server(action.name, action, execute, clock=self.clock)
 
     def _on_teleop(self, twist: Twist) -> None:
+        # idle on --sim-time the clock is not listened to: a command received then is
+        # stamped with the last time known, so it counts as old once a goal starts
+        # (the next command, a teleop stream's usual 10+ Hz, is fresh)
         self._teleop = (Velocity(twist.linear.x, twist.angular.z), self.clock.now())
 
     def _on_preempt_teleop(self, _: Empty) -> None:

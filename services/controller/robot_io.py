@@ -248,12 +248,14 @@ async def serve_on_clock(
 
 
 async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower | None]:
-    """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp)."""
+    """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp),
+    listened to only while held: by a sleeper, a goal, a clearing call (see
+    :mod:`aiobt.transport.simtime`); an idle service receives no clock."""
     if not sim_time:
         return SystemClock(), None
     from aiobt.transport import SimClockFollower
 
-    follower = SimClockFollower(bus)
+    follower = SimClockFollower(bus, on_demand=True)
     while True:
         try:
             await follower.wait_started(timeout=5.0)

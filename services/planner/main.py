@@ -14,6 +14,7 @@ import argparse
 import asyncio
 import logging
 
+from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import ComputeCoveragePath, ComputePathThroughPoses, ComputePathToPose, SmoothPath
 from aiobt.transport import BusSettings, add_bus_arguments
 from aiobt_services._cli import (
@@ -120,11 +121,14 @@ async def serve(args: argparse.Namespace) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
+        clock: Clock = SystemClock()
         if args.sim_time:
             stopper = asyncio.create_task(stop.wait())
-            if await unless_stopped(make_clock(bus, sim_time=True), stopper) is None:
+            made = await unless_stopped(make_clock(bus, sim_time=True), stopper)
+            if made is None:
                 return
-        PlannerService(bus, world, actions, sim_time=args.sim_time).start()
+            clock = made[0]
+        PlannerService(bus, world, actions, sim_time=args.sim_time, clock=clock).start()
         log.info("planner up on namespace '%s'", bus.namespace)
         await stop.wait()
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 
+from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -15,15 +16,14 @@ from aiobt.msgs import (
     ComputePathToPose,
     GetCosts,
     IsPathValid,
-    LaserScan,
     OccupancyGrid,
-    PoseStamped,
     SmoothPath,
 )
 from aiobt.system.announce import announce
 from aiobt.transport import Bus
 
 from .actions import PlannerActions
+from .feed import RobotFeed
 from .state import MAP_FRAMES, GlobalCostmap
 from .validity import invalid_poses, parse_footprint, pose_costs
 
@@ -32,40 +32,54 @@ COSTMAP = "global_costmap"
 
 
 class PlannerService:
-    """The planner server: a global costmap plus Nav2's planner-server interface."""
+    """The planner server: a global costmap plus Nav2's planner-server interface.
+
+    The robot's pose and scans are subscribed while requests that need them come
+    (:class:`RobotFeed`); ``clock`` (the robot's, default the wall's) times the
+    linger after the last one."""
 
     def __init__(
-        self, bus: Bus, world: GlobalCostmap, actions: PlannerActions, *, sim_time: bool = False
+        self,
+        bus: Bus,
+        world: GlobalCostmap,
+        actions: PlannerActions,
+        *,
+        sim_time: bool = False,
+        clock: Clock | None = None,
     ) -> None:
         self.bus = bus
         self.sim_time = sim_time
         self.world = world
         self.actions = actions
+        self.clock = clock or SystemClock()
 
     def start(self) -> None:
         bus, world, act = self.bus, self.world, self.actions
+        feed = RobotFeed(bus, world, self.clock)
         bus.subscribe("map", OccupancyGrid, world.on_map, latched=True)
-        bus.subscribe("pose", PoseStamped, world.on_pose)
-        bus.subscribe("scan", LaserScan, world.on_scan, queue_size=1)
-        bus.action_server(ComputePathToPose.name, ComputePathToPose, act.compute_path_to_pose)
         bus.action_server(
-            ComputePathThroughPoses.name, ComputePathThroughPoses, act.compute_path_through_poses
+            ComputePathToPose.name, ComputePathToPose, feed.action(act.compute_path_to_pose)
         )
-        bus.action_server(SmoothPath.name, SmoothPath, act.smooth_path)
+        bus.action_server(
+            ComputePathThroughPoses.name,
+            ComputePathThroughPoses,
+            feed.action(act.compute_path_through_poses),
+        )
+        bus.action_server(SmoothPath.name, SmoothPath, feed.action(act.smooth_path))
         bus.action_server(ComputeCoveragePath.name, ComputeCoveragePath, act.compute_coverage_path)
-        self._serve_clearing()
+        self._serve_clearing(feed)
         bus.serve(IsPathValid.service_name, IsPathValid.Request, IsPathValid.Response,
-                  self.is_path_valid)  # fmt: skip
+                  feed.call(self.is_path_valid))  # fmt: skip
         bus.serve(GetCosts.service_name(COSTMAP), GetCosts.Request, GetCosts.Response,
-                  self.get_costs)  # fmt: skip
+                  feed.call(self.get_costs))  # fmt: skip
         announce(bus, "planner", sim_time=self.sim_time)
 
-    def _serve_clearing(self) -> None:
+    def _serve_clearing(self, feed: RobotFeed) -> None:
         region, response = ClearCostmapExceptRegion.Request, ClearCostmapResponse
         services = (
             (ClearEntireCostmap, ClearEntireCostmap.Request, self.clear_entirely),
-            (ClearCostmapExceptRegion, region, self.clear_except),
-            (ClearCostmapAroundRobot, region, self.clear_around),
+            (ClearCostmapExceptRegion, region, feed.call(self.clear_except)),
+            (ClearCostmapAroundRobot, region, feed.call(self.clear_around)),
             (ClearCostmapAroundPose, ClearCostmapAroundPose.Request, self.clear_around_pose),
         )
         for kind, request, handler in services:

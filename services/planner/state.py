@@ -82,6 +82,12 @@ class GlobalCostmap:
         self.pose = (msg.x, msg.y, msg.yaw)
         self.pose_stamp = msg.header.stamp
 
+    def forget(self) -> None:
+        """Drop the robot's pose and the waiting scan (the streams start again: a pose
+        from before the planner stopped listening is not where the robot is)."""
+        self.pose = None
+        self._pending = None
+
     def on_scan(self, msg: LaserScan) -> None:
         if self.costmap is None or self.pose is None:
             return

@@ -39,9 +39,11 @@ from aiobt.navigator.navigator import Navigator
 from aiobt.transport import Bus, Subscription
 from aiobt.transport.actions.goals import GoalHandle
 from aiobt.transport.on_demand import OnDemand
+from aiobt.transport.simtime import FRESH_TIMEOUT, clock_held
 
 log = logging.getLogger("aiobt.navigator.service")
 SELF_GOAL_TIMEOUT = 2.0  # s for the navigator's own server to take a goal_pose goal
+SNAPSHOT_POLL = 0.25  # wall s between looks for a bt/snapshot watcher while idle
 
 
 def to_request(action: str, goal_id: str, goal: Any) -> NavRequest:
@@ -106,6 +108,11 @@ class BusStatusSink:
 
     def snapshot(self, message: BtSnapshot) -> None:
         self._snapshot.put(message)
+
+    @property
+    def watched(self) -> bool:
+        """Whether anybody subscribes to ``bt/snapshot``."""
+        return self._snapshot.matched
 
 
 class _HandleChannel:
@@ -212,6 +219,15 @@ class NavigatorService:
             log.error("goal_pose goal not accepted: %s", exc)
 
     async def _publish_snapshots(self, period: float) -> None:
+        """A snapshot every ``period`` of robot time while a navigation runs or anybody
+        watches; idle and unwatched, the robot's clock is not needed (not listened to):
+        Zenoh's matching status is looked at every ``SNAPSHOT_POLL`` wall s."""
+        sink = self.navigator.stream.sink
         while True:
-            self.navigator.stream.sink.snapshot(self.navigator.snapshot())
+            watched = not isinstance(sink, BusStatusSink) or sink.watched
+            if self.navigator.current is None and not watched:
+                await asyncio.sleep(SNAPSHOT_POLL)  # wall time: a poll, not the robot's
+                continue
+            async with clock_held(self.clock, FRESH_TIMEOUT):  # stamped on fresh time
+                sink.snapshot(self.navigator.snapshot())
             await self.clock.sleep(period)

@@ -7,6 +7,10 @@ has no use for them. :class:`OnDemand` subscribes when the first user comes
 be fresh, and lets go ``linger`` robot seconds after the last user left (a tree
 sending goal after goal keeps the streams). What was received before is
 forgotten on each attach: a goal never starts on a pose from before.
+
+A :class:`SimTime` clock listening on demand is held from each ``acquire`` to its
+``release`` (and, by its sleeper, through the ``linger``); the streams are
+attached once its time is fresh, so the first poses are stamped on it.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from collections.abc import AsyncIterator, Callable, Sequence
 from typing import Protocol
 
 from aiobt.core.clock import Clock
+from aiobt.transport.simtime import SimTime
 
 log = logging.getLogger("aiobt.transport.on_demand")
 LINGER = 5.0  # robot s the streams stay after the last goal (the next is often near)
@@ -37,7 +42,9 @@ class OnDemand:
     ``attach()`` subscribes and returns the streams to close on detach, the first
     ``waited`` of them to be waited for (e.g. pose and odometry, not the lidar);
     ``forget()`` drops what was received before; ``released()`` (if given) is
-    called after a detach closed the streams.
+    called after a detach closed the streams. ``wait_on_attach_only``: a user
+    arriving while the streams are attached does not wait (a silent publisher
+    costs only the user that attached a wait).
     """
 
     def __init__(
@@ -49,6 +56,7 @@ class OnDemand:
         linger: float = LINGER,
         waited: int = 2,
         released: Callable[[], None] | None = None,
+        wait_on_attach_only: bool = False,
     ) -> None:
         if not linger >= 0.0:
             raise ValueError(f"on-demand subscriptions: linger must be >= 0 s, got {linger!r}")
@@ -58,6 +66,9 @@ class OnDemand:
         self._linger = linger
         self._waited = waited
         self._released = released
+        self._wait_on_attach_only = wait_on_attach_only  # attached: take what came, if any
+        self._settled = asyncio.Event()  # the attaching user's wait is over
+        self._settled.set()
         self._streams: Sequence[Stream] = ()
         self._users = 0
         self._detacher: asyncio.Task[None] | None = None
@@ -73,14 +84,25 @@ class OnDemand:
         if self._detacher is not None:
             self._detacher.cancel()
             self._detacher = None
-        if not self._streams:
-            self._forget()
-            self._streams = tuple(self._attach())
-            log.debug("streams attached")
-        waits = [stream.wait_latest() for stream in self._streams[: self._waited]]
+        sim_time = self._clock if isinstance(self._clock, SimTime) else None
+        if sim_time is not None:
+            sim_time.hold()
         try:
             async with asyncio.timeout(timeout):
-                await asyncio.gather(*waits)
+                if sim_time is not None:
+                    await sim_time.wait_fresh(None)
+                if self._streams and self._wait_on_attach_only:
+                    await self._settled.wait()  # a user attaching meanwhile: its wait
+                    return True
+                if not self._streams:
+                    self._forget()
+                    self._streams = tuple(self._attach())
+                    self._settled.clear()
+                    log.debug("streams attached")
+                try:
+                    await asyncio.gather(*(s.wait_latest() for s in self._streams[: self._waited]))
+                finally:
+                    self._settled.set()
         except TimeoutError:
             log.warning("no first message within %.1f s of attaching", timeout)
             return False
@@ -89,6 +111,8 @@ class OnDemand:
     def release(self) -> None:
         """One user fewer; the last schedules the detach after ``linger``."""
         self._users -= 1
+        if isinstance(self._clock, SimTime):
+            self._clock.release()
         if self._users == 0 and self._streams and self._detacher is None:
             self._detacher = asyncio.ensure_future(self._detach_later())
 

@@ -5,6 +5,8 @@ wakes the event loop only when a sleeper is due: a service that sleeps one contr
 period at a time (or idles) no longer pays a loop wake-up for each of the 1,000
 stamps a second the simulation sends at a speed-up of 10. A plain
 :class:`ManualClock` passed in is set in the loop at every stamp, as before.
+With ``on_demand`` the subscription is held only while the :class:`SimTime` is
+(a sleeper, a goal: see :mod:`aiobt.transport.simtime`).
 """
 
 from __future__ import annotations
@@ -36,25 +38,59 @@ class SimClockFollower:
     Sleepers on the clock wake as sim time passes; time never runs backwards
     (a restarted simulation's earlier stamps are ignored until they catch up).
     A malformed stamp is dropped and logged (the first one as a warning).
+    ``on_demand`` (with a :class:`SimTime`): subscribed only while the clock is held.
     """
 
-    def __init__(self, bus: Bus, clock: ManualClock | None = None, topic: str = "clock") -> None:
+    def __init__(
+        self,
+        bus: Bus,
+        clock: ManualClock | None = None,
+        topic: str = "clock",
+        *,
+        on_demand: bool = False,
+    ) -> None:
         self.clock = clock if clock is not None else SimTime()
         self._sim_time = self.clock if isinstance(self.clock, SimTime) else None
         self._key = bus.keys.topic(topic)
+        self._session = bus.session
         self._bridge = bus.bridge
         self._validate = wire_validator(ClockMsg)
         self._latest: float | None = None
         self._wake_due = False
         self._first = asyncio.Event()
         self.dropped_invalid = 0
-        handler = callback(self._on_sample)
-        self._sub: zenoh.Subscriber[None] | None = bus.session.declare_subscriber(
-            self._key, handler
-        )
+        self.attaches = 0  # subscriptions declared so far
+        self._closed = False
+        self._sub: zenoh.Subscriber[None] | None = None
+        self.attach()
+        if on_demand and self._sim_time is not None:
+            self._sim_time.bind(self)
 
-    def _on_sample(self, sample: zenoh.Sample) -> None:
-        """Zenoh thread: decode the stamp; wake the loop only when it has work."""
+    def attach(self) -> None:
+        """Subscribe to the stamps (nothing once closed or already subscribed)."""
+        if self._closed or self._sub is not None:
+            return
+        self.attaches += 1
+        awaiting = [True]  # this subscription's own: a late stamp of the last one is not it
+
+        def on_sample(sample: zenoh.Sample) -> None:
+            self._on_sample(sample, awaiting)
+
+        self._sub = self._session.declare_subscriber(self._key, callback(on_sample))
+
+    def detach(self) -> None:
+        """Stop receiving stamps until :meth:`attach`."""
+        if self._sub is not None:
+            _z.undeclare(self._sub)
+            self._sub = None
+
+    @property
+    def attached(self) -> bool:
+        return self._sub is not None
+
+    def _on_sample(self, sample: zenoh.Sample, awaiting: list[bool]) -> None:
+        """Zenoh thread: decode the stamp; wake the loop only when it has work (a
+        sleeper due, or the subscription's first valid stamp: ``awaiting``)."""
         payload = sample.payload.to_bytes()
         try:
             if len(payload) > self._bridge.max_payload:
@@ -63,8 +99,8 @@ class SimClockFollower:
         except (ValidationError, ValueError) as exc:
             self._bridge.call(self._reject, exc)
             return
-        first = self._latest is None
         self._latest = stamp
+        first, awaiting[0] = awaiting[0], False
         due = self._sim_time.receive(stamp) if self._sim_time is not None else True
         if (due or first) and not self._wake_due:
             self._wake_due = True
@@ -74,7 +110,7 @@ class SimClockFollower:
         """In the loop: bring the clock to the newest stamp, waking the sleepers due."""
         self._wake_due = False  # before reading: a stamp from now on wakes again
         if self._sim_time is not None:
-            self._sim_time.catch_up()
+            self._sim_time.arrived()  # catches up; the first stamp since attaching is fresh
         elif self._latest is not None:
             self.clock.set(self._latest)
         self._first.set()
@@ -96,11 +132,15 @@ class SimClockFollower:
 
     async def wait_started(self, timeout: float | None = None) -> float:  # noqa: ASYNC109
         """Wait for the first time stamp; returns the clock's time then."""
+        # held while waiting: stays subscribed on demand
+        if self._sim_time is not None and not await self._sim_time.wait_fresh(timeout):
+            raise TimeoutError(f"no stamp on {self._key} within {timeout} s")
         async with asyncio.timeout(timeout):
             await self._first.wait()
         return self.clock.now()
 
     def close(self) -> None:
-        if self._sub is not None:
-            _z.undeclare(self._sub)
-            self._sub = None
+        self._closed = True
+        if self._sim_time is not None:
+            self._sim_time.unbind()
+        self.detach()

@@ -142,10 +142,11 @@ async def test_sim_clock_follower_default_clock_wakes_sleepers_when_due(
         pub.put(Clock(clock=1.0))
         assert await follower.wait_started(5.0) == 1.0
         sleeper = asyncio.create_task(follower.clock.sleep(1.0))
+        sooner = asyncio.create_task(follower.clock.sleep(0.9))  # both from 1.0, before 1.5
         await asyncio.sleep(0)
         pub.put(Clock(clock=1.5))
         pub.put(Clock(clock=1.99))
-        await asyncio.wait_for(follower.clock.sleep(0.9), 5.0)  # due at 1.9: woken by 1.99
+        await asyncio.wait_for(sooner, 5.0)  # due at 1.9: woken by 1.99
         assert follower.clock.now() == 1.99
         assert not sleeper.done()  # 1.99 < its deadline 2.0
         pub.put(Clock(clock=2.0))

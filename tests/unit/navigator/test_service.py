@@ -178,3 +178,28 @@ async def test_a_goal_with_nan_is_refused_naming_the_field(local_bus: Bus, tmp_p
         assert rig.sink.trees == []
     finally:
         await service.aclose()
+
+
+@pytest.mark.timeout(60)
+async def test_idle_and_unwatched_the_snapshots_leave_the_robot_clock_alone(
+    local_bus: Bus, tmp_path: Path
+) -> None:
+    rig = make_rig(tmp_path, TREES)
+    rig.navigator.stream.sink = BusStatusSink(local_bus)
+    clock = ManualClock()
+    service = NavigatorService(local_bus, rig.navigator, clock)
+    service.start(snapshot_period=0.2)
+    try:
+        for _ in range(5):
+            await asyncio.sleep(0)
+        assert clock.pending_sleepers == 0  # nobody watches, nothing runs: no robot time needed
+        snapshots = local_bus.subscribe("bt/snapshot", BtSnapshot)
+        snapshot = await snapshots.next(timeout=WAIT)  # a watcher: snapshots while idle too
+        assert snapshot.state != "navigating"
+        async with asyncio.timeout(WAIT):
+            while clock.pending_sleepers == 0:  # noqa: ASYNC110 - its period on the robot clock
+                await asyncio.sleep(0.01)
+        clock.advance(0.2)  # its period passed: the next snapshot
+        assert (await snapshots.next(timeout=WAIT)).state == snapshot.state
+    finally:
+        await service.aclose()

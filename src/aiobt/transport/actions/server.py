@@ -18,6 +18,7 @@ from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, decode
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
+from aiobt.transport.actions.fresh import FreshGate, held_during
 from aiobt.transport.actions.goals import GoalRecord, RecentIds, ResultStore
 from aiobt.transport.actions.intake import GoalIntake
 from aiobt.transport.actions.observers import Observers
@@ -58,7 +59,9 @@ class ActionServer(Generic[G, R, F]):
       under a new id), is rejected "canceled before it arrived" and preempts nothing.
     - :meth:`aclose` rejects new goals ("action server shutting down"), ends the
       waiting and running goals ABORTED with that reason, then withdraws the token.
-    - ``clock`` (robot time; default the system's) stamps GoalStatus messages.
+    - ``clock`` (robot time; default the system's) stamps GoalStatus messages. A
+      :class:`SimTime` listening on demand is held while a goal runs, and a goal
+      arriving while it is not listened to starts once it is fresh (bounded).
     - ``accept(goal) -> reason | None`` (in the loop) may reject a goal with a
       reason; without it goals are checked in the Zenoh thread (faster).
     - A starting goal is acknowledged after execute's first step (up to its
@@ -98,12 +101,13 @@ class ActionServer(Generic[G, R, F]):
         self._runner = GoalRunner(
             keys.base,
             action,
-            execute,
+            held_during(clock, execute),
             preemption,
             self._observed,
             self._finish,
             self.publish_feedback,
         )
+        self._gate: FreshGate[tuple[GoalRecord, G]] = FreshGate(clock, self._begin_now)
         self._token = session.liveliness().declare_token(keys.alive)
 
     def _from_zenoh(self, handle: Callable[[zenoh.Query], None]) -> Callable[[zenoh.Query], None]:
@@ -135,6 +139,10 @@ class ActionServer(Generic[G, R, F]):
             self._begin(GoalRecord(checked[0], query), checked[1])
 
     def _begin(self, record: GoalRecord, goal: G) -> None:
+        self._gate((record, goal))  # at once, unless the robot's clock must be heard first
+
+    def _begin_now(self, item: tuple[GoalRecord, G]) -> None:
+        record, goal = item
         if record.goal_id in self._canceled_early:
             record.reject("canceled before it arrived")
             return
@@ -212,6 +220,7 @@ class ActionServer(Generic[G, R, F]):
         self._closed = asyncio.Event()
         try:
             await self._runner.close()
+            await self._gate.aclose()
         finally:
             self._closed.set()
             _z.undeclare(self._token)

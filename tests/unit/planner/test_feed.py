@@ -1,0 +1,128 @@
+"""RobotFeed: the planner's pose and scan subscribed while requests come."""
+
+from __future__ import annotations
+
+import asyncio
+from collections.abc import Callable
+from typing import Any, cast
+
+import pytest
+
+from aiobt.core.clock import ManualClock
+from aiobt.msgs import LaserScan, PoseStamped
+from aiobt.transport import Bus
+from aiobt_services.planner.feed import RobotFeed
+
+from .test_actions import world
+from .test_service import lethal
+
+
+class FakeSub:
+    """A subscription the test feeds by hand (as the bus would, in the loop)."""
+
+    def __init__(self, callback: Callable[[Any], None]) -> None:
+        self.callback = callback
+        self.latest: Any = None
+        self.first = asyncio.Event()
+        self.closed = False
+
+    def deliver(self, msg: Any) -> None:
+        self.latest = msg
+        self.first.set()
+        self.callback(msg)
+
+    async def wait_latest(self, timeout: float | None = None) -> Any:  # noqa: ASYNC109
+        await self.first.wait()
+        return self.latest
+
+    def close(self) -> None:
+        self.closed = True
+
+
+class FakeBus:
+    def __init__(self) -> None:
+        self.subs: dict[str, list[FakeSub]] = {"pose": [], "scan": []}
+
+    def subscribe(self, name: str, _model: object, callback: Any, **_kw: object) -> FakeSub:
+        sub = FakeSub(callback)
+        self.subs[name].append(sub)
+        return sub
+
+    def live(self, name: str) -> FakeSub:
+        sub = self.subs[name][-1]
+        assert not sub.closed
+        return sub
+
+
+def scan(*ranges: float) -> LaserScan:
+    """From the robot at (1, 1) facing +x: beams at 0, 90, 180 degrees."""
+    return LaserScan(angle_min=0.0, angle_max=3.1416, angle_increment=1.5708, range_min=0.1,
+                     range_max=5.0, ranges=list(ranges))  # fmt: skip
+
+
+def feed_of(bus: FakeBus, clock: ManualClock, timeout: float = 1.0) -> RobotFeed:
+    grid = world()
+    return RobotFeed(cast(Bus, bus), grid, clock, timeout=timeout, linger=5.0)
+
+
+async def test_a_request_attaches_waits_for_pose_and_scan_and_folds_the_scan() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = feed._world
+    assert bus.subs == {"pose": [], "scan": []}  # idle: nothing subscribed
+    call = asyncio.ensure_future(feed.call(lambda _: grid.pose)(None))
+    await asyncio.sleep(0)
+    assert grid.pose is None  # forgotten at attach: the robot may have moved meanwhile
+    bus.live("scan").deliver(scan(0.4, 2.0, 0.5))  # before any pose: kept for later
+    await asyncio.sleep(0)
+    assert not call.done()
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=4.0))
+    assert await asyncio.wait_for(call, 1.0) == (1.0, 1.0, 0.0)
+    assert lethal(grid, 1.4, 1.0)  # the scan that came before the pose is marked
+    assert lethal(grid, 1.0, 3.0)
+
+
+async def test_the_streams_go_a_linger_after_the_last_request() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    call = asyncio.ensure_future(feed.call(lambda _: "ok")(None))
+    await asyncio.sleep(0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "ok"
+    assert await feed.call(lambda _: "again")(None) == "again"  # attached: no new subscription
+    assert len(bus.subs["pose"]) == 1
+    await asyncio.sleep(0)  # the detacher starts its linger
+    await clock.forward(5.1, step=0.5)
+    assert bus.subs["pose"][0].closed
+    assert bus.subs["scan"][0].closed
+
+
+async def test_without_a_robot_only_the_attaching_request_waits() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock, timeout=0.05)
+    assert await asyncio.wait_for(feed.call(lambda _: feed._world.pose)(None), 1.0) is None
+    # still attached, still silent: the next request is answered at once
+    assert await asyncio.wait_for(feed.call(lambda _: "now")(None), 0.04) == "now"
+    feed.close()
+    assert bus.subs["pose"][0].closed
+
+
+def test_the_timeout_must_be_positive() -> None:
+    with pytest.raises(ValueError, match="timeout"):
+        RobotFeed(cast(Bus, FakeBus()), world(), ManualClock(), timeout=0.0)
+
+
+async def test_a_request_arriving_while_another_attaches_waits_with_it() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    first = asyncio.ensure_future(feed.call(lambda _: feed._world.pose)(None))
+    await asyncio.sleep(0)
+    second = asyncio.ensure_future(feed.call(lambda _: feed._world.pose)(None))
+    await asyncio.sleep(0)
+    assert not second.done()  # not answered on the pose forgotten at attach
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(2.0, 1.0, 0.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(second, 1.0) == (2.0, 1.0, 0.0)
+    assert await asyncio.wait_for(first, 1.0) == (2.0, 1.0, 0.0)
+    feed.close()
