@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import pytest
 
@@ -195,25 +196,34 @@ def test_a_stalled_loop_near_the_target_overshoots_by_at_most_the_approach_error
     assert robot.pose.yaw - 1.0 <= spin.params.approach_error + 0.01
 
 
-def test_after_a_long_stall_the_spin_turns_back_to_its_target():
-    """A 1 s stall near the end (beyond what the approach allows for) overshoots; once
-    the base stands still the spin sees it and turns back within its settle tolerance."""
-    robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), 4, max_angular_accel=6.0)
-    spin = SpinBehavior(1.0)
+def run_with_a_stall(
+    behavior: TimedBehavior, robot: DelayedUnicycle, stall_from: Callable[[Pose2D], bool]
+) -> tuple[BehaviorStep, list[Velocity]]:
+    """Step (lead: the base's 4-cycle delay) until done; once ``stall_from(pose)``,
+    the loop stalls 1 s (20 cycles) while the base keeps the last command."""
     now, last, stalled, commands = 0.0, Velocity(), False, []
     while now < 30.0:
-        if not stalled and robot.pose.yaw > 0.7:
+        if not stalled and stall_from(robot.pose):
             stalled = True
             for _ in range(20):
                 robot.step(last, DT)
                 now += DT
-        step = spin.step(Inputs(now, robot.pose, FRESH, lead=4 * DT))
+        step = behavior.step(Inputs(now, robot.pose, FRESH, lead=4 * DT))
         last = step.cmd or Velocity()
         commands.append(last)
         robot.step(last, DT)
         now += DT
         if step.done:
-            break
+            return step, commands
+    raise AssertionError("behavior did not finish")
+
+
+def test_after_a_long_stall_the_spin_turns_back_to_its_target():
+    """A 1 s stall near the end (beyond what the approach allows for) overshoots; once
+    the base stands still the spin sees it and turns back within its settle tolerance."""
+    robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), 4, max_angular_accel=6.0)
+    spin = SpinBehavior(1.0)
+    step, commands = run_with_a_stall(spin, robot, lambda pose: pose.yaw > 0.7)
     assert step.succeeded
     assert any(c.w < 0.0 for c in commands)  # turned back
     assert abs(robot.pose.yaw - 1.0) <= spin.params.settle_tolerance + 0.01
@@ -226,20 +236,9 @@ def test_after_a_long_stall_the_drive_goes_back_to_its_distance(distance, speed,
     its settle tolerance, never reporting success while off."""
     robot = DelayedUnicycle(Pose2D(0.0, 0.0, 0.0), 4, max_linear_accel=2.5)
     drive = DriveOnHeading(distance, speed)
-    now, last, stalled, commands = 0.0, Velocity(), False, []
-    while now < 30.0:
-        if not stalled and abs(robot.pose.x) > stall_at * abs(distance):
-            stalled = True
-            for _ in range(20):
-                robot.step(last, DT)
-                now += DT
-        step = drive.step(Inputs(now, robot.pose, FRESH, lead=4 * DT))
-        last = step.cmd or Velocity()
-        commands.append(last)
-        robot.step(last, DT)
-        now += DT
-        if step.done:
-            break
+    step, commands = run_with_a_stall(
+        drive, robot, lambda pose: abs(pose.x) > stall_at * abs(distance)
+    )
     assert step.succeeded
     assert any(c.v * speed < 0.0 for c in commands)  # drove back
     assert abs(robot.pose.x - distance) <= drive.params.settle_tolerance + 0.005
