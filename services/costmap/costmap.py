@@ -20,7 +20,15 @@ from .grid import (
     GridGeometry,
     IntArray,
 )
-from .inflation import InflationParams, Window, bounding_window, grown, inflate, inflate_window
+from .inflation import (
+    InflationParams,
+    Window,
+    bounding_window,
+    grown,
+    inflate,
+    inflate_window,
+    spanning,
+)
 from .obstacle_layer import ObstacleParams, Scan, clear_and_mark, combine_max, same_scan
 from .static_layer import StaticParams, occupancy_to_costs
 
@@ -184,8 +192,7 @@ class Costmap:
         if len(windows) != self.version - version or any(w is None for w in windows):
             return None
         known = [w for w in windows if w is not None]
-        return (min(w[0] for w in known), max(w[1] for w in known),
-                min(w[2] for w in known), max(w[3] for w in known))  # fmt: skip
+        return spanning(known)
 
     def _refresh(self) -> CostArray:
         if self._dirty or self._master is None or self._base is None:
@@ -225,8 +232,7 @@ class Costmap:
             )
         if not windows:
             return
-        window = (min(w[0] for w in windows), max(w[1] for w in windows),
-                  min(w[2] for w in windows), max(w[3] for w in windows))  # fmt: skip
+        window = spanning(windows)
         row0, row1, col0, col1 = window
         before = self._master[row0:row1, col0:col1].copy()
         inflate_window(self._base, self._master, window, self.geometry, self.inflation)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -71,6 +72,12 @@ def bounding_window(flat: IntArray, width: int) -> Window:
     """The smallest window holding the (non-empty) flat cell indices ``flat``."""
     rows, cols = np.divmod(flat, width)
     return (int(rows.min()), int(rows.max()) + 1, int(cols.min()), int(cols.max()) + 1)
+
+
+def spanning(windows: Sequence[Window]) -> Window:
+    """The smallest window holding every one of (non-empty) ``windows``."""
+    return (min(w[0] for w in windows), max(w[1] for w in windows),
+            min(w[2] for w in windows), max(w[3] for w in windows))  # fmt: skip
 
 
 def grown(window: Window, cells: int, shape: tuple[int, int]) -> Window:
