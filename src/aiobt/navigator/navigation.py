@@ -134,10 +134,17 @@ class Navigation:
     async def _wait(self, tree: Tree, period: float) -> None:
         """The loop period on the clock, or a wake-up; a clock that stalls (a simulation
         that stopped) for ``clock_timeout`` wall seconds lets the loop go on anyway,
-        so that cancel and preemption are still served."""
+        so that cancel and preemption are still served.
+
+        Bounded with ``asyncio.timeout``, not ``asyncio.wait_for``: on Python 3.11 a
+        cancel that lands after the wake-up has come but before this task resumes is
+        swallowed by ``wait_for`` (it returns the result), and the canceled goal would
+        run on. At a speed-up the loop wakes every millisecond or so: that race was
+        seen in the e2e tests (a canceled follow_point goal still EXECUTING)."""
         bound = self.navigator.options.clock_timeout
         try:
-            await asyncio.wait_for(tree.wait_for_wake_up(period), bound)
+            async with asyncio.timeout(bound):
+                await tree.wait_for_wake_up(period)
         except TimeoutError:
             if not self._stalled:
                 log.warning(

@@ -147,7 +147,8 @@ class Navigator:
             return
         navigation.stop(reason)
         try:
-            await asyncio.wait_for(navigation.finished.wait(), timeout)
+            async with asyncio.timeout(timeout):  # not wait_for: see Navigation._wait
+                await navigation.finished.wait()
         except TimeoutError:
             log.warning(
                 "navigation %s did not end within %g s", navigation.request.goal_id, timeout

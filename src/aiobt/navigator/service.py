@@ -82,7 +82,8 @@ class NavRobotState:
         if self.current_pose() is not None:
             return True
         try:
-            await asyncio.wait_for(self._pose_seen.wait(), timeout)
+            async with asyncio.timeout(timeout):  # not wait_for: see Navigation._wait
+                await self._pose_seen.wait()
         except TimeoutError:
             return False
         return self.current_pose() is not None

@@ -182,7 +182,8 @@ async def _wait_exit(child: Child) -> None:
     await child.process.wait()
     if child.reader is not None:
         with contextlib.suppress(Exception):
-            await asyncio.wait_for(child.reader, 0.5)
+            async with asyncio.timeout(0.5):  # on time-out the reader is cancelled
+                await child.reader
 
 
 def _signal(child: Child, sig: signal.Signals) -> None:

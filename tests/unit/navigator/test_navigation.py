@@ -204,6 +204,33 @@ async def test_cancel_halts_the_tree(tmp_path: Path) -> None:
     assert (await asyncio.wait_for(task, WAIT)).error_code == 0
 
 
+async def test_a_cancel_landing_as_the_loop_wakes_up_still_halts_the_tree(tmp_path: Path) -> None:
+    # the cancel comes after the wake-up wait has finished but before the navigation's
+    # task resumes (at a speed-up the loop wakes every millisecond): asyncio.wait_for on
+    # Python 3.11 swallowed such a cancel and the canceled goal ran on (a bounded wait:
+    # on --sim-time the loop's wait is bounded by clock_timeout)
+    rig = make_rig(tmp_path, TREES, clock_timeout=30.0)
+    task = start(rig, to_pose("g"))
+    await rig.gates.wait_started("drive")
+    navigation = rig.navigator.current
+    assert navigation is not None
+    assert navigation.tree is not None
+    tree = navigation.tree
+    wake_up = tree.wait_for_wake_up
+
+    async def cancel_then_wake(period: float) -> bool:
+        tree.wait_for_wake_up = wake_up  # type: ignore[method-assign]
+        task.cancel()  # the wake-up is in: the wait ends as the cancel lands
+        return True
+
+    tree.wait_for_wake_up = cancel_then_wake  # type: ignore[method-assign]
+    tree.emit_wake_up()
+    with pytest.raises(asyncio.CancelledError):
+        await asyncio.wait_for(asyncio.shield(task), 2.0)
+    assert rig.gates.halts["drive"] == 1
+    assert rig.sink.snapshots[-1].state == "canceled"
+
+
 async def test_shutdown_aborts_the_running_navigation(tmp_path: Path) -> None:
     rig = make_rig(tmp_path, TREES)
     task = start(rig, to_pose("g"))
