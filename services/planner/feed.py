@@ -56,7 +56,8 @@ class RobotFeed:
     def _attach(self) -> list[Subscription[Any]]:
         world, bus = self._world, self._bus
         self._scan = bus.subscribe("scan", LaserScan, world.on_scan, queue_size=1)
-        return [bus.subscribe("pose", PoseStamped, world.on_pose), self._scan]
+        # the newest pose only: at 10x 500 a wall second, each replacing the one before
+        return [bus.subscribe("pose", PoseStamped, world.on_pose, queue_size=1), self._scan]
 
     @contextlib.asynccontextmanager
     async def fresh(self) -> AsyncIterator[bool]:
@@ -65,7 +66,7 @@ class RobotFeed:
         async with self.on_demand.active(self._timeout) as came:
             scan = None if self._scan is None else self._scan.latest
             if scan is not None:
-                self._world.on_scan(scan)  # one that came before the pose is marked now
+                self._world.on_scan(scan)  # one that came before the pose is taken now
                 self._world.snapshot()  # folded before the request reads the costmap
             yield came
 

@@ -28,7 +28,9 @@ class CostmapOptions:
     inflation: InflationParams = field(default_factory=InflationParams)
     obstacles: ObstacleParams = field(default_factory=ObstacleParams)
     search: SearchParams = field(default_factory=lambda: SearchParams(downsample=2))
-    scan_period: float = 0.2  # robot s between folded scans; newer ones wait for a read
+    # robot s between folded scans (Nav2's global costmap: update_frequency 1 Hz, the newest
+    # observation only); newer ones wait for a read, which folds the newest first
+    scan_period: float = 1.0
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.scan_period) and self.scan_period >= 0.0):
@@ -40,14 +42,15 @@ class GlobalCostmap:
 
     Scans are coalesced, never queued: the newest one waits and is folded in
     when a reader asks (a plan, a cost query) or when it is ``scan_period``
-    robot seconds newer (header stamps) than the last one folded (the costmap
-    skips a scan equal to the last, from the same pose). Snapshots and the
+    robot seconds (default 1: Nav2's global costmap rate) newer (header stamps)
+    than the last one folded (the costmap skips a scan equal to the last, from
+    the same pose). Snapshots and the
     traversal are updated from the costmap's changed window, not rebuilt.
     Bad messages (wrong frame, rotated map origin) are logged and dropped.
     """
 
-    __slots__ = ("_folded", "_grid", "_pending", "_traversal", "costmap", "options", "pose",
-                 "pose_stamp")  # fmt: skip
+    __slots__ = ("_folded", "_grid", "_pending", "_taken", "_traversal", "costmap", "options",
+                 "pose", "pose_stamp")  # fmt: skip
 
     def __init__(self, options: CostmapOptions | None = None) -> None:
         self.options = options or CostmapOptions()
@@ -55,6 +58,7 @@ class GlobalCostmap:
         self.pose: Pose2D | None = None
         self.pose_stamp = 0.0
         self._pending: tuple[LaserScan, Pose2D] | None = None
+        self._taken: LaserScan | None = None  # the last scan taken (folded or waiting)
         self._folded = -math.inf  # stamp of the newest scan folded in
         self._grid: tuple[int, CostGrid] | None = None
         self._traversal: tuple[int, Traversal] | None = None
@@ -87,10 +91,15 @@ class GlobalCostmap:
         from before the planner stopped listening is not where the robot is)."""
         self.pose = None
         self._pending = None
+        self._taken = None
 
     def on_scan(self, msg: LaserScan) -> None:
-        if self.costmap is None or self.pose is None:
+        """Take a scan, marked from the pose known now; the scan taken last (the same
+        message handed again, as a request does with the newest) is not taken twice:
+        the robot has moved since, and it is folded or waiting already."""
+        if self.costmap is None or self.pose is None or msg is self._taken:
             return
+        self._taken = msg
         self._pending = (msg, self.pose)
         if msg.header.stamp - self._folded >= self.options.scan_period:
             self._fold_pending()

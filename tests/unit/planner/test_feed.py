@@ -42,10 +42,12 @@ class FakeSub:
 class FakeBus:
     def __init__(self) -> None:
         self.subs: dict[str, list[FakeSub]] = {"pose": [], "scan": []}
+        self.queue_sizes: dict[str, object] = {}
 
-    def subscribe(self, name: str, _model: object, callback: Any, **_kw: object) -> FakeSub:
+    def subscribe(self, name: str, _model: object, callback: Any, **kw: object) -> FakeSub:
         sub = FakeSub(callback)
         self.subs[name].append(sub)
+        self.queue_sizes[name] = kw.get("queue_size")
         return sub
 
     def live(self, name: str) -> FakeSub:
@@ -125,4 +127,26 @@ async def test_a_request_arriving_while_another_attaches_waits_with_it() -> None
     bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
     assert await asyncio.wait_for(second, 1.0) == (2.0, 1.0, 0.0)
     assert await asyncio.wait_for(first, 1.0) == (2.0, 1.0, 0.0)
+    feed.close()
+
+
+async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose() -> None:
+    """The newest scan is handed to the costmap again by each request; once taken, the
+    robot's later pose must not mark it a second time (a wall where there is none)."""
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = feed._world
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    assert bus.queue_sizes == {"pose": 1, "scan": 1}  # only the newest of each is wanted
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
+    bus.live("scan").deliver(scan(0.4, 5.0, 5.0))  # a hit 0.4 m ahead, from (1, 1)
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    assert lethal(grid, 1.4, 1.0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=1.1))  # moved
+    assert await asyncio.wait_for(feed.call(lambda _: "again")(None), 1.0) == "again"
+    assert not lethal(grid, 1.4, 2.0)  # the same scan, not marked again from (1, 2)
+    bus.live("scan").deliver(scan(0.4, 5.0, 5.0))  # a new scan from there is
+    assert await asyncio.wait_for(feed.call(lambda _: "new")(None), 1.0) == "new"
+    assert lethal(grid, 1.4, 2.0)
     feed.close()
