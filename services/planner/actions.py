@@ -24,11 +24,11 @@ from aiobt.msgs import (
     ComputeCoveragePath,
     ComputePathThroughPoses,
     ComputePathToPose,
-    Header,
     Path,
     PoseStamped,
     SmoothPath,
 )
+from aiobt.msgs.geometry import yaw_to_quaternion
 
 from .coverage import CoverageError, CoverageParams, plan_coverage
 from .errors import PlanningCancelled, PlanningError
@@ -58,11 +58,21 @@ async def run_cancellable(work: Callable[[Budget], T], budget: Budget) -> T:
 
 
 def to_path(poses: Sequence[Pose2D], stamp: float) -> Path:
-    header = Header(stamp=stamp, frame_id="map")
-    return Path(
-        header=header,
-        poses=[PoseStamped.from_xy_yaw(x, y, yaw, "map", stamp) for x, y, yaw in poses],
+    """The path in ``map``, validated as one nested dict: half the CPU of building each
+    pose's five models one by one (a few ms for a long path), the same message."""
+    header = {"stamp": stamp, "frame_id": "map"}
+    return Path.model_validate(
+        {"header": header, "poses": [_pose_dict(x, y, yaw, header) for x, y, yaw in poses]}
     )
+
+
+def _pose_dict(x: float, y: float, yaw: float, header: dict[str, Any]) -> dict[str, Any]:
+    qx, qy, qz, qw = yaw_to_quaternion(yaw)
+    orientation = {"x": qx, "y": qy, "z": qz, "w": qw}
+    return {
+        "header": header,
+        "pose": {"position": {"x": x, "y": y, "z": 0.0}, "orientation": orientation},
+    }
 
 
 def pose_of(msg: PoseStamped, which: str) -> Pose2D:

@@ -8,12 +8,15 @@ import time
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from aiobt.msgs import (
     ComputeCoveragePath,
     ComputePathThroughPoses,
     ComputePathToPose,
     Goals,
+    Header,
     LaserScan,
     OccupancyGrid,
     Path,
@@ -22,7 +25,8 @@ from aiobt.msgs import (
     SmoothPath,
 )
 from aiobt_services.costmap import LETHAL, NO_INFORMATION
-from aiobt_services.planner.actions import ActionOptions, PlannerActions
+from aiobt_services.planner.actions import ActionOptions, PlannerActions, to_path
+from aiobt_services.planner.planning import Pose2D
 from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
 from aiobt_services.planner.traversal import SearchParams
 
@@ -193,3 +197,21 @@ async def test_coverage_codes() -> None:
     assert gml.error_code == ComputeCoveragePath.ErrorCode.INVALID_REQUEST
     frame = ComputeCoveragePath.Goal(polygons=square, frame_id="odom")
     assert (await actions.compute_coverage_path(frame, None)).error_code == 803
+
+
+@given(
+    st.lists(
+        st.tuples(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3), st.floats(-4 * math.pi, 4 * math.pi)),
+        max_size=30,
+    ),
+    st.floats(0.0, 1e6),
+)
+@settings(max_examples=60, deadline=None)
+def test_to_path_is_the_message_built_pose_by_pose(poses: list[Pose2D], stamp: float) -> None:
+    built = Path(
+        header=Header(stamp=stamp, frame_id="map"),
+        poses=[PoseStamped.from_xy_yaw(x, y, yaw, "map", stamp) for x, y, yaw in poses],
+    )
+    path = to_path(poses, stamp)
+    assert path == built
+    assert path.to_json() == built.to_json()
