@@ -114,11 +114,12 @@ def run_one(
 
 def summary(runs: dict[str, list[dict[str, float]]]) -> list[str]:
     lines = [
-        "| code | CPU % of a core | CPU ms per sim s | speed-up achieved |",
-        "|---|---|---|---|",
+        "| code | CPU % of a core | CPU ms per sim s | speed-up | lag: sim s given up "
+        "| held for commands, wall s |",
+        "|---|---|---|---|---|---|",
     ]
     for label, figs in runs.items():
-        keys = ("cpu_pct", "ms_per_sim_s", "speed")
+        keys = ("cpu_pct", "ms_per_sim_s", "speed", "lag_lost_sim_s", "held_wall_s")
         cells = [" / ".join(f"{f[k]:.1f}" for f in figs) for k in keys]
         lines.append(f"| {label} | " + " | ".join(cells) + " |")
     pairs = zip(runs["base"], runs["this"], strict=True)
