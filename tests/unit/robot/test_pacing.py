@@ -17,7 +17,7 @@ from aiobt_services.robot.drive import DriveController
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.options import add_robot_arguments
 from aiobt_services.robot.pacing import Pacer, parse_speed
-from aiobt_services.robot.runner import LATE_WALL, SimRunner
+from aiobt_services.robot.runner import LATE_WALL, MIN_SLEEP, SimRunner
 from aiobt_services.robot.sim import Simulation
 from aiobt_services.robot.worlds import SMALL
 
@@ -157,7 +157,9 @@ async def test_run_paces_sim_time_at_the_speed_up(sim: Simulation) -> None:
     wall = FakeWall()
     runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
     await run_until(runner, wall, 2.0)
-    assert sim.time == pytest.approx(20.0, abs=0.02)
+    assert sim.time == pytest.approx(20.0, abs=MIN_SLEEP * 10.0 + 0.02)  # a batch behind
+    # one wake-up per MIN_SLEEP (4 steps at 10x), not one per step (2000)
+    assert 2.0 / MIN_SLEEP * 0.9 <= wall.sleeps <= 2.0 / MIN_SLEEP + 1
 
 
 async def test_every_step_lets_the_loop_in_whatever_the_lag(sim: Simulation) -> None:
