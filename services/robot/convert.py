@@ -14,8 +14,7 @@ from aiobt.msgs import (
     Pose,
     PoseStamped,
     PowerSupplyStatus,
-    Twist,
-    Vector3,
+    yaw_to_quaternion,
 )
 
 from .bumper import ContactEvent
@@ -29,23 +28,31 @@ from .sim import Scan, Simulation
 NO_RETURN_MARGIN = 1.0  # a beam without a return reads range_max + this (JSON has no inf)
 
 
-def pose_msg(pose: Pose2D) -> Pose:
-    return Pose.from_xy_yaw(pose.x, pose.y, pose.yaw)
+def _pose_fields(pose: Pose2D) -> dict[str, dict[str, float]]:
+    qx, qy, qz, qw = yaw_to_quaternion(pose.yaw)
+    return {
+        "position": {"x": pose.x, "y": pose.y},
+        "orientation": {"x": qx, "y": qy, "z": qz, "w": qw},
+    }
 
 
+# The 50 Hz messages are validated from one nested dict each (one call into pydantic's
+# core instead of one per nested model: about half the CPU, the same message).
 def odometry(sim: Simulation) -> Odometry:
     odom = sim.odometry
-    return Odometry(
-        header=Header(stamp=sim.time, frame_id="odom"),
-        child_frame_id="base_link",
-        pose=pose_msg(odom.pose),
-        twist=Twist(linear=Vector3(x=odom.linear), angular=Vector3(z=odom.angular)),
+    return Odometry.model_validate(
+        {
+            "header": {"stamp": sim.time, "frame_id": "odom"},
+            "child_frame_id": "base_link",
+            "pose": _pose_fields(odom.pose),
+            "twist": {"linear": {"x": odom.linear}, "angular": {"z": odom.angular}},
+        }
     )
 
 
 def map_pose(sim: Simulation) -> PoseStamped:
-    pose = sim.localized_pose()
-    return PoseStamped(header=Header(stamp=sim.time, frame_id="map"), pose=pose_msg(pose))
+    fields = {"header": {"stamp": sim.time, "frame_id": "map"}}
+    return PoseStamped.model_validate({**fields, "pose": _pose_fields(sim.localized_pose())})
 
 
 def laser_scan(scan: Scan) -> LaserScan:

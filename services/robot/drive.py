@@ -86,14 +86,15 @@ class DriveController:
         """Sim time of the latest command taken (-inf before the first)."""
         return self._cmd_time
 
-    def overdue(self, now: float) -> bool:
+    def overdue(self, now: float, patience: float = 0.0) -> bool:
         """Is a stream driving the base late with its next command? True while the last
         command moves the base, the stream's next one is more than two of its periods
-        late (at least 0.05 s) and the command timeout has not yet run out."""
+        late (at least 0.05 s, and at least ``patience`` s) and the command timeout has
+        not yet run out."""
         if self._interval is None or self._cmd == (0.0, 0.0):
             return False
         age = now - self._cmd_time
-        return max(2.0 * self._interval, 0.05) < age <= self.limits.cmd_timeout
+        return max(2.0 * self._interval, 0.05, patience) < age <= self.limits.cmd_timeout
 
     def stop(self) -> None:
         """Forget the command and the current velocity at once (teleport, reset)."""

@@ -28,6 +28,13 @@ log = logging.getLogger("aiobt_services.robot.runner")
 
 TOPICS = ("odom", "pose", "scan", "battery", "clock", "bumper")
 COMMAND_POLL = 0.001  # wall s between looks for a late command
+# A command later than this (wall s) is a stalled client; one scheduler slot on a loaded
+# machine (CFS's latency on 2 cores: 12 ms) is not: the base drives on the last command.
+LATE_WALL = 0.02
+# The shortest pacing sleep, wall s: at a speed-up where steps are due more often, the
+# steps due after it run back to back (a loop pass between each). Fewer wake-ups: each
+# one preempts whichever process has the core (the controller, at 10x: 1000 a second).
+MIN_SLEEP = 0.004
 
 
 class Outputs(Protocol):
@@ -74,6 +81,10 @@ class SimRunner:
         self._pacer = Pacer(speed, sim.config.dt, max_lag=max_lag, report_every=report_every)
         self._command_wait = command_wait
         self._given_up = -math.inf  # the command after which waiting ran out
+        # sim s a command stream may be late before the sim waits: LATE_WALL of wall time,
+        # at most half the command timeout (at --speed max: the stream's own periods)
+        limit = 0.5 * sim.config.limits.cmd_timeout
+        self._patience = 0.0 if math.isinf(speed) else min(LATE_WALL * speed, limit)
         self.wall: Clock = wall or SystemClock()
         self._outputs = outputs
         rates = rates or Rates()
@@ -111,26 +122,27 @@ class SimRunner:
         return steps
 
     async def run(self, stop: asyncio.Event) -> None:
-        """Step until ``stop`` is set, one physics step at a time, paced by :class:`Pacer`.
+        """Step until ``stop`` is set, one physics step at a time, paced by :class:`Pacer`
+        (sleeping at least ``MIN_SLEEP``: at 10x four steps per wake-up).
 
         The event loop runs between every two steps, so the latest ``cmd_vel``
         (and any service request) is applied before the next step whatever the
         speed-up, and a command timeout measured in sim time means what it says.
-        When a client driving the base stalls (its command stream is late) the sim
-        waits for it, at most ``command_wait`` wall seconds per command.
+        When a client driving the base stalls (its command stream is late by more than
+        two of its periods and more than ``LATE_WALL`` of wall time) the sim waits for
+        it, at most ``command_wait`` wall seconds per command.
         """
         pacer = self._pacer
         pacer.start(self.wall.now(), self.sim.time)
         while not stop.is_set():
             wait = pacer.delay(self.wall.now(), self.sim.time)
-            if wait > 0.0:
-                await self.wall.sleep(wait)
+            # one loop pass before every step (commands and requests in), sleeping or not
+            await (self.wall.sleep(max(wait, MIN_SLEEP)) if wait > 0.0 else asyncio.sleep(0))
             if self._command_late():
                 await self._wait_for_command(stop)
             if stop.is_set():
                 break
             self.tick()
-            await asyncio.sleep(0)  # commands and requests in, before the next step
             line = pacer.report(self.wall.now(), self.sim.time)
             if line is not None:
                 log.log(logging.INFO if pacer.unpaced else logging.WARNING, "%s", line)
@@ -139,7 +151,7 @@ class SimRunner:
         drive = self.sim.drive
         return (
             self._command_wait > 0.0
-            and drive.overdue(self.sim.time)
+            and drive.overdue(self.sim.time, self._patience)
             and drive.command_time != self._given_up
         )
 
@@ -148,7 +160,7 @@ class SimRunner:
         at most ``command_wait`` wall seconds, rather than drive on blind. Once that runs
         out the sim goes on (the command timeout, in sim time, then stops the base)."""
         wall0, drive = self.wall.now(), self.sim.drive
-        while drive.overdue(self.sim.time) and not stop.is_set():
+        while drive.overdue(self.sim.time, self._patience) and not stop.is_set():
             if self.wall.now() - wall0 >= self._command_wait:
                 self._given_up = drive.command_time
                 break

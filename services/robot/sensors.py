@@ -140,16 +140,6 @@ class LidarConfig:
         return self.angle_min + self.angle_increment * np.arange(self.rays, dtype=np.float64)
 
 
-def ray_endpoints(
-    pose: Pose2D, cfg: LidarConfig, start_radius: float
-) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
-    """Ray starts (``start_radius`` out, clear of the body) and ends in ``map``."""
-    heading = pose.yaw + cfg.angles()
-    unit = np.stack([np.cos(heading), np.sin(heading), np.zeros_like(heading)], axis=1)
-    centre = np.array([pose.x, pose.y, cfg.height])
-    return centre + unit * start_radius, centre + unit * cfg.range_max
-
-
 def ranges_from_hits(
     fractions: npt.NDArray[np.float64],
     hit: npt.NDArray[np.bool_],

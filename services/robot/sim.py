@@ -17,6 +17,7 @@ import numpy.typing as npt
 from .bumper import Bumper, ContactEvent
 from .drive import CommandVerdict, DriveController, DriveLimits
 from .geometry import Pose2D
+from .lidar import Disc, Rectangles, cast
 from .mapfile import MapInfo
 from .obstacles import Motion, ObstacleError, ObstacleSpec, validate
 from .sensors import (
@@ -27,9 +28,8 @@ from .sensors import (
     WheelOdometry,
     noisy_pose,
     ranges_from_hits,
-    ray_endpoints,
 )
-from .world import RAY_MASK, Physics, RobotShape, substeps_for
+from .world import Physics, RobotShape, substeps_for, wall_rectangles
 
 log = logging.getLogger("aiobt_services.robot.sim")
 
@@ -77,7 +77,9 @@ class Simulation:
         self._rng = np.random.default_rng(self.config.noise.seed)
         substeps = substeps_for(self.config.limits.max_linear, self.config.dt)
         self._physics = Physics(gui=self.config.gui, dt=self.config.dt, substeps=substeps)
-        self._walls = set(self._physics.build_walls(world))
+        self._wall_rects = wall_rectangles(world)
+        self._walls = set(self._physics.build_walls(self._wall_rects))
+        self._headings = self.config.lidar.angles()
         start = Pose2D(*world.start)
         self._robot = self._physics.robot(self.config.robot, start)
         self._true = start
@@ -172,19 +174,25 @@ class Simulation:
         return noisy_pose(self._loc_offset.compose(self._true), self.config.noise, self._rng)
 
     def scan(self) -> Scan:
-        cfg = self.config.lidar
-        start_radius = 0.0  # from the centre: the rays' filter mask skips the robot's body
-        starts, ends = ray_endpoints(self._true, cfg, start_radius)
-        results = self._physics.call(
-            "rayTestBatch",
-            starts.tolist(),
-            ends.tolist(),
-            numThreads=1,
-            collisionFilterMask=RAY_MASK,
-        )
-        hit = np.fromiter((r[0] >= 0 for r in results), dtype=bool, count=len(results))
-        fractions = np.fromiter((r[2] for r in results), dtype=np.float64, count=len(results))
-        return Scan(self.time, ranges_from_hits(fractions, hit, cfg, start_radius, self._rng), cfg)
+        """The lidar at the current step: walls and the obstacles taller than its plane,
+        at their poses now (:mod:`.lidar`; the robot's own body is not seen)."""
+        cfg, pose = self.config.lidar, self._true
+        rects: list[Rectangles] = []
+        discs: list[Disc] = []
+        for oid, obstacle in self._obstacles.items():
+            spec = obstacle.spec
+            if spec.height <= cfg.height:
+                continue
+            here = self.obstacle_pose(oid)
+            if spec.shape == "box":
+                half_x, half_y = [0.5 * spec.size_x], [0.5 * spec.size_y]
+                rects.append(Rectangles.from_centres([here.x], [here.y], half_x, half_y, here.yaw))
+            else:
+                discs.append(Disc(here.x, here.y, spec.radius))
+        dist = cast(self._wall_rects, rects, discs, (pose.x, pose.y), pose.yaw + self._headings)
+        hit = dist <= cfg.range_max
+        fractions = np.where(hit, dist / cfg.range_max, 1.0)
+        return Scan(self.time, ranges_from_hits(fractions, hit, cfg, 0.0, self._rng), cfg)
 
     # -- robot pose ------------------------------------------------------
     def check_free(self, pose: Pose2D, clearance: float, ignore: str = "") -> None:

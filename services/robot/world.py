@@ -11,6 +11,7 @@ import numpy as np
 import pybullet
 
 from .geometry import Pose2D, merge_boxes
+from .lidar import Rectangles
 from .mapfile import OCCUPIED, MapInfo
 from .obstacles import ObstacleSpec
 
@@ -19,7 +20,6 @@ log = logging.getLogger("aiobt_services.robot.world")
 WALL_HEIGHT = 1.0
 MAX_TRAVEL_PER_SUBSTEP = 0.05  # m: a third of a wall, so a fast base cannot tunnel through
 ROBOT_GROUP = 0x4  # collision filter group of the robot body
-RAY_MASK = 0xFFFF & ~ROBOT_GROUP  # the lidar's rays skip the robot's own body
 
 
 @dataclass(slots=True, frozen=True)
@@ -35,6 +35,23 @@ class RobotShape:
 def substeps_for(max_speed: float, dt: float) -> int:
     """Physics sub-steps per step so that one sub-step moves the base at most a few cm."""
     return max(1, math.ceil(max_speed * dt / MAX_TRAVEL_PER_SUBSTEP))
+
+
+def wall_rectangles(world: MapInfo) -> Rectangles:
+    """The map's occupied cells merged into rectangles (in the map's orientation)."""
+    boxes = merge_boxes(world.grid == OCCUPIED)
+    xs, ys = world.cell_to_world(boxes[:, 0] + 0.5 * boxes[:, 2], boxes[:, 1] + 0.5 * boxes[:, 3])
+    res = world.resolution
+    walls = Rectangles.from_centres(
+        xs, ys, 0.5 * res * boxes[:, 3], 0.5 * res * boxes[:, 2], world.origin[2]
+    )
+    log.info(
+        "world %s: %d occupied cells merged into %d boxes",
+        world.source,
+        int(np.count_nonzero(world.grid == OCCUPIED)),
+        len(boxes),
+    )
+    return walls
 
 
 class Physics:
@@ -74,25 +91,15 @@ class Physics:
         )
         return body
 
-    def build_walls(self, world: MapInfo) -> list[int]:
-        """Occupied cells merged into boxes; one static body per box."""
-        boxes = merge_boxes(world.grid == OCCUPIED)
-        rows = boxes[:, 0] + 0.5 * boxes[:, 2]
-        cols = boxes[:, 1] + 0.5 * boxes[:, 3]
-        xs, ys = world.cell_to_world(rows, cols)
-        res, yaw = world.resolution, world.origin[2]
+    def build_walls(self, walls: Rectangles) -> list[int]:
+        """One static body per wall rectangle (see :func:`wall_rectangles`)."""
+        c, s = math.cos(walls.yaw), math.sin(walls.yaw)
+        centres, halves = 0.5 * (walls.lo + walls.hi), 0.5 * (walls.hi - walls.lo)
         half_z = 0.5 * WALL_HEIGHT
-        bodies = [
-            self.static_box(float(x), float(y), yaw, (0.5 * nc * res, 0.5 * nr * res, half_z))
-            for x, y, nr, nc in zip(xs, ys, boxes[:, 2], boxes[:, 3], strict=True)
+        return [
+            self.static_box(float(c * u - s * v), float(s * u + c * v), walls.yaw, (hx, hy, half_z))
+            for (u, v), (hx, hy) in zip(centres.tolist(), halves.tolist(), strict=True)
         ]
-        log.info(
-            "world %s: %d occupied cells merged into %d boxes",
-            world.source,
-            int(np.count_nonzero(world.grid == OCCUPIED)),
-            len(bodies),
-        )
-        return bodies
 
     def robot(self, shape: RobotShape, pose: Pose2D) -> int:
         collision = self.call(

@@ -13,10 +13,11 @@ from collections.abc import Iterator
 import pytest
 
 from aiobt.msgs import Msg
+from aiobt_services.robot.drive import DriveController
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.options import add_robot_arguments
 from aiobt_services.robot.pacing import Pacer, parse_speed
-from aiobt_services.robot.runner import SimRunner
+from aiobt_services.robot.runner import LATE_WALL, MIN_SLEEP, SimRunner
 from aiobt_services.robot.sim import Simulation
 from aiobt_services.robot.worlds import SMALL
 
@@ -156,7 +157,9 @@ async def test_run_paces_sim_time_at_the_speed_up(sim: Simulation) -> None:
     wall = FakeWall()
     runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
     await run_until(runner, wall, 2.0)
-    assert sim.time == pytest.approx(20.0, abs=0.02)
+    assert sim.time == pytest.approx(20.0, abs=MIN_SLEEP * 10.0 + 0.02)  # a batch behind
+    # one wake-up per MIN_SLEEP (4 steps at 10x), not one per step (2000)
+    assert 2.0 / MIN_SLEEP * 0.9 <= wall.sleeps <= 2.0 / MIN_SLEEP + 1
 
 
 async def test_every_step_lets_the_loop_in_whatever_the_lag(sim: Simulation) -> None:
@@ -274,9 +277,35 @@ async def test_the_sim_waits_for_a_stalled_command_stream(sim: Simulation) -> No
     await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
     assert client.paused is not None
     assert client.resumed_sim is not None
-    assert client.resumed_sim - client.paused[1] <= 0.1 + 0.02  # 2 periods late: it waited
+    # late by LATE_WALL of wall time (0.2 s of sim time at 10x, 4 periods): it waited
+    assert client.resumed_sim - client.paused[1] <= LATE_WALL * 10.0 + 0.02
     assert sim.drive.linear == pytest.approx(0.3)  # never timed out
     assert sim.time > 5.0
+
+
+async def test_a_command_late_by_less_than_a_scheduler_slot_is_not_waited_for(
+    sim: Simulation, caplog: pytest.LogCaptureFixture
+) -> None:
+    wall = FakeWall()
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, report_every=0.5)
+    client = StreamingClient(sim, pause_at=1.0, pause=0.015)  # 3 periods late, under LATE_WALL
+    with caplog.at_level(logging.INFO, logger="aiobt_services.robot.runner"):
+        await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
+    assert client.resumed_sim is not None
+    assert "late cmd_vel" not in caplog.text
+    assert sim.time == pytest.approx(10.0, abs=0.05)  # not held
+    assert sim.drive.linear == pytest.approx(0.3)
+
+
+def test_overdue_counts_from_the_larger_of_two_periods_and_the_patience() -> None:
+    drive = DriveController()
+    for step in range(5):
+        drive.command(0.3, 0.0, 0.05 * step)  # a 20 Hz stream, last at 0.2
+    assert not drive.overdue(0.2 + 0.09)
+    assert drive.overdue(0.2 + 0.11)
+    assert not drive.overdue(0.2 + 0.11, patience=0.2)
+    assert drive.overdue(0.2 + 0.21, patience=0.2)
+    assert not drive.overdue(0.2 + 0.51, patience=0.2)  # timed out: nothing to wait for
 
 
 async def test_a_client_gone_is_waited_for_once_then_the_command_timeout_stops_the_base(
