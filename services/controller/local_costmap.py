@@ -7,7 +7,9 @@ serves a path given in ``odom`` by moving query points through odom -> map.
 
 from __future__ import annotations
 
+import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -24,6 +26,8 @@ from aiobt_services.costmap import (
 
 from .collision import NO_INFORMATION, CostQuery
 from .geometry import FloatArray, Pose2D
+
+log = logging.getLogger("aiobt_services.controller.local_costmap")
 
 
 @dataclass(slots=True, frozen=True)
@@ -46,9 +50,15 @@ class LocalCostmapParams:
 
 
 class LocalCostmap:
-    """A rolling window around the robot; outside the window reads as unknown."""
+    """A rolling window around the robot; outside the window reads as unknown.
 
-    __slots__ = ("_costmap", "update_period")
+    Readers (:meth:`costs_at`, :meth:`grid`) see the published view: a copy of the
+    window's costs, replaced whole by each update, never a half-done one. The sync
+    methods (:meth:`add_scan`, :meth:`follow`, the clearings) update and publish at
+    once; :meth:`updated` updates without publishing, for a worker thread whose result
+    the control loop publishes between its cycles (:meth:`publish`)."""
+
+    __slots__ = ("_costmap", "_view", "update_period")
 
     def __init__(self, params: LocalCostmapParams | None = None) -> None:
         p = params or LocalCostmapParams()
@@ -63,6 +73,7 @@ class LocalCostmap:
             ),
             track_unknown_space=False,
         )
+        self._view = self._built()
 
     @property
     def resolution(self) -> float:
@@ -70,45 +81,105 @@ class LocalCostmap:
 
     @property
     def costmap(self) -> RollingCostmap:
+        """The window being updated (not the published view: see the class docstring)."""
         return self._costmap
 
     def grid(self) -> CostGrid:
-        """The window's costs now (a view, not a copy: read it before the next update)."""
-        return CostGrid(self._costmap.geometry, self._costmap.master)
+        """The published costs (a copy, kept until the next :meth:`publish`: do not modify)."""
+        return self._view
 
     def costs_at(self, points: FloatArray) -> NDArray[np.uint8]:
-        cols, rows, ok = self._costmap.geometry.world_to_cells(points[:, 0], points[:, 1])
-        master = self._costmap.master
-        return np.where(ok, master[rows, cols], NO_INFORMATION).astype(np.uint8)
+        view = self._view
+        cols, rows, ok = view.geometry.world_to_cells(points[:, 0], points[:, 1])
+        return np.where(ok, view.costs[rows, cols], NO_INFORMATION).astype(np.uint8)
+
+    def publish(self, view: CostGrid) -> None:
+        """Make ``view`` (from :meth:`updated`) what readers see."""
+        self._view = view
+
+    def updated(
+        self, scan: LaserScan | None, sensor: Pose2D | None, centre: Pose2D | None
+    ) -> CostGrid:
+        """The window centred on ``centre`` (if given), then the scan taken at ``sensor``
+        (if given) cleared and marked, inflated: a new view, not yet published. Raises
+        ValueError for a scan it cannot take (the window is centred already)."""
+        if centre is not None:
+            self._costmap.update_origin(centre.x, centre.y)
+        if scan is not None and sensor is not None:
+            self._costmap.update_from_scan(
+                Scan.create(
+                    (sensor.x, sensor.y, sensor.yaw),
+                    scan.angle_min,
+                    scan.angle_increment,
+                    scan.ranges_array(),
+                    scan.range_min,
+                    scan.range_max,
+                )
+            )
+        return self._built()
+
+    def _built(self) -> CostGrid:
+        return CostGrid(self._costmap.geometry, self._costmap.master.copy())
 
     def follow(self, pose: Pose2D) -> None:
         """Keep the window centred on the robot."""
-        self._costmap.update_origin(pose.x, pose.y)
+        self._view = self.updated(None, None, pose)
 
     def add_scan(self, scan: LaserScan, sensor: Pose2D, centre: Pose2D | None = None) -> None:
         """Clear and mark from a scan taken at ``sensor`` (the robot pose in map), the
         window centred on ``centre`` first (default: the sensor; a newer robot pose, so
         that the window moves before the scan, not after with its cells pending)."""
-        self.follow(centre or sensor)
-        self._costmap.update_from_scan(
-            Scan.create(
-                (sensor.x, sensor.y, sensor.yaw),
-                scan.angle_min,
-                scan.angle_increment,
-                scan.ranges_array(),
-                scan.range_min,
-                scan.range_max,
-            )
-        )
+        try:
+            view = self.updated(scan, sensor, centre or sensor)
+        except ValueError:
+            self._view = self._built()  # the window moved before the scan was refused
+            raise
+        self._view = view
+
+    def staged(self, change: Callable[[RollingCostmap], object]) -> CostGrid:
+        """``change`` made to the window (e.g. a clearing): the new view, not published."""
+        change(self._costmap)
+        return self._built()
 
     def clear_entirely(self) -> None:
-        self._costmap.clear_entirely()
+        self._view = self.staged(RollingCostmap.clear_entirely)
 
     def clear_around(self, pose: Pose2D, reset_distance: float) -> None:
-        self._costmap.clear_around(pose.x, pose.y, reset_distance)
+        self._view = self.staged(clearing(pose, reset_distance, keep_inside=False))
 
     def clear_except(self, pose: Pose2D, reset_distance: float) -> None:
-        self._costmap.clear_except(pose.x, pose.y, reset_distance)
+        self._view = self.staged(clearing(pose, reset_distance, keep_inside=True))
+
+
+def clearing(
+    pose: Pose2D, reset_distance: float, keep_inside: bool
+) -> Callable[[RollingCostmap], None]:
+    """Nav2's clear-except (``keep_inside``) or clear-around of a square of side
+    ``reset_distance`` at ``pose``, as a change for :meth:`LocalCostmap.staged`."""
+
+    def change(costmap: RollingCostmap) -> None:
+        clear = costmap.clear_except if keep_inside else costmap.clear_around
+        clear(pose.x, pose.y, reset_distance)
+
+    return change
+
+
+@dataclass(slots=True, frozen=True)
+class CostmapUpdate:
+    """One update from the robot: the window centred on ``centre``, then ``scan`` (taken
+    at ``sensor``) cleared and marked; either may be missing."""
+
+    scan: LaserScan | None
+    sensor: Pose2D | None
+    centre: Pose2D | None
+
+    def apply(self, costmap: LocalCostmap) -> CostGrid:
+        """The new view (not published); a scan it cannot take is dropped with a warning."""
+        try:
+            return costmap.updated(self.scan, self.sensor, self.centre)
+        except ValueError as exc:
+            log.warning("scan dropped: %s", exc)
+            return costmap.updated(None, None, None)
 
 
 class FrameShift:

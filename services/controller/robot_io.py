@@ -26,7 +26,7 @@ from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signa
 from .freshness import Freshness
 from .geometry import STOP, Pose2D, Velocity
 from .latency import LoopDelay, command_lead
-from .local_costmap import LocalCostmap, LocalCostmapParams
+from .local_costmap import CostmapUpdate, LocalCostmap, LocalCostmapParams
 from .observed import RateGate
 from .session import RobotState
 
@@ -43,8 +43,9 @@ def twist_of(cmd: Velocity) -> Twist:
 class RobotTracker:
     """Newest pose per frame, the measured velocity, and the lidar into a local costmap.
 
-    Scans are kept, not integrated, as they arrive: :meth:`refresh_costmap`
-    (called by each control cycle of a running goal) integrates the newest one,
+    Scans are kept, not integrated, as they arrive: :meth:`due_update` (asked by
+    each control cycle of a running goal; :meth:`refresh_costmap` applies it at once)
+    takes the newest one,
     at the local costmap's update frequency (Nav2's ``update_frequency``, 5 Hz of
     robot time by default). An idle service so spends nothing on the lidar
     stream, which at a sim speed-up of 10 is 100 scans a second.
@@ -151,26 +152,27 @@ class RobotTracker:
         if self.costmap is not None and state is not None:
             self._pending_scan = (msg, state.pose)
 
-    def refresh_costmap(self) -> bool:
-        """Centre the local costmap on the robot and integrate the newest scan, if any,
-        inflated (nothing left for a reader to do); at most once per update period of
-        robot time (the first call with a pose or a scan at once), as Nav2's costmap
-        updates at its ``update_frequency``. True if it updated."""
+    def due_update(self) -> CostmapUpdate | None:
+        """The local costmap's update, if one is due: the window to the newest pose, then
+        the newest scan; at most once per update period of robot time (the first call
+        with a pose or a scan at once), as Nav2's costmap updates at its
+        ``update_frequency``. The scan is taken (the next update waits for a newer one)."""
         if self.costmap is None or (self._pending_scan is None and "map" not in self.states):
-            return False
+            return None
         if not self._updates.due(self._clock.now()):
-            return False
+            return None
         pending, self._pending_scan = self._pending_scan, None
+        scan, sensor = pending if pending is not None else (None, None)
         state = self.states.get("map")
-        centre = state.pose if state is not None else None
-        if pending is not None:
-            try:
-                self.costmap.add_scan(*pending, centre=centre)
-            except ValueError as exc:
-                log.warning("scan dropped: %s", exc)
-        elif centre is not None:
-            self.costmap.follow(centre)
-        self.costmap.grid()  # the master brought up to date now, not by the next reader
+        return CostmapUpdate(scan, sensor, state.pose if state is not None else sensor)
+
+    def refresh_costmap(self) -> bool:
+        """:meth:`due_update` made and published now (inflated: nothing left for a reader
+        to do); True if it updated."""
+        update = self.due_update()
+        if update is None or self.costmap is None:
+            return False
+        self.costmap.publish(update.apply(self.costmap))
         return True
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 import time
 from dataclasses import dataclass
+from functools import partial
 
 from aiobt.core.clock import Clock
 from aiobt.msgs import (
@@ -25,12 +26,14 @@ from aiobt.msgs import (
 )
 from aiobt.transport import Bus, GoalHandle, Publisher
 from aiobt.transport.on_demand import OnDemand
+from aiobt_services.costmap import RollingCostmap
 
 from .collision import CollisionChecker
+from .costmap_worker import CostmapWorker
 from .cycle_stats import CycleSchedule, CycleStats
 from .errors import ControllerError
 from .geometry import STOP, PlanarPath, Velocity
-from .local_costmap import FrameShift, LocalCostmap, frame_transform
+from .local_costmap import FrameShift, LocalCostmap, clearing, frame_transform
 from .observed import LocalView
 from .robot_io import RobotTracker, sleep_bounded, twist_of
 from .session import ControllerConfig, FollowPathSession, FollowRequest, StepResult
@@ -84,6 +87,7 @@ class ControllerService:
         self.tracker = RobotTracker(clock, self.costmap, robot_time=self.options.robot_time)
         self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
         self._shift = FrameShift(self.costmap)
+        self.worker = CostmapWorker(self.costmap)  # every change of the costmap, in order
         self._cmd: Publisher[Twist] | None = None
         self._tracking: Publisher[TrackingFeedbackMsg] | None = None
         self._view: LocalView | None = None
@@ -146,8 +150,10 @@ class ControllerService:
     async def _loop(
         self, session: FollowPathSession, handle: Handle, stats: CycleStats
     ) -> FollowPath.Result:
+        first = self.tracker.due_update()
+        if first is not None:  # the first cycle sees the lidar as of now
+            stats.record_update(await self.worker.run(partial(first.apply, self.costmap)))
         schedule = CycleSchedule(self.config.control_period, self.clock.now())
-        self.tracker.refresh_costmap()  # the first cycle sees the lidar as of now
         while True:
             began, work, cpu = self.clock.now(), time.perf_counter(), time.thread_time()
             newer = handle.take_new_goal()
@@ -176,11 +182,15 @@ class ControllerService:
                 )
 
     def _update_costmap(self, stats: CycleStats) -> None:
-        """The local costmap's update, when due, after the cycle's command is out (as
-        Nav2's costmap updates beside the control loop): the next cycle reads it."""
-        began = time.perf_counter()
-        if self.tracker.refresh_costmap():
-            stats.record_update(time.perf_counter() - began)
+        """The local costmap's update, when due, started after the cycle's command is out,
+        in the worker thread while the loop sleeps (as Nav2's costmap updates beside the
+        control loop): a cycle after it ended reads it. One at a time: while one runs, a
+        due update waits for the next cycle."""
+        if self.worker.busy:
+            return
+        update = self.tracker.due_update()
+        if update is not None:
+            self.worker.start(partial(update.apply, self.costmap), stats.record_update)
 
     def _step(self, session: FollowPathSession) -> StepResult:
         states = self.tracker.snapshot()
@@ -226,8 +236,8 @@ class ControllerService:
             self._clear_around,
         )
 
-    def _clear_entirely(self, _: ClearEntireCostmap.Request) -> ClearCostmapResponse:
-        self.costmap.clear_entirely()
+    async def _clear_entirely(self, _: ClearEntireCostmap.Request) -> ClearCostmapResponse:
+        await self.worker.run(partial(self.costmap.staged, RollingCostmap.clear_entirely))
         return ClearCostmapResponse(success=True, message="local costmap cleared")
 
     async def _clear_except(self, req: ClearCostmapExceptRegion.Request) -> ClearCostmapResponse:
@@ -241,10 +251,9 @@ class ControllerService:
             state = self.tracker.states.get("map")
         if state is None:
             return ClearCostmapResponse(success=False, message="no robot pose in 'map' yet")
-        if keep_inside:
-            self.costmap.clear_except(state.pose, distance)
-        else:
-            self.costmap.clear_around(state.pose, distance)
+        await self.worker.run(
+            partial(self.costmap.staged, clearing(state.pose, distance, keep_inside))
+        )
         verb = "outside" if keep_inside else "inside"
         return ClearCostmapResponse(
             success=True, message=f"local costmap cleared {verb} a {distance:.2f} m square"
