@@ -27,8 +27,8 @@ from aiobt.msgs import (
     Path,
     PoseStamped,
     SmoothPath,
+    pose_fields,
 )
-from aiobt.msgs.geometry import yaw_to_quaternion
 
 from .coverage import CoverageError, CoverageParams, plan_coverage
 from .errors import PlanningCancelled, PlanningError
@@ -62,17 +62,11 @@ def to_path(poses: Sequence[Pose2D], stamp: float) -> Path:
     pose's five models one by one (a few ms for a long path), the same message."""
     header = {"stamp": stamp, "frame_id": "map"}
     return Path.model_validate(
-        {"header": header, "poses": [_pose_dict(x, y, yaw, header) for x, y, yaw in poses]}
+        {
+            "header": header,
+            "poses": [{"header": header, "pose": pose_fields(x, y, yaw)} for x, y, yaw in poses],
+        }
     )
-
-
-def _pose_dict(x: float, y: float, yaw: float, header: dict[str, Any]) -> dict[str, Any]:
-    qx, qy, qz, qw = yaw_to_quaternion(yaw)
-    orientation = {"x": qx, "y": qy, "z": qz, "w": qw}
-    return {
-        "header": header,
-        "pose": {"position": {"x": x, "y": y, "z": 0.0}, "orientation": orientation},
-    }
 
 
 def pose_of(msg: PoseStamped, which: str) -> Pose2D:

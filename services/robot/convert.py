@@ -14,7 +14,7 @@ from aiobt.msgs import (
     Pose,
     PoseStamped,
     PowerSupplyStatus,
-    yaw_to_quaternion,
+    pose_fields,
 )
 
 from .bumper import ContactEvent
@@ -28,14 +28,6 @@ from .sim import Scan, Simulation
 NO_RETURN_MARGIN = 1.0  # a beam without a return reads range_max + this (JSON has no inf)
 
 
-def _pose_fields(pose: Pose2D) -> dict[str, dict[str, float]]:
-    qx, qy, qz, qw = yaw_to_quaternion(pose.yaw)
-    return {
-        "position": {"x": pose.x, "y": pose.y},
-        "orientation": {"x": qx, "y": qy, "z": qz, "w": qw},
-    }
-
-
 # The 50 Hz messages are validated from one nested dict each (one call into pydantic's
 # core instead of one per nested model: about half the CPU, the same message).
 def odometry(sim: Simulation) -> Odometry:
@@ -44,15 +36,18 @@ def odometry(sim: Simulation) -> Odometry:
         {
             "header": {"stamp": sim.time, "frame_id": "odom"},
             "child_frame_id": "base_link",
-            "pose": _pose_fields(odom.pose),
+            "pose": pose_fields(odom.pose.x, odom.pose.y, odom.pose.yaw),
             "twist": {"linear": {"x": odom.linear}, "angular": {"z": odom.angular}},
         }
     )
 
 
 def map_pose(sim: Simulation) -> PoseStamped:
-    fields = {"header": {"stamp": sim.time, "frame_id": "map"}}
-    return PoseStamped.model_validate({**fields, "pose": _pose_fields(sim.localized_pose())})
+    pose = sim.localized_pose()
+    header = {"stamp": sim.time, "frame_id": "map"}
+    return PoseStamped.model_validate(
+        {"header": header, "pose": pose_fields(pose.x, pose.y, pose.yaw)}
+    )
 
 
 def laser_scan(scan: Scan) -> LaserScan:

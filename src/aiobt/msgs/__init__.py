@@ -56,6 +56,7 @@ from aiobt.msgs.geometry import (
     Twist,
     Vector3,
     normalize_angle,
+    pose_fields,
     quaternion_to_yaw,
     yaw_to_quaternion,
 )
@@ -180,6 +181,7 @@ __all__ = [
     "path_to_string",
     "point_from_string",
     "point_to_string",
+    "pose_fields",
     "pose_stamped_from_string",
     "pose_stamped_to_string",
     "quaternion_from_string",

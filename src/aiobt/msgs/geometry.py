@@ -31,6 +31,17 @@ def yaw_to_quaternion(yaw: float) -> tuple[float, float, float, float]:
     return 0.0, 0.0, math.sin(half), math.cos(half)
 
 
+def pose_fields(x: float, y: float, yaw: float) -> dict[str, dict[str, float]]:
+    """A :class:`Pose`'s fields as plain data, for building a message validated from one
+    nested dict (one call into pydantic's core instead of one per nested model: about
+    half the CPU for the robot's 50 Hz poses and the planner's paths)."""
+    qx, qy, qz, qw = yaw_to_quaternion(yaw)
+    return {
+        "position": {"x": x, "y": y, "z": 0.0},
+        "orientation": {"x": qx, "y": qy, "z": qz, "w": qw},
+    }
+
+
 def quaternion_to_yaw(x: float, y: float, z: float, w: float) -> float:
     """Yaw (rotation about z, radians in [-pi, pi]) of a quaternion."""
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
