@@ -140,15 +140,15 @@ class LidarConfig:
         return self.angle_min + self.angle_increment * np.arange(self.rays, dtype=np.float64)
 
 
-def ranges_from_hits(
-    fractions: npt.NDArray[np.float64],
-    hit: npt.NDArray[np.bool_],
+def lidar_ranges(
+    distances: npt.NDArray[np.float64],
     cfg: LidarConfig,
-    start_radius: float,
     rng: np.random.Generator | None = None,
 ) -> npt.NDArray[np.float64]:
-    """Ray fractions -> ranges from the centre; no return is ``inf`` (as ROS)."""
-    ranges = start_radius + fractions * (cfg.range_max - start_radius)
+    """Distances to the first hit along each beam -> ranges, noisy and clipped to the
+    lidar's limits; no hit within ``range_max`` is ``inf`` (as ROS)."""
+    hit = distances <= cfg.range_max
+    ranges = np.where(hit, distances, cfg.range_max)
     if cfg.noise and rng is not None:
         ranges = ranges + rng.normal(0.0, cfg.noise, ranges.shape)
     clipped = np.clip(ranges, cfg.range_min, cfg.range_max)

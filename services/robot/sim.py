@@ -26,8 +26,8 @@ from .sensors import (
     LidarConfig,
     NoiseConfig,
     WheelOdometry,
+    lidar_ranges,
     noisy_pose,
-    ranges_from_hits,
 )
 from .world import Physics, RobotShape, substeps_for, wall_rectangles
 
@@ -190,9 +190,7 @@ class Simulation:
             else:
                 discs.append(Disc(here.x, here.y, spec.radius))
         dist = cast(self._wall_rects, rects, discs, (pose.x, pose.y), pose.yaw + self._headings)
-        hit = dist <= cfg.range_max
-        fractions = np.where(hit, dist / cfg.range_max, 1.0)
-        return Scan(self.time, ranges_from_hits(fractions, hit, cfg, 0.0, self._rng), cfg)
+        return Scan(self.time, lidar_ranges(dist, cfg, self._rng), cfg)
 
     # -- robot pose ------------------------------------------------------
     def check_free(self, pose: Pose2D, clearance: float, ignore: str = "") -> None:
