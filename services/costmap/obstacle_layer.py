@@ -100,10 +100,10 @@ def clear_and_mark(
     of the cells whose value changed (empty when the scan changed nothing).
 
     The samples are taken as one (rays x samples) matrix of cell coordinates (float32:
-    the sensor's cell plus the ray's direction in cells times the distance; a
-    millionth of a cell off at most on a window of a thousand cells), those beyond a
-    ray's length masked, and the cells collected in per-cell masks: no gather of the
-    samples, no sort, no temporaries of the matrix's size but the mask.
+    the sensor's cell plus the ray's direction in cells times the distance, about
+    1e-5 of a cell off on a window of a hundred cells: a sample that close to a cell's
+    edge may fall in the cell beside), those beyond a ray's length masked, and the
+    cells collected in per-cell masks: no gather of the samples, no sort.
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
@@ -126,9 +126,10 @@ def clear_and_mark(
         cleared[_cell_index(geometry, cols, rows, inside)] = True
     marks = hit > 0
     marked = np.zeros(flat.size + 1, dtype=np.bool_)
-    cols_hit = sensor[0] + dx[marks] * ranges[marks]
-    rows_hit = sensor[1] + dy[marks] * ranges[marks]
-    marked[_cell_index(geometry, cols_hit, rows_hit)] = True
+    # the hits in float64, as the points they are: (sensor + range along the ray - origin)
+    hit_x = (scan.sensor_x + np.cos(angles[marks]) * ranges[marks] - geometry.origin_x) / res
+    hit_y = (scan.sensor_y + np.sin(angles[marks]) * ranges[marks] - geometry.origin_y) / res
+    marked[_cell_index(geometry, hit_x, hit_y)] = True
     clear_mask, mark_mask = cleared[:-1], marked[:-1]
     cells = np.flatnonzero(clear_mask | mark_mask)
     before = flat[cells]
