@@ -211,7 +211,7 @@ class ControllerService:
         handle.publish_feedback(
             FollowPath.Feedback(distance_to_goal=fb.distance_to_goal, speed=abs(step.cmd.v))
         )
-        if self._tracking is not None:
+        if self._tracking is not None and self._tracking.matched:  # built only for a reader
             self._tracking.put(tracking_feedback_msg(fb, self.clock.now(), frame_id))
 
     # -- local costmap clearing -------------------------------------------------------------
