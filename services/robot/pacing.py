@@ -4,16 +4,12 @@
 time and the sim time it says how long to wait before the next step (0: step
 now). Sim time runs ``speed`` times as fast as wall time; ``speed`` infinite
 (``--speed max``) never waits. When the simulation falls more than
-``max_lag`` wall seconds behind its target it does not try to catch up (the robot would
-run ahead of its commands): the target is moved to now and the sim time given
-up is counted. A smaller lag is caught up at most ``catch_up`` times the
-speed-up, with at most ``burst`` wall seconds' worth of steps back to back (a
-token bucket): robot time never races ahead of the wall clock in a burst, so
-the services that follow it (a controller at 20 Hz of robot time) keep their
-schedule; Gazebo, pacing step to step, does not catch up at all.
-:meth:`Pacer.report` returns, at most once per ``report_every`` wall seconds, how
-far behind the simulation fell and how often, or (``--speed max``) the speed-up
-achieved, and how often the runner waited for a late command (:meth:`Pacer.held`).
+``max_lag`` wall seconds behind its target it does not try to catch up in a
+burst (the robot would run ahead of its commands): the target is moved to now
+and the sim time given up is counted. :meth:`Pacer.report` returns, at most
+once per ``report_every`` wall seconds, how far behind the simulation fell and
+how often, or (``--speed max``) the speed-up achieved, and how often the
+runner waited for a late command (:meth:`Pacer.held`).
 """
 
 from __future__ import annotations
@@ -54,38 +50,19 @@ def speed_label(speed: float) -> str:
 class Pacer:
     """Paces steps of ``dt`` sim seconds against a wall clock read by the caller."""
 
-    __slots__ = (
-        "_capacity", "_catch_up", "_dt", "_filled", "_max_lag", "_report_every", "_sim0",
-        "_tokens", "_wall0", "_window", "speed",
-    )  # fmt: skip
+    __slots__ = ("_dt", "_max_lag", "_report_every", "_sim0", "_wall0", "_window", "speed")
 
     def __init__(
-        self,
-        speed: float,
-        dt: float,
-        *,
-        max_lag: float = 0.25,
-        catch_up: float = 1.25,
-        burst: float = 0.008,
-        report_every: float = 5.0,
+        self, speed: float, dt: float, *, max_lag: float = 0.25, report_every: float = 5.0
     ) -> None:
         if not (speed > 0.0 and not math.isnan(speed)):
             raise ValueError(f"speed must be > 0 (or infinite for max), got {speed}")
-        for name, value in (
-            ("dt", dt), ("max_lag", max_lag), ("burst", burst), ("report_every", report_every)
-        ):  # fmt: skip
+        for name, value in (("dt", dt), ("max_lag", max_lag), ("report_every", report_every)):
             if not (math.isfinite(value) and value > 0.0):
                 raise ValueError(f"Pacer {name} must be a finite number > 0, got {value}")
-        if not (math.isfinite(catch_up) and catch_up > 1.0):
-            raise ValueError(f"Pacer catch_up must be a finite number > 1, got {catch_up}")
         self.speed = speed
         self._dt = dt
         self._max_lag = max_lag
-        self._catch_up = catch_up
-        # sim seconds that may be stepped back to back (at least a step)
-        self._capacity = max(dt, burst * speed) if not math.isinf(speed) else math.inf
-        self._tokens = self._capacity
-        self._filled = 0.0  # wall time the tokens were counted at
         self._report_every = report_every
         self._wall0 = self._sim0 = 0.0
         self._window = _Window(0.0, 0.0)
@@ -96,16 +73,14 @@ class Pacer:
         return math.isinf(self.speed)
 
     def start(self, wall: float, sim: float) -> None:
-        self._restart(wall, sim)
+        self._wall0, self._sim0 = wall, sim
         self._window = _Window(wall, sim)
 
     def delay(self, wall: float, sim: float) -> float:
-        """Wall seconds to wait before the step from ``sim`` (0: step now, and the step
-        is taken: each call that returns 0 must be followed by one step).
+        """Wall seconds to wait before the step from ``sim`` (0: step now).
 
         Behind by more than ``max_lag`` wall seconds: the target moves to now
-        (counted for the next report). Behind by less: caught up at most
-        ``catch_up`` times the speed-up, a ``burst`` of steps back to back at most.
+        (counted for the next report) instead of being caught up in a burst.
         """
         if self.unpaced:
             return 0.0
@@ -114,31 +89,17 @@ class Pacer:
         if behind > self._max_lag * self.speed:
             self._window.lost += behind
             self._window.events += 1
-            self._restart(wall, sim)
-            self._tokens -= self._dt
+            self._wall0, self._sim0 = wall, sim
             return 0.0
         due = self._wall0 + (sim + self._dt - self._sim0) / self.speed
-        rate = self._catch_up * self.speed  # sim seconds of tokens per wall second
-        tokens = min(self._capacity, self._tokens + max(0.0, wall - self._filled) * rate)
-        self._tokens, self._filled = tokens, wall
-        # sim s of tokens missing for the step (0 within rounding: not a wait of 1e-18 s)
-        short = self._dt - tokens if tokens < self._dt * (1.0 - 1e-9) else 0.0
-        wait = max(0.0, due - wall, short / rate)
-        if wait == 0.0:
-            self._tokens -= self._dt
-        return wait
+        return max(0.0, due - wall)
 
     def held(self, wall: float, sim: float, seconds: float) -> None:
         """The sim waited ``seconds`` of wall time for a late command: counted for the
         report, and the target restarts from now (the wait is not lag to catch up)."""
         self._window.holds += 1
         self._window.held += seconds
-        self._restart(wall, sim)
-
-    def _restart(self, wall: float, sim: float) -> None:
-        """The target runs from ``sim`` at ``wall``; a full bucket (the next step is due)."""
         self._wall0, self._sim0 = wall, sim
-        self._tokens, self._filled = self._capacity, wall
 
     def report(self, wall: float, sim: float) -> str | None:
         """A line on the last ``report_every`` s: lag (how far, how often) or achieved speed."""

@@ -135,14 +135,9 @@ class SimRunner:
         pacer = self._pacer
         pacer.start(self.wall.now(), self.sim.time)
         while not stop.is_set():
-            # one loop pass before every step (commands and requests in), sleeping or not
             wait = pacer.delay(self.wall.now(), self.sim.time)
-            if wait > 0.0:
-                await self.wall.sleep(max(wait, MIN_SLEEP))
-                if pacer.delay(self.wall.now(), self.sim.time) > 0.0:
-                    continue  # not due yet: the catch-up's bucket, or a sleep cut short
-            else:
-                await asyncio.sleep(0)
+            # one loop pass before every step (commands and requests in), sleeping or not
+            await (self.wall.sleep(max(wait, MIN_SLEEP)) if wait > 0.0 else asyncio.sleep(0))
             if self._command_late():
                 await self._wait_for_command(stop)
             if stop.is_set():

@@ -98,48 +98,6 @@ def test_pacer_gives_up_lag_instead_of_catching_up_and_counts_it() -> None:
     assert pacer.report(10.0, 54.0) is None  # a period without lag says nothing
 
 
-def paced_sim_times(
-    pacer: Pacer, stall_at: float, stall: float, end: float
-) -> list[tuple[float, float]]:
-    """(wall, sim) after each step of a zero-cost stepper that follows ``pacer``, whose
-    wall clock jumps by ``stall`` once the sim reaches ``stall_at`` (a descheduled robot)."""
-    wall = sim = 0.0
-    pacer.start(wall, sim)
-    stepped: list[tuple[float, float]] = []
-    stalled = False
-    while wall < end:
-        if not stalled and sim >= stall_at:
-            wall, stalled = wall + stall, True
-        wait = pacer.delay(wall, sim)
-        if wait > 0.0:
-            wall += wait
-            continue
-        sim = round(sim + DT, 9)
-        stepped.append((wall, sim))
-    return stepped
-
-
-def test_pacer_catches_a_small_lag_up_at_catch_up_times_the_speed_not_in_a_burst() -> None:
-    pacer = Pacer(10.0, DT, max_lag=0.25, catch_up=1.25, burst=0.008)
-    stepped = paced_sim_times(pacer, stall_at=1.0, stall=0.1, end=1.0)  # 1 s of sim behind
-    after = [(w, s) for w, s in stepped if w >= 0.2]
-    for wall, sim in after:  # the burst (8 steps), then at most 12.5x
-        assert sim - 1.0 <= 0.08 + 12.5 * (wall - 0.2) + 1e-6
-    assert len([w for w, _ in after if w == 0.2]) == 8  # the burst: steps at once
-    # caught up: the 1 s of sim less the burst at 2.5 s of sim per wall s over on time
-    on_time = [w for w, s in after if s >= 10.0 * w - DT]
-    assert on_time
-    assert on_time[0] == pytest.approx(0.2 + (1.0 - 0.08) / 2.5, abs=0.005)
-    assert stepped[-1][1] == pytest.approx(10.0, abs=DT)
-    assert pacer.report(5.0, 50.0) is None  # nothing given up
-
-
-def test_pacer_on_time_steps_are_never_held_back_by_the_catch_up_limit() -> None:
-    stepped = paced_sim_times(Pacer(10.0, DT), stall_at=math.inf, stall=0.0, end=1.0)
-    assert all(s == pytest.approx(10.0 * w) for w, s in stepped)
-    assert len(stepped) >= 999  # 1 s of wall at 10x, 10 ms steps
-
-
 def test_pacer_counts_waits_for_late_commands_apart_from_lag() -> None:
     pacer = Pacer(10.0, DT, report_every=5.0)
     pacer.start(0.0, 0.0)
@@ -190,10 +148,6 @@ def test_pacer_refuses_bad_parameters() -> None:
         Pacer(0.0, DT)
     with pytest.raises(ValueError, match="dt"):
         Pacer(1.0, 0.0)
-    with pytest.raises(ValueError, match="catch_up"):
-        Pacer(1.0, DT, catch_up=1.0)
-    with pytest.raises(ValueError, match="burst"):
-        Pacer(1.0, DT, burst=0.0)
 
 
 # -- SimRunner.run on the fake clock ---------------------------------------------------------
