@@ -10,6 +10,11 @@ for every interior cell ``u`` and each of its 8 neighbours ``v``, weighted
 weight; ``inf`` into a blocked cell, never taken). Edges leave blocked cells
 too, so a search may start in a block opened for the start without rebuilding
 the graph, and a changed cell only rewrites the weights of the edges into it.
+
+The reversed graph (every edge turned round: ``v -> u`` weighs ``step_length *
+weight(v)``, its source's own weight) has the same layout; a Dijkstra on it
+rooted at a goal gives the cheapest cost and next step from every node to that
+goal, so one search serves any start while the weights stay as they are.
 """
 
 from __future__ import annotations
@@ -49,6 +54,16 @@ class Reach:
         path.reverse()
         return path
 
+    def path_from(self, node: int, root: int) -> list[int]:
+        """Nodes from a reached ``node`` to ``root``, both included, on a reach of the
+        reversed graph rooted at ``root`` (each node's parent is its next step)."""
+        path = [node]
+        parent = self.parent
+        while node != root:
+            node = int(parent[node])
+            path.append(node)
+        return path
+
 
 class GridGraph:
     """A padded grid of step weights as a CSR graph for scipy's compiled Dijkstra.
@@ -59,7 +74,7 @@ class GridGraph:
     of rebuilding the graph.
     """
 
-    __slots__ = ("_matrix", "_weights", "passable", "stride")
+    __slots__ = ("_matrix", "_padded", "_reversed", "_weights", "passable", "stride")
 
     def __init__(self, padded: FloatArray) -> None:
         """``padded``: ``(rows + 2, cols + 2)`` weights, ``inf`` = blocked, border blocked."""
@@ -71,6 +86,8 @@ class GridGraph:
         targets, starts = _layout_of(rows, cols, self.stride, padded.size)
         nodes = padded.size
         self._matrix = csr_array((self._weights.ravel(), targets, starts), shape=(nodes, nodes))
+        self._padded = padded
+        self._reversed: csr_array | None = None
 
     def updated(self, padded: FloatArray, window: tuple[int, int, int, int]) -> GridGraph:
         """A graph of ``padded``, which differs from this graph's weights only in
@@ -85,6 +102,8 @@ class GridGraph:
         _edge_weights(padded, clone._weights, sources)
         m = self._matrix
         clone._matrix = csr_array((clone._weights.ravel(), m.indices, m.indptr), shape=m.shape)
+        clone._padded = padded
+        clone._reversed = None
         return clone
 
     @property
@@ -96,6 +115,24 @@ class GridGraph:
         """A complete Dijkstra from ``source`` (one compiled call: not interruptible)."""
         cost, parent = dijkstra(
             self._matrix, directed=True, indices=source, return_predecessors=True
+        )
+        return Reach(np.asarray(cost, dtype=np.float64), np.asarray(parent, dtype=np.int32))
+
+    def reach_to(self, target: int) -> Reach:
+        """A complete Dijkstra on the reversed graph rooted at ``target``: from every
+        node, the cheapest cost to ``target`` and the next step on that path (see
+        :meth:`Reach.path_from`; one compiled call: not interruptible)."""
+        if self._reversed is None:
+            m = self._matrix
+            rows, cols = self._weights.shape[:2]
+            own = self._padded[1 : rows + 1, 1 : cols + 1]
+            lengths = np.array([length for _, _, length in MOVES])
+            weights = (own[:, :, None] * lengths).ravel()
+            # row v: v's edges to its 8 neighbours u, each weighing the step out of v
+            # (its length times v's own weight): every edge u -> v turned round
+            self._reversed = csr_array((weights, m.indices, m.indptr), shape=m.shape)
+        cost, parent = dijkstra(
+            self._reversed, directed=True, indices=target, return_predecessors=True
         )
         return Reach(np.asarray(cost, dtype=np.float64), np.asarray(parent, dtype=np.int32))
 

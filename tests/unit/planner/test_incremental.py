@@ -79,16 +79,24 @@ def lethal_at(grid: CostGrid, x: float, y: float) -> bool:
     return bool(grid.costs[cell[1], cell[0]] == LETHAL)
 
 
-def test_scans_within_the_period_wait_and_a_read_folds_only_the_newest() -> None:
+def test_scans_within_the_period_wait_a_read_folds_nothing_the_next_due_folds_the_newest() -> None:
     state = world()
     first = state.traversal()
     assert first is not None
     assert state.costmap is not None
     state.on_scan(scan(1.0, [1.0] * 11))  # folded at once: the first scan
+    folded = state.traversal()
+    assert folded is not first  # brought up to date by the fold, before any read
     version = state.costmap.version
     state.on_scan(scan(1.1, [1.5] * 11))  # waits (0.1 s < 0.5 s), then replaced
     state.on_scan(scan(1.2, [2.0] * 11))
+    grid = state.snapshot()  # a read takes the costmap as the last fold left it
+    assert grid is not None
     assert state.costmap.version == version
+    assert lethal_at(grid, 1.5, 1.5)
+    assert not lethal_at(grid, 2.5, 1.5)
+    assert state.traversal() is folded
+    state.on_scan(scan(1.6, [2.0] * 11))  # due: the newest folded, the waiting one dropped
     grid = state.snapshot()
     assert grid is not None
     assert lethal_at(grid, 2.5, 1.5)  # the newest scan's hit
@@ -96,9 +104,24 @@ def test_scans_within_the_period_wait_and_a_read_folds_only_the_newest() -> None
     assert not lethal_at(grid, 1.5, 1.5)  # the first one's hit, cleared by the newest
     traversal = state.traversal()
     assert traversal is not None
-    assert traversal is not first
+    assert traversal is not folded
     assert state.traversal() is traversal  # no change since: the same one
     assert_same(traversal, Traversal(grid, state.options.search))
+
+
+def test_after_forget_or_a_stamp_going_back_a_scan_is_folded_as_it_comes() -> None:
+    state = world()
+    state.on_scan(scan(5.0, [1.0] * 11))
+    state.on_scan(scan(3.0, [1.5] * 11))  # the robot restarted: its clock went back
+    grid = state.snapshot()
+    assert grid is not None
+    assert lethal_at(grid, 2.0, 1.5)
+    state.forget()  # the streams closed; the next pose and scan start afresh
+    state.on_pose(PoseStamped.from_xy_yaw(0.5, 1.5, 0.0, stamp=3.1))
+    state.on_scan(scan(3.1, [2.0] * 11))
+    grid = state.snapshot()
+    assert grid is not None
+    assert lethal_at(grid, 2.5, 1.5)
 
 
 def test_an_equal_scan_from_the_same_pose_changes_nothing() -> None:
@@ -117,3 +140,13 @@ def test_an_equal_scan_from_the_same_pose_changes_nothing() -> None:
     assert moved is not grid
     assert lethal_at(moved, 1.62, 1.5)
     assert not lethal_at(moved, 1.52, 1.5)
+
+
+def test_a_scan_is_marked_from_the_pose_stamped_with_it_not_a_newer_one() -> None:
+    state = world()  # the robot at (0.5, 1.5) at 1.0
+    state.on_pose(PoseStamped.from_xy_yaw(0.6, 1.5, 0.0, stamp=1.02))  # came before the scan
+    state.on_scan(scan(1.0, [1.0] * 11))
+    grid = state.snapshot()
+    assert grid is not None
+    assert lethal_at(grid, 1.52, 1.5)  # 1 m ahead of where the scan was taken
+    assert not lethal_at(grid, 1.62, 1.5)
