@@ -44,12 +44,28 @@ def compiled_dijkstra(
         rooted, kept = traversal.reach_to(goal)
         budget.reused += kept
         budget.check()
-        if math.isinf(rooted.cost[start]):
-            raise PlanningError("NO_VALID_PATH", NO_PATH)
-        return rooted.path_from(start, goal)
+        if graph.passable[start]:
+            if math.isinf(rooted.cost[start]):
+                raise PlanningError("NO_VALID_PATH", NO_PATH)
+            return rooted.path_from(start, goal)
+        return _out_of_opened(traversal, rooted, start, goal)
     reach = graph.reach_from(start)
     budget.check()
     return _into_opened(graph, reach, start, goal, traversal.weights[goal])
+
+
+def _out_of_opened(traversal: Traversal, rooted: Reach, start: int, goal: int) -> list[int]:
+    """The cheapest path out of a start the graph has blocked (this traversal opened
+    it), on the goal-rooted ``rooted``: the step into the best neighbour, then its path."""
+    best, exit_to = math.inf, -1
+    for dr, dc, length in MOVES:
+        neighbour = start + dr * traversal.stride + dc
+        cost = length * traversal.weights[neighbour] + float(rooted.cost[neighbour])
+        if cost < best:
+            best, exit_to = cost, neighbour
+    if exit_to < 0:
+        raise PlanningError("NO_VALID_PATH", NO_PATH)
+    return [start, *rooted.path_from(exit_to, goal)]
 
 
 def _into_opened(graph: GridGraph, reach: Reach, start: int, goal: int, weight: float) -> list[int]:
