@@ -24,7 +24,10 @@ def assert_same(updated: Traversal, fresh: Traversal) -> None:
     assert np.array_equal(updated.graph().passable, fresh.graph().passable)
     root = fresh.index(0, 0)  # the reversed graph: updated in the window if it was built
     assert np.array_equal(updated.graph().reach_to(root).cost, fresh.graph().reach_to(root).cost)
-    assert np.array_equal(updated.graph()._reversed_weights, fresh.graph()._reversed_weights)
+    reversed_weights = (updated.graph()._reversed_weights, fresh.graph()._reversed_weights)
+    assert reversed_weights[0] is not None
+    assert reversed_weights[1] is not None
+    assert np.array_equal(reversed_weights[0], reversed_weights[1])
 
 
 @settings(max_examples=80, deadline=None)
