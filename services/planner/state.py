@@ -54,8 +54,8 @@ class GlobalCostmap:
     not rebuilt. Bad messages (wrong frame, rotated map origin) are logged and dropped.
     """
 
-    __slots__ = ("_folded", "_grid", "_pending", "_poses", "_taken", "_traversal", "costmap",
-                 "options", "pose", "pose_stamp")  # fmt: skip
+    __slots__ = ("_early", "_folded", "_grid", "_pending", "_poses", "_taken", "_traversal",
+                 "costmap", "options", "pose", "pose_stamp")  # fmt: skip
 
     def __init__(self, options: CostmapOptions | None = None) -> None:
         self.options = options or CostmapOptions()
@@ -64,6 +64,7 @@ class GlobalCostmap:
         self.pose_stamp = 0.0
         self._poses: deque[tuple[float, Pose2D]] = deque(maxlen=POSES_KEPT)
         self._pending: tuple[LaserScan, Pose2D] | None = None
+        self._early: LaserScan | None = None  # a scan that came before its pose
         self._taken: LaserScan | None = None  # the last scan taken (folded or waiting)
         self._folded = -math.inf  # stamp of the newest scan folded in
         self._grid: tuple[int, CostGrid] | None = None
@@ -92,6 +93,10 @@ class GlobalCostmap:
         self.pose = (msg.x, msg.y, msg.yaw)
         self.pose_stamp = msg.header.stamp
         self._poses.append((self.pose_stamp, self.pose))
+        early = self._early
+        if early is not None and self.pose_stamp >= early.header.stamp:
+            self._early = None
+            self._take(early)
 
     def forget(self) -> None:
         """Drop the robot's pose and the waiting scan (the streams start again: a pose
@@ -99,17 +104,25 @@ class GlobalCostmap:
         self.pose = None
         self._poses.clear()
         self._pending = None
+        self._early = None
         self._taken = None
         self._folded = -math.inf  # the first scan after is folded as it comes
 
     def on_scan(self, msg: LaserScan) -> None:
-        """Take a scan, marked from the pose known with the stamp nearest its own (the
-        robot publishes both at one step; a busy loop can see newer poses first, and
-        a pose 20 ms off marks a wall a cell off, a change that comes and goes); the
-        scan taken last (the same message handed again, as a request does with the
-        newest) is not taken twice: it is folded or waiting already."""
+        """Take a scan, marked from the pose stamped nearest it (the robot publishes
+        both at one step; a busy loop can see newer poses first, and a pose 20 ms off
+        marks a wall a cell off, a change that comes and goes). A scan that came before
+        its pose waits for it (not the first after :meth:`forget`: a request waits on
+        that one). The scan taken last (the same message handed again, as a request
+        does with the newest) is not taken twice: it is folded or waiting already."""
         if self.costmap is None or self.pose is None or msg is self._taken:
             return
+        if self.pose_stamp < msg.header.stamp and math.isfinite(self._folded):
+            self._early = msg
+            return
+        self._take(msg)
+
+    def _take(self, msg: LaserScan) -> None:
         self._taken = msg
         stamp = msg.header.stamp
         self._pending = (msg, min(self._poses, key=lambda kept: abs(kept[0] - stamp))[1])

@@ -79,6 +79,13 @@ def world() -> GlobalCostmap:
     return grid
 
 
+def seen(state: GlobalCostmap, stamp: float, ranges: list[float], x: float = 0.5) -> None:
+    """The robot's pose at ``stamp`` (at (x, 1.5) facing +x), then its scan, as the robot
+    publishes them."""
+    state.on_pose(PoseStamped.from_xy_yaw(x, 1.5, 0.0, stamp=stamp))
+    state.on_scan(scan(stamp, ranges))
+
+
 def lethal_at(grid: CostGrid, x: float, y: float) -> bool:
     cell = grid.geometry.world_to_cell(x, y)
     assert cell is not None
@@ -90,19 +97,19 @@ def test_scans_within_the_period_wait_a_read_folds_nothing_the_next_due_folds_th
     first = state.traversal()
     assert first is not None
     assert state.costmap is not None
-    state.on_scan(scan(1.0, [1.0] * 11))  # folded at once: the first scan
+    seen(state, 1.0, [1.0] * 11)  # folded at once: the first scan
     folded = state.traversal()
     assert folded is not first  # brought up to date by the fold, before any read
     version = state.costmap.version
-    state.on_scan(scan(1.1, [1.5] * 11))  # waits (0.1 s < 0.5 s), then replaced
-    state.on_scan(scan(1.2, [2.0] * 11))
+    seen(state, 1.1, [1.5] * 11)  # waits (0.1 s < 0.5 s), then replaced
+    seen(state, 1.2, [2.0] * 11)
     grid = state.snapshot()  # a read takes the costmap as the last fold left it
     assert grid is not None
     assert state.costmap.version == version
     assert lethal_at(grid, 1.5, 1.5)
     assert not lethal_at(grid, 2.5, 1.5)
     assert state.traversal() is folded
-    state.on_scan(scan(1.6, [2.0] * 11))  # due: the newest folded, the waiting one dropped
+    seen(state, 1.6, [2.0] * 11)  # due: the newest folded, the waiting one dropped
     grid = state.snapshot()
     assert grid is not None
     assert lethal_at(grid, 2.5, 1.5)  # the newest scan's hit
@@ -117,14 +124,13 @@ def test_scans_within_the_period_wait_a_read_folds_nothing_the_next_due_folds_th
 
 def test_after_forget_or_a_stamp_going_back_a_scan_is_folded_as_it_comes() -> None:
     state = world()
-    state.on_scan(scan(5.0, [1.0] * 11))
-    state.on_scan(scan(3.0, [1.5] * 11))  # the robot restarted: its clock went back
+    seen(state, 5.0, [1.0] * 11)
+    seen(state, 3.0, [1.5] * 11)  # the robot restarted: its clock went back
     grid = state.snapshot()
     assert grid is not None
     assert lethal_at(grid, 2.0, 1.5)
     state.forget()  # the streams closed; the next pose and scan start afresh
-    state.on_pose(PoseStamped.from_xy_yaw(0.5, 1.5, 0.0, stamp=3.1))
-    state.on_scan(scan(3.1, [2.0] * 11))
+    seen(state, 3.1, [2.0] * 11)
     grid = state.snapshot()
     assert grid is not None
     assert lethal_at(grid, 2.5, 1.5)
@@ -132,15 +138,14 @@ def test_after_forget_or_a_stamp_going_back_a_scan_is_folded_as_it_comes() -> No
 
 def test_an_equal_scan_from_the_same_pose_changes_nothing() -> None:
     state = world()
-    state.on_scan(scan(1.0, [1.0] * 11))
+    seen(state, 1.0, [1.0] * 11)
     grid = state.snapshot()
     assert state.costmap is not None
     version = state.costmap.version
-    state.on_scan(scan(2.0, [1.0] * 11))
+    seen(state, 2.0, [1.0] * 11)
     assert state.snapshot() is grid
     assert state.costmap.version == version
-    state.on_pose(PoseStamped.from_xy_yaw(0.6, 1.5, 0.0, stamp=2.5))
-    state.on_scan(scan(3.0, [1.0] * 11))  # moved: folded, the hits move with the robot
+    seen(state, 3.0, [1.0] * 11, x=0.6)  # moved: folded, the hits move with the robot
     moved = state.snapshot()
     assert moved is not None
     assert moved is not grid
@@ -156,3 +161,16 @@ def test_a_scan_is_marked_from_the_pose_stamped_with_it_not_a_newer_one() -> Non
     assert grid is not None
     assert lethal_at(grid, 1.52, 1.5)  # 1 m ahead of where the scan was taken
     assert not lethal_at(grid, 1.62, 1.5)
+
+
+def test_a_scan_that_comes_before_its_pose_waits_for_it() -> None:
+    state = world()
+    seen(state, 1.0, [1.0] * 11)  # the first: folded as it comes
+    state.on_scan(scan(2.0, [1.0] * 11))  # due, but the robot's pose at 2.0 is not here yet
+    grid = state.snapshot()
+    assert grid is not None
+    assert not lethal_at(grid, 1.62, 1.5)
+    state.on_pose(PoseStamped.from_xy_yaw(0.6, 1.5, 0.0, stamp=2.0))
+    grid = state.snapshot()
+    assert grid is not None
+    assert lethal_at(grid, 1.62, 1.5)  # marked from (0.6, 1.5), its own pose
