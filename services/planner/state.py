@@ -85,6 +85,9 @@ class GlobalCostmap:
             self.costmap = Costmap(geometry, self.options.inflation, self.options.obstacles)
         self.costmap.set_static(msg.array, geometry)
         log.info("map: %dx%d cells at %.3f m", info.width, info.height, info.resolution)
+        traversal = self.traversal()  # inflated and built now, not by the first request
+        if traversal is not None:
+            traversal.graph()
 
     def on_pose(self, msg: PoseStamped) -> None:
         if msg.header.frame_id not in MAP_FRAMES:

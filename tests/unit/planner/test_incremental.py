@@ -174,3 +174,11 @@ def test_a_scan_that_comes_before_its_pose_waits_for_it() -> None:
     grid = state.snapshot()
     assert grid is not None
     assert lethal_at(grid, 1.62, 1.5)  # marked from (0.6, 1.5), its own pose
+
+
+def test_a_new_map_is_inflated_and_its_search_graph_built_as_it_comes() -> None:
+    state = world()
+    ready = state._traversal
+    assert ready is not None  # the first request does not build it
+    assert ready[1]._graph.graph is not None
+    assert state.traversal() is ready[1]
