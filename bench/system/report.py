@@ -34,6 +34,7 @@ import statistics
 from dataclasses import dataclass, field
 
 from aiobt.msgs import FollowPath, NavigateToPose, PoseStamped
+from aiobt.system.heap import settle
 from aiobt.testing.bus import start_router
 from aiobt.testing.navwatch import NavClient, start_navigation
 from aiobt.testing.stack import NavStack, StackConfig
@@ -134,6 +135,7 @@ async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) ->
     pids["bench client"] = os.getpid()  # the instrument's own cost, on the same 2 cores
     async with open_bus(stack.settings()) as bus:
         await stack.wait_ready(bus, timeout=120.0)
+        settle()  # the instrument's own collector passes (17-117 ms) out of its figures
         client = bus.action_client(NavigateToPose.name, NavigateToPose)
         if not await client.wait_for_server(60.0):
             raise SystemExit(f"no navigate_to_pose server:\n{stack.logs()}")

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import gc
 import logging
 
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import ComputeCoveragePath, ComputePathThroughPoses, ComputePathToPose, SmoothPath
+from aiobt.system.heap import settle
 from aiobt.transport import BusSettings, add_bus_arguments
 from aiobt_services._cli import (
     non_negative,
@@ -130,9 +130,7 @@ async def serve(args: argparse.Namespace) -> None:
                 return
             clock = made[0]
         PlannerService(bus, world, actions, sim_time=args.sim_time, clock=clock).start()
-        # the start-up's objects (modules, models, validators: ~60k) out of the collector's
-        # full passes: each took 20-40 ms (90 under load) of the loop, a request's tail
-        gc.freeze()
+        settle()  # start-up's objects out of the collector's full passes (a request's tail)
         log.info("planner up on namespace '%s'", bus.namespace)
         await stop.wait()
 
