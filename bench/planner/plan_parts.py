@@ -6,7 +6,12 @@ A component figure (one process, CPU time of this thread, no Zenoh): for start/g
 pairs of the office world (downsample 2, as the service), the parts a planner round
 trip pays besides the transport:
 
-- ``search, whole grid``: GridBased's compiled Dijkstra (the service's search);
+- ``search, whole grid``: GridBased's compiled Dijkstra from the start (the
+  service's search before it kept goal-rooted ones);
+- ``search, goal-rooted``: the same on the reversed graph, rooted at the goal (what
+  the service runs on a miss: no kept search for this goal on these weights), its
+  cost to the start checked equal; ``plan on a kept search``: the whole ``plan()``
+  call when the goal's search is kept (a hit: the walk from the start and the poses);
 - ``search, A* bounded``: an A* tried as a goal-directed replacement, run as the same
   compiled Dijkstra on weights reduced by the octile heuristic with a bound on the
   excess over the straight-line cost (0.4 x it + 8 cells, x4 while the goal is not
@@ -118,19 +123,24 @@ def measure(count: int, repeats: int, seed: int) -> dict[str, list[float]]:
     for start, goal in pairs_of(traversal, count, np.random.default_rng(seed)):
         whole, reach = cpu(partial(graph.reach_from, start), repeats)
         best = float(reach.cost[goal])
+        rooted, to_goal = cpu(partial(graph.reach_to, goal), repeats)
+        assert math.isclose(float(to_goal.cost[start]), best, rel_tol=1e-9)
         grown, cost = cpu(partial(growing, graph, start, goal), repeats)
         bound = 1.1 * (best - _octile_between(graph, start, goal)) + 1e-6
         known, known_cost = cpu(partial(bounded_astar, graph, start, goal, bound), repeats)
         for got in (cost, known_cost):
             assert math.isclose(got, best, rel_tol=1e-9), (got, best)
         ends = [(*traversal.to_world([i])[0], 0.0) for i in (start, goal)]
-        poses = plan(traversal, ends[0], ends[1])
+        poses = plan(traversal, ends[0], ends[1])  # keeps the goal's search
+        kept, _ = cpu(partial(plan, traversal, ends[0], ends[1]), repeats)
         build, path = cpu(partial(to_path, poses, 1.0), repeats)
         result = ComputePathToPose.Result(path=path, planning_time=0.01)
         encode, payload = cpu(result.to_json, repeats)
         back, _ = cpu(partial(decode, ComputePathToPose.Result, payload), repeats)
         for name, seconds in (
-            ("search, whole grid (the service's)", whole),
+            ("search, whole grid from the start (before)", whole),
+            ("search, goal-rooted on the reversed graph (a miss)", rooted),
+            ("plan() on a kept goal-rooted search (a hit)", kept),
             ("search, A* bounded, growing bound", grown),
             ("search, A* bounded, bound known (best case)", known),
             ("path to message (to_path)", build),

@@ -4,33 +4,108 @@ planner round trips, the first command after a blocking obstacle appears."""
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import math
 import random
 import time
-from collections.abc import Sequence
+from collections.abc import AsyncIterator, Callable, Sequence
+from typing import Generic, TypeVar
 
-from aiobt.msgs import Clock, ComputePathToPose, PoseStamped, Twist
-from aiobt.transport import ActionError, Bus
+from aiobt.msgs import Clock, ComputePathToPose, Msg, PoseStamped, Twist
+from aiobt.transport import ActionError, Bus, Latest
 from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
+M = TypeVar("M", bound=Msg)
 
-class SimClock:
-    """The newest ``{ns}/clock`` value and the wall time it arrived."""
+
+class Newest(Generic[M]):
+    """A topic's newest message, for the instrument: subscribed (``bus.latest``, whose
+    arrivals never wake the loop) only while :meth:`held` or for one :meth:`read`, so
+    the 1,000 clock stamps and 500 poses a wall second at 10x cost the machine it
+    measures nothing between the instrument's looks (its process, the router)."""
+
+    def __init__(self, bus: Bus, name: str, model: type[M], poll: float = 0.002) -> None:
+        self._bus, self._name, self._model, self._poll = bus, name, model, poll
+        self._open: Latest[M] | None = None
+        self._holds = 0
+
+    @contextlib.asynccontextmanager
+    async def held(self) -> AsyncIterator[None]:
+        """Subscribed within (:meth:`peek` answers the newest)."""
+        if self._open is None:
+            self._open = self._bus.latest(self._name, self._model)
+        self._holds += 1
+        try:
+            yield
+        finally:
+            self._holds -= 1
+            if self._holds == 0 and self._open is not None:
+                self._open.close()
+                self._open = None
+
+    def peek(self) -> M | None:
+        """The newest message so far (None when not held or none came yet)."""
+        return None if self._open is None else self._open.get()
+
+    async def read(self, timeout: float = 5.0) -> M:  # noqa: ASYNC109
+        """The next newest message (subscribes if not held); TimeoutError if none came."""
+        async with self.held(), asyncio.timeout(timeout):
+            while (message := self.peek()) is None:  # noqa: ASYNC110 - no wake-ups: polled
+                await asyncio.sleep(self._poll)
+            return message
+
+
+class SimClock(Newest[Clock]):
+    """The robot's time on ``{ns}/clock`` (see :class:`Newest`)."""
 
     def __init__(self, bus: Bus) -> None:
-        self.sim = math.nan
-        self.wall = math.nan
-        bus.subscribe("clock", Clock, self._on_clock, queue_size=1)
+        super().__init__(bus, "clock", Clock)
 
-    def _on_clock(self, msg: Clock) -> None:
-        self.sim, self.wall = msg.clock, time.monotonic()
+    @property
+    def sim(self) -> float:
+        """Sim time now, while :meth:`held` (nan otherwise)."""
+        stamp = self.peek()
+        return math.nan if stamp is None else stamp.clock
 
-    def mark(self) -> tuple[float, float]:
-        return (self.sim, time.monotonic())
+    async def mark(self) -> tuple[float, float]:
+        return ((await self.read()).clock, time.monotonic())
 
-    def factor_since(self, mark: tuple[float, float]) -> float:
+    async def factor_since(self, mark: tuple[float, float]) -> float:
         """Sim seconds per wall second since ``mark``."""
-        return (self.sim - mark[0]) / max(time.monotonic() - mark[1], 1e-9)
+        now = await self.mark()
+        return (now[0] - mark[0]) / max(now[1] - mark[1], 1e-9)
+
+
+class RobotPose(Newest[PoseStamped]):
+    """The robot's newest pose (see :class:`Newest`), and waits on it (polled)."""
+
+    def __init__(self, bus: Bus, poll: float = 0.02) -> None:
+        super().__init__(bus, "pose", PoseStamped, poll)
+
+    async def wait_for(
+        self,
+        predicate: Callable[[PoseStamped], bool],
+        timeout: float,  # noqa: ASYNC109
+    ) -> PoseStamped | None:
+        """The first pose read (every ``poll`` wall s) that satisfies ``predicate``;
+        None on timeout."""
+        with contextlib.suppress(TimeoutError):
+            async with self.held(), asyncio.timeout(timeout):
+                while (pose := self.peek()) is None or not predicate(pose):  # noqa: ASYNC110
+                    await asyncio.sleep(self._poll)
+                return pose
+        return None
+
+    async def wait_still(self, seconds: float, timeout: float, tolerance: float = 0.01) -> bool:  # noqa: ASYNC109
+        """True once the robot moved less than ``tolerance`` m over ``seconds`` of sim time."""
+        anchor: list[PoseStamped] = []
+
+        def settled(pose: PoseStamped) -> bool:
+            if not anchor or math.hypot(pose.x - anchor[0].x, pose.y - anchor[0].y) > tolerance:
+                anchor[:] = [pose]
+            return pose.header.stamp - anchor[0].header.stamp >= seconds
+
+        return await self.wait_for(settled, timeout) is not None
 
 
 class PlannerProbe:
@@ -40,24 +115,25 @@ class PlannerProbe:
     The planner serves one goal at a time (a newer one aborts the older, as in Nav2),
     so every request, the probe's and :meth:`plan`'s, holds ``lock``."""
 
-    def __init__(self, bus: Bus, goals: Sequence[tuple[float, float, float]], period: float):
+    def __init__(
+        self,
+        bus: Bus,
+        robot: RobotPose,
+        goals: Sequence[tuple[float, float, float]],
+        period: float,
+    ) -> None:
         self.client = bus.action_client(ComputePathToPose.name, ComputePathToPose)
+        self.robot = robot
         self.goals = list(goals)
         self.period = period
         self.round_trips: list[float] = []
         self.failures: list[str] = []
-        self.pose: PoseStamped | None = None
         self.lock = asyncio.Lock()
-        bus.subscribe("pose", PoseStamped, self._on_pose, queue_size=1)
-
-    def _on_pose(self, msg: PoseStamped) -> None:
-        self.pose = msg
 
     async def run(self, stop: asyncio.Event) -> None:
         rng = random.Random(5)
         while not stop.is_set():
-            if self.pose is not None:
-                await self._once(self.pose, rng.choice(self.goals))
+            await self._once(await self.robot.read(), rng.choice(self.goals))
             try:
                 await asyncio.wait_for(stop.wait(), self.period)
             except TimeoutError:
@@ -88,12 +164,17 @@ class PlannerProbe:
 
 
 class Commands:
-    """The robot's ``cmd_vel`` stream: the newest command and an event per command."""
+    """The robot's ``cmd_vel`` stream: the newest command and an event per command
+    (subscribed only while :meth:`close` is not called: the reactions, not the driving
+    phase, so the instrument does not load the stack it measures)."""
 
     def __init__(self, bus: Bus) -> None:
         self.latest: Twist | None = None
         self.arrived = asyncio.Event()
-        bus.subscribe("cmd_vel", Twist, self._on_cmd)
+        self._sub = bus.subscribe("cmd_vel", Twist, self._on_cmd)
+
+    def close(self) -> None:
+        self._sub.close()
 
     def _on_cmd(self, msg: Twist) -> None:
         self.latest = msg
@@ -129,17 +210,19 @@ async def reaction(
     x = pose.x + ahead * math.cos(pose.yaw)
     y = pose.y + ahead * math.sin(pose.yaw)
     spawn = SpawnObstacle(x=x, y=y, size_x=0.3, size_y=0.8, yaw=pose.yaw)
-    ack = await bus.call("obstacles/spawn", spawn, Ack, timeout=10.0)
-    if not ack.ok:
-        raise Refused(f"obstacles/spawn at ({x:.2f}, {y:.2f}): {ack.message}")
-    sim0, wall0 = clock.mark()
-    try:
-        cmd = await commands.first(lambda c: c.linear.x < 0.5 * speed, 10.0)
-        if cmd is None:
-            return None
-        return (clock.sim - sim0, time.monotonic() - wall0)
-    finally:
-        await bus.call("obstacles/remove", RemoveObstacle(id=ack.id), Ack, timeout=10.0)
+    async with clock.held():
+        await clock.read()  # subscribed, a stamp in: the spawn's time is read at once
+        ack = await bus.call("obstacles/spawn", spawn, Ack, timeout=10.0)
+        if not ack.ok:
+            raise Refused(f"obstacles/spawn at ({x:.2f}, {y:.2f}): {ack.message}")
+        sim0, wall0 = clock.sim, time.monotonic()
+        try:
+            cmd = await commands.first(lambda c: c.linear.x < 0.5 * speed, 10.0)
+            if cmd is None:
+                return None
+            return (clock.sim - sim0, time.monotonic() - wall0)
+        finally:
+            await bus.call("obstacles/remove", RemoveObstacle(id=ack.id), Ack, timeout=10.0)
 
 
 def percentile(values: Sequence[float], q: float) -> float:

@@ -28,19 +28,21 @@ import argparse
 import asyncio
 import contextlib
 import math
+import os
 import re
 import statistics
 from dataclasses import dataclass, field
 
 from aiobt.msgs import FollowPath, NavigateToPose, PoseStamped
+from aiobt.system.heap import settle
 from aiobt.testing.bus import start_router
-from aiobt.testing.navwatch import NavClient, RobotTrack, start_navigation
+from aiobt.testing.navwatch import NavClient, start_navigation
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import ActionError, Bus, ServiceError, open_bus
 
 from ..nav.goals import pick_goals, static_grid
 from ..nav.run import START, loadavg
-from .probes import Commands, PlannerProbe, Refused, SimClock, percentile, reaction
+from .probes import Commands, PlannerProbe, Refused, RobotPose, SimClock, percentile, reaction
 from .procstat import percent_of_core, sample
 
 CYCLES = re.compile(
@@ -70,8 +72,7 @@ async def drive(bus: Bus, probe: PlannerProbe, goals: list[Goal], limit: float) 
     reached = 0
     for goal in goals:
         try:
-            assert probe.pose is not None
-            plan, _ = await probe.plan(probe.pose, goal)
+            plan, _ = await probe.plan(await probe.robot.read(), goal)
             if plan.error_code != 0:
                 print(f"goal {goal}: plan {plan.error_code} {plan.error_msg}", flush=True)
                 continue
@@ -87,66 +88,77 @@ async def drive(bus: Bus, probe: PlannerProbe, goals: list[Goal], limit: float) 
 
 
 async def react(
-    bus: Bus, client: NavClient, track: RobotTrack, goals: list[Goal], figures: Figures,
-    clock: SimClock, commands: Commands, count: int,
+    bus: Bus, client: NavClient, track: RobotPose, goals: list[Goal], figures: Figures,
+    clock: SimClock, count: int,
 ) -> None:  # fmt: skip
     """``count`` times: drive to the farthest goal, drop a box ahead once cruising."""
-    for _ in range(count):
-        here = track.latest
-        assert here is not None
-        far = max(goals, key=lambda g: math.hypot(g[0] - here.x, g[1] - here.y))
-        running = await start_navigation(client, PoseStamped.from_xy_yaw(*far))
-        result = None
-        for _ in range(10):  # until the box is accepted (not in a wall) while cruising
-            if await commands.first(lambda c: c.linear.x > 0.2, 60.0) is None:
-                break
-            pose = track.latest
-            assert pose is not None
-            try:
-                result = await reaction(
-                    bus, clock, commands, PoseStamped.from_xy_yaw(pose.x, pose.y, pose.yaw), 0.9
-                )
-                break
-            except Refused as exc:
-                print(f"reaction: {exc}; trying further on", flush=True)
-        figures.reactions.append(result)
-        with contextlib.suppress(ActionError, ServiceError, TimeoutError):
-            await running.goal.cancel(timeout=10.0)
-        await track.wait_still(0.5, 30.0)
+    if count <= 0:
+        return
+    commands = Commands(bus)
+    try:
+        for _ in range(count):
+            await react_once(bus, client, track, goals, figures, clock, commands)
+    finally:
+        commands.close()
+
+
+async def react_once(
+    bus: Bus, client: NavClient, track: RobotPose, goals: list[Goal], figures: Figures,
+    clock: SimClock, commands: Commands,
+) -> None:  # fmt: skip
+    """Drive to the farthest goal, drop a box ahead once cruising; stop and settle."""
+    here = await track.read()
+    far = max(goals, key=lambda g: math.hypot(g[0] - here.x, g[1] - here.y))
+    running = await start_navigation(client, PoseStamped.from_xy_yaw(*far))
+    result = None
+    for _ in range(10):  # until the box is accepted (not in a wall) while cruising
+        if await commands.first(lambda c: c.linear.x > 0.2, 60.0) is None:
+            break
+        pose = await track.read()
+        try:
+            result = await reaction(
+                bus, clock, commands, PoseStamped.from_xy_yaw(pose.x, pose.y, pose.yaw), 0.9
+            )
+            break
+        except Refused as exc:
+            print(f"reaction: {exc}; trying further on", flush=True)
+    figures.reactions.append(result)
+    with contextlib.suppress(ActionError, ServiceError, TimeoutError):
+        await running.goal.cancel(timeout=10.0)
+    await track.wait_still(0.5, 30.0)
 
 
 async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) -> Figures:
     figures = Figures()
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     pids = {"router": router_pid, **{n: p.pid for n, p in stack.processes.items()}}
+    pids["bench client"] = os.getpid()  # the instrument's own cost, on the same 2 cores
     async with open_bus(stack.settings()) as bus:
         await stack.wait_ready(bus, timeout=120.0)
+        settle()  # the instrument's own collector passes (17-117 ms) out of its figures
         client = bus.action_client(NavigateToPose.name, NavigateToPose)
         if not await client.wait_for_server(60.0):
             raise SystemExit(f"no navigate_to_pose server:\n{stack.logs()}")
-        track, clock, commands = RobotTrack(bus), SimClock(bus), Commands(bus)
-        probe = PlannerProbe(bus, goals, args.probe_period)
-        try:
-            if await track.wait_for(lambda _: True, 30.0) is None:
-                raise SystemExit("no pose from the robot")
-            await asyncio.sleep(2.0)  # the services' start-up work done
-            first, mark = sample(pids), clock.mark()
-            await asyncio.sleep(args.idle)  # the idle phase: its length is the measurement
-            figures.cpu_idle = percent_of_core(first, sample(pids))
-            figures.speed_idle = clock.factor_since(mark)
-            stop = asyncio.Event()
-            first, mark = sample(pids), clock.mark()
-            prober = asyncio.create_task(probe.run(stop))
-            figures.reached = await drive(bus, probe, goals, args.timeout)
-            stop.set()
-            await prober
-            figures.cpu_driving = percent_of_core(first, sample(pids))
-            figures.speed_driving = clock.factor_since(mark)
-            figures.goals = len(goals)
-            figures.round_trips, figures.probe_failures = probe.round_trips, probe.failures
-            await react(bus, client, track, goals, figures, clock, commands, args.reactions)
-        finally:
-            track.close()
+        track, clock = RobotPose(bus), SimClock(bus)
+        probe = PlannerProbe(bus, track, goals, args.probe_period)
+        if await track.wait_for(lambda _: True, 30.0) is None:
+            raise SystemExit("no pose from the robot")
+        await asyncio.sleep(2.0)  # the services' start-up work done
+        first, mark = sample(pids), await clock.mark()
+        await asyncio.sleep(args.idle)  # the idle phase: its length is the measurement
+        figures.cpu_idle = percent_of_core(first, sample(pids))
+        figures.speed_idle = await clock.factor_since(mark)
+        stop = asyncio.Event()
+        first, mark = sample(pids), await clock.mark()
+        prober = asyncio.create_task(probe.run(stop))
+        figures.reached = await drive(bus, probe, goals, args.timeout)
+        stop.set()
+        await prober
+        figures.cpu_driving = percent_of_core(first, sample(pids))
+        figures.speed_driving = await clock.factor_since(mark)
+        figures.goals = len(goals)
+        figures.round_trips, figures.probe_failures = probe.round_trips, probe.failures
+        await react(bus, client, track, goals, figures, clock, args.reactions)
     figures.controller = [
         (int(m[0]), float(m[1]), float(m[2]), float(m[4]), float(m[5]))
         for m in CYCLES.findall(stack.processes["controller"].output())
@@ -190,7 +202,7 @@ def table(figures: Figures, speed: float) -> list[str]:
     lines = [row("figure", "value", "target"), row("---", "---", "---")]
     for name, idle in figures.cpu_idle.items():
         busy = figures.cpu_driving.get(name, math.nan)
-        target = "idle < 2 %" if name not in ("robot", "router") else ""
+        target = "idle < 2 %" if name not in ("robot", "router", "bench client") else ""
         lines.append(
             row(f"CPU {name} % of a core: idle / driving", f"{idle:.1f} / {busy:.1f}", target)
         )

@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING, Any
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
 from aiobt.system.announce import announce
+from aiobt.system.heap import settle
 from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
 
 from .freshness import Freshness
@@ -243,6 +244,7 @@ async def serve_on_clock(
         if made is None:
             return
         start(bus, made[0])
+        settle()  # start-up's objects out of the collector's full passes (a cycle's tail)
         announce(bus, name, sim_time=args.sim_time)
         time = "sim" if args.sim_time else "wall"
         logger.info("%s up on namespace '%s'%s (%s time)", name, bus.namespace, detail, time)

@@ -40,6 +40,7 @@ from .traversal import Budget
 log = logging.getLogger("aiobt_services.planner.actions")
 SMOOTHERS = ("", "simple_smoother", "SmoothPath")
 T = TypeVar("T")
+TALLY_EVERY = 50  # plans between two log lines of searches run and reused
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,6 +84,16 @@ class PlannerActions:
     def __init__(self, world: GlobalCostmap, options: ActionOptions | None = None) -> None:
         self.world = world
         self.options = options or ActionOptions()
+        self.tally = [0, 0, 0]  # plans, searches, searches served by a kept one
+
+    def _count(self, budget: Budget) -> None:
+        tally = self.tally
+        tally[0] += 1
+        tally[1] += budget.searched
+        tally[2] += budget.reused
+        if tally[0] % TALLY_EVERY == 0:
+            log.info("%d plans: %d searches, %d of them served by a kept search (same goal, "
+                     "costmap unchanged)", *tally)  # fmt: skip
 
     async def _plan(
         self, table: type[IntEnum], result: Any, start: Pose2D | None, goals: list[Pose2D],
@@ -98,6 +109,7 @@ class PlannerActions:
             poses = await run_cancellable(
                 lambda b: plan_through(traversal, origin, goals, planner_id, b), budget
             )
+            self._count(budget)
         except PlanningError as exc:
             return result(error_code=int(table[exc.reason]), error_msg=exc.message)
         except PlanningCancelled:  # the goal is being cancelled: not an error

@@ -4,7 +4,9 @@ At a sim speed-up of 10 the robot sends 500 poses and 100 scans a wall second; a
 planner with nothing to plan has no use for them. A request that needs the robot
 (a plan, a smoothing, ``is_path_valid``, ``get_costs``, a clearing around the
 robot) attaches them if detached, waits (bounded by ``timeout`` wall s) for a
-fresh pose and a fresh scan, folds that scan into the global costmap, then runs.
+fresh pose and a fresh scan, which is folded into the global costmap as it
+comes, then runs; while attached, requests read the costmap as the periodic
+folds left it (:class:`GlobalCostmap`) and wait for nothing.
 The streams stay ``linger`` robot s after the last request (a navigator replans
 every second or so, so they stay while it navigates). What is lost: scans seen
 while nobody asked (the robot driven by something else: teleoperation, a
@@ -23,7 +25,7 @@ from aiobt.msgs import LaserScan, PoseStamped
 from aiobt.transport import Bus, Subscription
 from aiobt.transport.on_demand import LINGER, OnDemand
 
-from .state import GlobalCostmap
+from .state import POSES_KEPT, GlobalCostmap
 
 Req = TypeVar("Req")
 Resp = TypeVar("Resp")
@@ -56,18 +58,18 @@ class RobotFeed:
     def _attach(self) -> list[Subscription[Any]]:
         world, bus = self._world, self._bus
         self._scan = bus.subscribe("scan", LaserScan, world.on_scan, queue_size=1)
-        # the newest pose only: at 10x 500 a wall second, each replacing the one before
-        return [bus.subscribe("pose", PoseStamped, world.on_pose, queue_size=1), self._scan]
+        # at 10x 500 poses a wall second: the last POSES_KEPT, to mark each scan from its own
+        poses = bus.subscribe("pose", PoseStamped, world.on_pose, queue_size=POSES_KEPT)
+        return [poses, self._scan]
 
     @contextlib.asynccontextmanager
     async def fresh(self) -> AsyncIterator[bool]:
-        """Within: the robot's streams attached, the newest scan folded in (True if
-        a pose and a scan came within the timeout)."""
+        """Within: the robot's streams attached and, after attaching, the first scan
+        folded in (True if a pose and a scan came within the timeout)."""
         async with self.on_demand.active(self._timeout) as came:
             scan = None if self._scan is None else self._scan.latest
             if scan is not None:
                 self._world.on_scan(scan)  # one that came before the pose is taken now
-                self._world.snapshot()  # folded before the request reads the costmap
             yield came
 
     def action(

@@ -16,6 +16,7 @@ import logging
 
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import ComputeCoveragePath, ComputePathThroughPoses, ComputePathToPose, SmoothPath
+from aiobt.system.heap import settle
 from aiobt.transport import BusSettings, add_bus_arguments
 from aiobt_services._cli import (
     non_negative,
@@ -129,6 +130,7 @@ async def serve(args: argparse.Namespace) -> None:
                 return
             clock = made[0]
         PlannerService(bus, world, actions, sim_time=args.sim_time, clock=clock).start()
+        settle()  # start-up's objects out of the collector's full passes (a request's tail)
         log.info("planner up on namespace '%s'", bus.namespace)
         await stop.wait()
 

@@ -10,6 +10,12 @@ for every interior cell ``u`` and each of its 8 neighbours ``v``, weighted
 weight; ``inf`` into a blocked cell, never taken). Edges leave blocked cells
 too, so a search may start in a block opened for the start without rebuilding
 the graph, and a changed cell only rewrites the weights of the edges into it.
+
+The reversed graph (every edge between passable cells turned round: ``v -> u``
+weighs ``step_length * weight(v)``, its source's own weight) has the same layout;
+a Dijkstra on it rooted at a goal gives the cheapest cost and next step from
+every passable node to that goal, so one search serves any start while the
+weights stay as they are (a start in a blocked block steps to its best neighbour).
 """
 
 from __future__ import annotations
@@ -49,6 +55,16 @@ class Reach:
         path.reverse()
         return path
 
+    def path_from(self, node: int, root: int) -> list[int]:
+        """Nodes from a reached ``node`` to ``root``, both included, on a reach of the
+        reversed graph rooted at ``root`` (each node's parent is its next step)."""
+        path = [node]
+        parent = self.parent
+        while node != root:
+            node = int(parent[node])
+            path.append(node)
+        return path
+
 
 class GridGraph:
     """A padded grid of step weights as a CSR graph for scipy's compiled Dijkstra.
@@ -59,7 +75,8 @@ class GridGraph:
     of rebuilding the graph.
     """
 
-    __slots__ = ("_matrix", "_weights", "passable", "stride")
+    __slots__ = ("_matrix", "_padded", "_reversed", "_reversed_weights", "_weights", "passable",
+                 "stride")  # fmt: skip
 
     def __init__(self, padded: FloatArray) -> None:
         """``padded``: ``(rows + 2, cols + 2)`` weights, ``inf`` = blocked, border blocked."""
@@ -71,6 +88,9 @@ class GridGraph:
         targets, starts = _layout_of(rows, cols, self.stride, padded.size)
         nodes = padded.size
         self._matrix = csr_array((self._weights.ravel(), targets, starts), shape=(nodes, nodes))
+        self._padded = padded
+        self._reversed: csr_array | None = None  # built on first use, then kept updated
+        self._reversed_weights: FloatArray | None = None
 
     def updated(self, padded: FloatArray, window: tuple[int, int, int, int]) -> GridGraph:
         """A graph of ``padded``, which differs from this graph's weights only in
@@ -85,6 +105,14 @@ class GridGraph:
         _edge_weights(padded, clone._weights, sources)
         m = self._matrix
         clone._matrix = csr_array((clone._weights.ravel(), m.indices, m.indptr), shape=m.shape)
+        clone._padded = padded
+        clone._reversed, clone._reversed_weights = None, None
+        if self._reversed_weights is not None:
+            clone._reversed_weights = self._reversed_weights.copy()
+            _reversed_edge_weights(padded, clone._reversed_weights, sources)
+            clone._reversed = csr_array(
+                (clone._reversed_weights.ravel(), m.indices, m.indptr), shape=m.shape
+            )
         return clone
 
     @property
@@ -99,6 +127,23 @@ class GridGraph:
         )
         return Reach(np.asarray(cost, dtype=np.float64), np.asarray(parent, dtype=np.int32))
 
+    def reach_to(self, target: int) -> Reach:
+        """A complete Dijkstra on the reversed graph rooted at ``target``: from every
+        passable node, the cheapest cost to ``target`` and the next step on that path
+        (see :meth:`Reach.path_from`; one compiled call: not interruptible)."""
+        if self._reversed is None:
+            m = self._matrix
+            self._reversed_weights = np.empty_like(self._weights)
+            rows, cols = self._weights.shape[:2]
+            _reversed_edge_weights(self._padded, self._reversed_weights, (0, rows, 0, cols))
+            self._reversed = csr_array(
+                (self._reversed_weights.ravel(), m.indices, m.indptr), shape=m.shape
+            )
+        cost, parent = dijkstra(
+            self._reversed, directed=True, indices=target, return_predecessors=True
+        )
+        return Reach(np.asarray(cost, dtype=np.float64), np.asarray(parent, dtype=np.int32))
+
 
 def _edge_weights(padded: FloatArray, out: FloatArray, window: tuple[int, int, int, int]) -> None:
     """``out[r, c, k]`` = the weight of move ``k`` from interior cell ``(r, c)``,
@@ -107,6 +152,19 @@ def _edge_weights(padded: FloatArray, out: FloatArray, window: tuple[int, int, i
     for k, (dr, dc, length) in enumerate(MOVES):
         np.multiply(padded[1 + dr + row0 : 1 + dr + row1, 1 + dc + col0 : 1 + dc + col1],
                     length, out=out[row0:row1, col0:col1, k])  # fmt: skip
+
+
+def _reversed_edge_weights(
+    padded: FloatArray, out: FloatArray, window: tuple[int, int, int, int]
+) -> None:
+    """``out[r, c, k]`` = the weight of the reversed edge from interior cell ``(r, c)``
+    along move ``k``: the forward step from that neighbour into ``(r, c)``, its length
+    times ``(r, c)``'s own weight; ``inf`` from or to a blocked cell (as forward)."""
+    row0, row1, col0, col1 = window
+    own = padded[1 + row0 : 1 + row1, 1 + col0 : 1 + col1]
+    for k, (dr, dc, length) in enumerate(MOVES):
+        into = padded[1 + dr + row0 : 1 + dr + row1, 1 + dc + col0 : 1 + dc + col1]
+        out[row0:row1, col0:col1, k] = np.where(np.isfinite(into), own * length, np.inf)
 
 
 def _layout_of(rows: int, cols: int, stride: int, nodes: int) -> tuple[IndexArray, IndexArray]:

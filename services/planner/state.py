@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections import deque
 from dataclasses import dataclass, field
 
 from aiobt.msgs import LaserScan, OccupancyGrid, PoseStamped
@@ -21,6 +22,7 @@ from .traversal import SearchParams, Traversal
 
 log = logging.getLogger("aiobt_services.planner.state")
 MAP_FRAMES = ("", "map")
+POSES_KEPT = 32  # the last poses, by stamp: a scan is marked from the one taken with it
 
 
 @dataclass(frozen=True, slots=True)
@@ -29,7 +31,7 @@ class CostmapOptions:
     obstacles: ObstacleParams = field(default_factory=ObstacleParams)
     search: SearchParams = field(default_factory=lambda: SearchParams(downsample=2))
     # robot s between folded scans (Nav2's global costmap: update_frequency 1 Hz, the newest
-    # observation only); newer ones wait for a read, which folds the newest first
+    # observation only); newer ones wait, replaced by the next, until one is due
     scan_period: float = 1.0
 
     def __post_init__(self) -> None:
@@ -41,23 +43,28 @@ class GlobalCostmap:
     """Latest map, robot pose and scans folded into a :class:`Costmap`.
 
     Scans are coalesced, never queued: the newest one waits and is folded in
-    when a reader asks (a plan, a cost query) or when it is ``scan_period``
-    robot seconds (default 1: Nav2's global costmap rate) newer (header stamps)
-    than the last one folded (the costmap skips a scan equal to the last, from
-    the same pose). Snapshots and the
-    traversal are updated from the costmap's changed window, not rebuilt.
-    Bad messages (wrong frame, rotated map origin) are logged and dropped.
+    when it is ``scan_period`` robot seconds (default 1: Nav2's global costmap
+    rate) newer (header stamps) than the last one folded, or at once when it is
+    the first since :meth:`forget` (the streams attached again) or its stamp went
+    back (the robot restarted); the costmap skips a scan equal to the last, from
+    the same pose. Each fold also brings the traversal up to date, so a reader
+    (a plan, a cost query) takes the costmap and traversal as they are, as Nav2's
+    planner reads its global costmap, and does no costmap work of its own.
+    Snapshots and the traversal are updated from the costmap's changed window,
+    not rebuilt. Bad messages (wrong frame, rotated map origin) are logged and dropped.
     """
 
-    __slots__ = ("_folded", "_grid", "_pending", "_taken", "_traversal", "costmap", "options",
-                 "pose", "pose_stamp")  # fmt: skip
+    __slots__ = ("_early", "_folded", "_grid", "_pending", "_poses", "_taken", "_traversal",
+                 "costmap", "options", "pose", "pose_stamp")  # fmt: skip
 
     def __init__(self, options: CostmapOptions | None = None) -> None:
         self.options = options or CostmapOptions()
         self.costmap: Costmap | None = None
         self.pose: Pose2D | None = None
         self.pose_stamp = 0.0
+        self._poses: deque[tuple[float, Pose2D]] = deque(maxlen=POSES_KEPT)
         self._pending: tuple[LaserScan, Pose2D] | None = None
+        self._early: LaserScan | None = None  # a scan that came before its pose
         self._taken: LaserScan | None = None  # the last scan taken (folded or waiting)
         self._folded = -math.inf  # stamp of the newest scan folded in
         self._grid: tuple[int, CostGrid] | None = None
@@ -78,6 +85,9 @@ class GlobalCostmap:
             self.costmap = Costmap(geometry, self.options.inflation, self.options.obstacles)
         self.costmap.set_static(msg.array, geometry)
         log.info("map: %dx%d cells at %.3f m", info.width, info.height, info.resolution)
+        traversal = self.traversal()  # inflated and built now, not by the first request
+        if traversal is not None:
+            traversal.graph()
 
     def on_pose(self, msg: PoseStamped) -> None:
         if msg.header.frame_id not in MAP_FRAMES:
@@ -85,24 +95,43 @@ class GlobalCostmap:
             return
         self.pose = (msg.x, msg.y, msg.yaw)
         self.pose_stamp = msg.header.stamp
+        self._poses.append((self.pose_stamp, self.pose))
+        early = self._early
+        if early is not None and self.pose_stamp >= early.header.stamp:
+            self._early = None
+            self._take(early)
 
     def forget(self) -> None:
         """Drop the robot's pose and the waiting scan (the streams start again: a pose
         from before the planner stopped listening is not where the robot is)."""
         self.pose = None
+        self._poses.clear()
         self._pending = None
+        self._early = None
         self._taken = None
+        self._folded = -math.inf  # the first scan after is folded as it comes
 
     def on_scan(self, msg: LaserScan) -> None:
-        """Take a scan, marked from the pose known now; the scan taken last (the same
-        message handed again, as a request does with the newest) is not taken twice:
-        the robot has moved since, and it is folded or waiting already."""
+        """Take a scan, marked from the pose stamped nearest it (the robot publishes
+        both at one step; a busy loop can see newer poses first, and a pose 20 ms off
+        marks a wall a cell off, a change that comes and goes). A scan that came before
+        its pose waits for it (not the first after :meth:`forget`: a request waits on
+        that one). The scan taken last (the same message handed again, as a request
+        does with the newest) is not taken twice: it is folded or waiting already."""
         if self.costmap is None or self.pose is None or msg is self._taken:
             return
+        if self.pose_stamp < msg.header.stamp and math.isfinite(self._folded):
+            self._early = msg
+            return
+        self._take(msg)
+
+    def _take(self, msg: LaserScan) -> None:
         self._taken = msg
-        self._pending = (msg, self.pose)
-        if msg.header.stamp - self._folded >= self.options.scan_period:
+        stamp = msg.header.stamp
+        self._pending = (msg, min(self._poses, key=lambda kept: abs(kept[0] - stamp))[1])
+        if stamp - self._folded >= self.options.scan_period or stamp < self._folded:
             self._fold_pending()
+            self.traversal()  # ready before a request reads it
 
     def _fold_pending(self) -> None:
         """Fold the waiting scan (if any) into the obstacle layer."""
@@ -124,7 +153,6 @@ class GlobalCostmap:
         """The current master grid (shared, read-only: a new one when the costmap changed)."""
         if self.costmap is None:
             return None
-        self._fold_pending()
         master = self.costmap.master
         version = self.costmap.version
         if self._grid is None or self._grid[0] != version:

@@ -12,6 +12,7 @@ import copy
 import math
 import threading
 import time
+from collections import OrderedDict
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -20,10 +21,11 @@ import numpy.typing as npt
 from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, GridGeometry, Window
 
 from .errors import PlanningCancelled, PlanningError
-from .sparse import GridGraph
+from .sparse import GridGraph, Reach
 
 SQRT2 = math.sqrt(2.0)
 CHECK_EVERY = 1024
+KEPT_GOALS = 8  # goal-rooted searches kept per traversal (least recently used dropped)
 
 
 @dataclass(frozen=True, slots=True)
@@ -49,6 +51,8 @@ class Budget:
     max_seconds: float = math.inf
     cancel: threading.Event = field(default_factory=threading.Event)
     started: float = field(default_factory=time.monotonic)
+    reused: int = 0  # searches served by a kept goal-rooted search (set by the search)
+    searched: int = 0  # searches run
 
     def check(self) -> None:
         if self.cancel.is_set():
@@ -75,14 +79,16 @@ def downsample_costs(costs: npt.NDArray[np.uint8], factor: int) -> npt.NDArray[n
 
 
 class _GraphCache:
-    """The compiled graph of a traversal's weights, built on first use, shared by its
-    opened copies (it describes the weights before any block was opened)."""
+    """The compiled graph of a traversal's weights, built on first use, and the last
+    goal-rooted searches on it, shared by its opened copies (they describe the
+    weights before any block was opened)."""
 
-    __slots__ = ("graph", "lock")
+    __slots__ = ("graph", "lock", "reaches")
 
     def __init__(self) -> None:
         self.lock = threading.Lock()
         self.graph: GridGraph | None = None
+        self.reaches: OrderedDict[int, Reach] = OrderedDict()
 
 
 class Traversal:
@@ -165,6 +171,23 @@ class Traversal:
             if cache.graph is None:
                 cache.graph = GridGraph(self._base)
             return cache.graph
+
+    def reach_to(self, goal: int) -> tuple[Reach, bool]:
+        """The graph's reversed search rooted at ``goal`` (:meth:`GridGraph.reach_to`),
+        and whether it was kept from an earlier call: the last :data:`KEPT_GOALS`
+        goals' are kept while these weights are (an updated traversal starts afresh)."""
+        cache = self._graph
+        with cache.lock:
+            kept = cache.reaches.get(goal)
+            if kept is not None:
+                cache.reaches.move_to_end(goal)
+                return kept, True
+        reach = self.graph().reach_to(goal)
+        with cache.lock:
+            cache.reaches[goal] = reach
+            while len(cache.reaches) > KEPT_GOALS:
+                cache.reaches.popitem(last=False)
+        return reach, False
 
     def _passable(self, costs: npt.NDArray[np.uint8]) -> npt.NDArray[np.bool_]:
         unknown = costs == NO_INFORMATION

@@ -29,6 +29,7 @@ from aiobt.msgs import (
 )
 from aiobt.msgs import Clock as ClockMsg
 from aiobt.system.announce import announce
+from aiobt.system.heap import settle
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt_services._cli import open_bus_unless_stopped, run_service, stop_on_signals
 
@@ -116,6 +117,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             command_wait=args.command_wait,
         )
         _wire(bus, service)
+        settle()  # start-up's objects (the world's too) out of the collector's full passes
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(
             "robot up on namespace '%s': world %s, %s, dt %g s",

@@ -32,6 +32,7 @@ from aiobt.navigator.trees import (
     TreeLoadFailure,
 )
 from aiobt.system.announce import announce
+from aiobt.system.heap import settle
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt_services._cli import (
     open_bus_unless_stopped,
@@ -172,6 +173,7 @@ async def serve(args: argparse.Namespace) -> int:
             robot = navigator.robot if isinstance(navigator.robot, NavRobotState) else None
             service = NavigatorService(bus, navigator, made[0], robot)
             service.start(args.snapshot_period)
+            settle()  # start-up's objects (the trees' too) out of the collector's full passes
             announce(bus, "navigator", sim_time=args.sim_time)
             time = "sim" if args.sim_time else "wall"
             log.info("navigator up on namespace '%s' (%s time)", bus.namespace, time)

@@ -5,6 +5,7 @@
         bus.publisher("odom", Odometry).put(msg)                 # {ns}/odom
         bus.latched_publisher("map", OccupancyGrid).put(grid)    # late joiners get it
         sub = bus.subscribe("cmd_vel", Twist)                    # async for / sub.latest
+        pose = bus.latest("pose", PoseStamped)                   # pose.get(): no loop wake-up
         bus.subscribe("map", OccupancyGrid, on_map, latched=True)
         bus.serve("is_path_valid", IsPathValid.Request, IsPathValid.Response, handler)
         resp = await bus.call("is_path_valid", req, IsPathValid.Response, timeout=2.0)
@@ -31,6 +32,7 @@ from aiobt.transport.actions import (
 from aiobt.transport.bridge import PayloadTooLarge
 from aiobt.transport.bus import Bus, open_bus
 from aiobt.transport.keys import ActionKeys, Keys
+from aiobt.transport.latest import Latest
 from aiobt.transport.presence import Presence
 from aiobt.transport.publishers import Publisher
 from aiobt.transport.services import ServiceError, ServiceServer, ServiceUnavailable
@@ -62,6 +64,7 @@ __all__ = [
     "GoalLost",
     "GoalRejected",
     "Keys",
+    "Latest",
     "PayloadTooLarge",
     "Presence",
     "Publisher",

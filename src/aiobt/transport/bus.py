@@ -18,6 +18,7 @@ from aiobt.transport.actions.runner import Execute
 from aiobt.transport.actions.server import ActionServer
 from aiobt.transport.bridge import LoopBridge
 from aiobt.transport.keys import Keys
+from aiobt.transport.latest import Latest
 from aiobt.transport.presence import Presence
 from aiobt.transport.session import open_session
 from aiobt.transport.settings import BusSettings
@@ -107,6 +108,19 @@ class Bus:
         )
         sub.on_close = lambda: self._untrack(sub)  # one subscribed while needed, then closed
         return self._track(sub)
+
+    def latest(
+        self, name: str, model: type[M], *, latched: bool = False, namespace: str | None = None
+    ) -> Latest[M]:
+        """The newest message on ``{ns}/{name}``, decoded when read (``get()``): arrivals
+        never wake the event loop (see :mod:`aiobt.transport.latest`). For a reader of
+        the value now; :meth:`subscribe` to react to each message."""
+        keys = self.keys if namespace is None else Keys(namespace)
+        key = keys.topic(name)
+        newest = Latest(key, model, self.bridge.max_payload)
+        topics.bind_subscriber(self.session, key, newest, latched=latched)
+        newest.on_close = lambda: self._untrack(newest)
+        return self._track(newest)
 
     def serve(
         self,

@@ -16,6 +16,7 @@ from pydantic import ValidationError
 
 from aiobt.msgs import MessageError, Msg, wire_validator
 from aiobt.transport.bridge import LoopBridge, PayloadTooLarge, callback
+from aiobt.transport.latest import Latest
 from aiobt.transport.repeats import RepeatedErrors
 
 M = TypeVar("M", bound=Msg)
@@ -265,6 +266,14 @@ def declare_subscription(
     queue_size: int,
 ) -> Subscription[M]:
     sub = Subscription(key, model, bridge, callback_fn, queue_size)
+    bind_subscriber(session, key, sub, latched=latched)
+    return sub
+
+
+def bind_subscriber(
+    session: zenoh.Session, key: str, sub: Subscription[M] | Latest[M], *, latched: bool
+) -> None:
+    """Declare ``sub.on_sample`` on ``key`` (with a latched publisher's last value)."""
     handler = callback(sub.on_sample)
     if latched:
         history = zenoh.ext.HistoryConfig(detect_late_publishers=True, max_samples=1)
@@ -273,4 +282,3 @@ def declare_subscription(
     else:
         plain = session.declare_subscriber(key, handler)
         sub.bind(plain.undeclare)
-    return sub

@@ -12,12 +12,13 @@ from aiobt_services.costmap import (
     FREE,
     LETHAL,
     NO_INFORMATION,
+    Costmap,
     GridGeometry,
     ObstacleParams,
     Scan,
     clear_and_mark,
 )
-from aiobt_services.costmap.obstacle_layer import _rays
+from aiobt_services.costmap.obstacle_layer import HIT_DEPTH, _rays
 
 
 def reference(grid: np.ndarray, g: GridGeometry, scan: Scan, params: ObstacleParams) -> np.ndarray:
@@ -36,7 +37,7 @@ def reference(grid: np.ndarray, g: GridGeometry, scan: Scan, params: ObstaclePar
         for t in samples[samples < limit]:
             cleared |= cell_of(g, scan.sensor_x + dx * t, scan.sensor_y + dy * t)
         if hit[ray] > 0:
-            r = ranges[ray]
+            r = ranges[ray] + HIT_DEPTH
             marked |= cell_of(g, scan.sensor_x + dx * r, scan.sensor_y + dy * r)
     flat = grid.reshape(-1)
     flat[sorted(cleared)] = FREE
@@ -104,3 +105,23 @@ def test_a_scan_from_outside_the_grid_touches_only_cells_inside() -> None:
     assert (grid[5, 0:4] == FREE).all()
     assert (grid[5, 5:] == NO_INFORMATION).all()
     assert set(changed.tolist()) == {50, 51, 52, 53, 54}
+
+
+def test_a_beam_ending_on_a_wall_face_marks_the_wall_cell_from_either_side() -> None:
+    """A wall one cell thick (x 0.50-0.55) seen from both sides: a beam ends exactly on
+    its face, which is a cell boundary; the hit is the wall's cell, so a static wall
+    seen again and again changes nothing (from +x, 0.55 / 0.05 floors to the free
+    cell beyond the face without the hit depth)."""
+    g = GridGeometry(20, 20, 0.05)
+    occupancy = np.zeros((20, 20), dtype=np.int8)
+    occupancy[:, 10] = 100
+    costmap = Costmap.from_occupancy(occupancy, g)
+    costmap.master  # noqa: B018 - built
+    version = costmap.version
+    for x, yaw, reach in ((0.9, math.pi, 0.35), (0.2, 0.0, 0.3)):
+        scan = Scan.create((x, 0.525, yaw), 0.0, 0.1, [reach], 0.0, 5.0)
+        costmap.update_from_scan(scan)
+        marked = np.argwhere(costmap.obstacles == LETHAL)
+        assert [tuple(cell) for cell in marked] == [(10, 10)], (x, marked)
+    costmap.master  # noqa: B018 - brought up to date
+    assert costmap.version == version

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import asyncio
+import logging
 import math
 import time
 
@@ -25,7 +26,7 @@ from aiobt.msgs import (
     SmoothPath,
 )
 from aiobt_services.costmap import LETHAL, NO_INFORMATION
-from aiobt_services.planner.actions import ActionOptions, PlannerActions, to_path
+from aiobt_services.planner.actions import TALLY_EVERY, ActionOptions, PlannerActions, to_path
 from aiobt_services.planner.planning import Pose2D
 from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
 from aiobt_services.planner.traversal import SearchParams
@@ -215,3 +216,21 @@ def test_to_path_is_the_message_built_pose_by_pose(poses: list[Pose2D], stamp: f
     path = to_path(poses, stamp)
     assert path == built
     assert path.to_json() == built.to_json()
+
+
+async def test_a_replan_to_the_same_goal_from_a_moved_robot_reuses_the_search(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    grid = world()
+    actions = PlannerActions(grid)
+    first = await actions.compute_path_to_pose(to_pose(4.0, 4.0), None)
+    grid.on_pose(PoseStamped.from_xy_yaw(1.5, 1.0, 0.0, stamp=4.0))
+    again = await actions.compute_path_to_pose(to_pose(4.0, 4.0), None)
+    other = await actions.compute_path_to_pose(to_pose(4.0, 1.0), None)
+    assert (first.error_code, again.error_code, other.error_code) == (0, 0, 0)
+    assert (again.path.poses[0].x, again.path.poses[0].y) == (1.5, 1.0)
+    assert actions.tally == [3, 3, 1]  # plans, searches, served by a kept one
+    caplog.set_level(logging.INFO, logger="aiobt_services.planner.actions")
+    for _ in range(TALLY_EVERY - 3):
+        await actions.compute_path_to_pose(to_pose(4.0, 4.0), None)
+    assert f"{TALLY_EVERY} plans: {TALLY_EVERY} searches, {TALLY_EVERY - 2} of them" in caplog.text

@@ -135,13 +135,13 @@ def test_budget_and_cancel_are_checked_around_the_compiled_call(
         compiled_dijkstra(traversal, start, goal, Budget(max_seconds=0.0))
     assert err.value.reason == "TIMEOUT"
     budget = Budget()
-    reach_from = GridGraph.reach_from
+    reach_to = GridGraph.reach_to
 
     def cancelled_meanwhile(graph: GridGraph, source: int) -> Reach:
         budget.cancel.set()  # a cancel that arrives during the uninterruptible call
-        return reach_from(graph, source)
+        return reach_to(graph, source)
 
-    monkeypatch.setattr(GridGraph, "reach_from", cancelled_meanwhile)
+    monkeypatch.setattr(GridGraph, "reach_to", cancelled_meanwhile)
     with pytest.raises(PlanningCancelled):
         compiled_dijkstra(traversal, start, goal, budget)
     assert budget.cancel.is_set()

@@ -12,6 +12,7 @@ from aiobt.core.clock import ManualClock
 from aiobt.msgs import LaserScan, PoseStamped
 from aiobt.transport import Bus
 from aiobt_services.planner.feed import RobotFeed
+from aiobt_services.planner.state import POSES_KEPT
 
 from .test_actions import world
 from .test_service import lethal
@@ -138,7 +139,7 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
     grid = feed._world
     call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
     await asyncio.sleep(0)
-    assert bus.queue_sizes == {"pose": 1, "scan": 1}  # only the newest of each is wanted
+    assert bus.queue_sizes == {"pose": POSES_KEPT, "scan": 1}  # the newest scan; poses kept
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
     bus.live("scan").deliver(scan(0.4, 5.0, 5.0))  # a hit 0.4 m ahead, from (1, 1)
     assert await asyncio.wait_for(call, 1.0) == "first"
@@ -146,7 +147,9 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=1.1))  # moved
     assert await asyncio.wait_for(feed.call(lambda _: "again")(None), 1.0) == "again"
     assert not lethal(grid, 1.4, 2.0)  # the same scan, not marked again from (1, 2)
-    bus.live("scan").deliver(scan(0.4, 5.0, 5.0))  # a new scan from there is
+    newer = scan(0.4, 5.0, 5.0)  # a new scan from there, due (1 robot s later), is
+    newer.header.stamp = 1.1  # with the pose at (1, 2)
+    bus.live("scan").deliver(newer)
     assert await asyncio.wait_for(feed.call(lambda _: "new")(None), 1.0) == "new"
     assert lethal(grid, 1.4, 2.0)
     feed.close()

@@ -1,0 +1,153 @@
+"""``bus.latest``: the newest message, decoded when read, over a real router."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import time
+from collections.abc import Callable
+from typing import Any
+
+import pytest
+
+from aiobt.msgs import OccupancyGrid, PoseStamped
+from aiobt.transport import Bus, BusSettings, Latest, open_bus
+
+pytestmark = [pytest.mark.integration, pytest.mark.timeout(60)]
+
+
+async def wait_for(holds: Callable[[], bool], timeout: float = 5.0) -> None:  # noqa: ASYNC109
+    """Poll ``holds`` (Latest never wakes the loop, so there is nothing to await)."""
+    async with asyncio.timeout(timeout):
+        while not holds():  # noqa: ASYNC110 - nothing to await: no wake-up is the point
+            await asyncio.sleep(0.01)
+
+
+async def test_get_answers_the_newest_message_and_when_it_came(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    pose = bus.latest("pose", PoseStamped)
+    assert pose.get() is None
+    async with open_bus(bus_settings) as robot:
+        pub = robot.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        before = time.monotonic()
+        for i in range(20):
+            pub.put(PoseStamped.from_xy_yaw(float(i), 0.0, 0.0))
+        await wait_for(lambda: pose.received == 20)
+    newest = pose.get()
+    assert newest is not None
+    assert newest.x == 19.0
+    assert before <= pose.arrived <= time.monotonic()
+    assert pose.get() is newest  # decoded once: the same object until a newer arrives
+
+
+class CountingLoop:
+    """The bus's loop, counting the calls handed to it from other threads."""
+
+    def __init__(self, loop: asyncio.AbstractEventLoop) -> None:
+        self.loop = loop
+        self.handed = 0
+
+    def call_soon_threadsafe(self, *args: Any) -> Any:
+        self.handed += 1
+        return self.loop.call_soon_threadsafe(*args)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self.loop, name)
+
+
+async def test_arrivals_never_call_into_the_event_loop(
+    bus: Bus, bus_settings: BusSettings, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    counting = CountingLoop(bus.bridge.loop)
+    monkeypatch.setattr(bus.bridge, "loop", counting)
+    pose: Latest[PoseStamped] = bus.latest("pose", PoseStamped)
+    async with open_bus(bus_settings) as robot:
+        pub = robot.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        for i in range(50):
+            pub.put(PoseStamped.from_xy_yaw(1.0, float(i), 0.0))
+        await wait_for(lambda: pose.received == 50)
+        assert counting.handed == 0
+        subscribed = bus.subscribe("pose", PoseStamped, queue_size=1)  # the control
+        await asyncio.sleep(0.3)  # let the subscriber's declaration reach the router
+        pub.put(PoseStamped.from_xy_yaw(2.0, 0.0, 0.0))
+        await subscribed.next(timeout=5.0)
+    assert counting.handed >= 1  # a subscription does call in: the count can see it
+    newest = pose.get()
+    assert newest is not None
+    assert newest.x == 2.0
+
+
+async def test_a_bad_payload_is_logged_once_and_the_last_good_message_stays(
+    bus: Bus, bus_settings: BusSettings, caplog: pytest.LogCaptureFixture
+) -> None:
+    pose = bus.latest("goal_pose", PoseStamped)
+    key = f"{bus.namespace}/goal_pose"
+    async with open_bus(bus_settings) as other:
+        raw = other.session.declare_publisher(key)
+        await asyncio.sleep(0.3)  # let the subscriber's declaration reach the router
+        raw.put(b'{"x": 1.0, "y": 2.0, "yaw": 0.0}')
+        await wait_for(lambda: pose.received == 1)
+        good = pose.get()
+        with caplog.at_level(logging.WARNING, logger="aiobt.transport.latest"):
+            for n in range(2, 5):
+                raw.put(b'{"x": 1.0, "y": NaN}')
+                await wait_for(lambda n=n: pose.received == n)  # type: ignore[misc]
+                assert pose.get() is good
+        raw.undeclare()  # type: ignore[no-untyped-call]
+    assert good is not None
+    assert (good.x, good.y) == (1.0, 2.0)
+    assert pose.dropped_invalid == 3
+    warnings = [r.getMessage() for r in caplog.records if "dropped bad message" in r.getMessage()]
+    assert len(warnings) == 1
+    assert key in warnings[0]
+    assert "'y'" in warnings[0]
+
+
+async def test_a_payload_over_the_limit_is_refused(bus_settings: BusSettings) -> None:
+    small = BusSettings(
+        connect=bus_settings.connect, namespace=bus_settings.namespace, max_payload=200
+    )
+    async with open_bus(small) as bus, open_bus(bus_settings) as mapper:
+        grid = bus.latest("map", OccupancyGrid)
+        pub = mapper.publisher("map", OccupancyGrid)
+        assert await pub.wait_for_subscribers(5.0)
+        pub.put(OccupancyGrid.from_array([[i % 100 for i in range(300)]], 0.1))
+        await wait_for(lambda: grid.received == 1)
+        assert grid.get() is None
+        assert grid.dropped_invalid == 1
+
+
+async def test_latched_value_reaches_a_late_reader(bus: Bus, bus_settings: BusSettings) -> None:
+    bus.latched_publisher("map", OccupancyGrid).put(OccupancyGrid.from_array([[0, 100]], 0.5))
+    async with open_bus(bus_settings) as late:
+        grid = late.latest("map", OccupancyGrid, latched=True)
+        await wait_for(lambda: grid.get() is not None)
+        got = grid.get()
+    assert got is not None
+    assert got.array.tolist() == [[0, 100]]
+
+
+async def test_closed_it_keeps_the_last_message_and_hears_no_more(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    pose = bus.latest("pose", PoseStamped)
+    control = bus.latest("pose", PoseStamped)  # stays open: shows the next message came
+    async with open_bus(bus_settings) as robot:
+        pub = robot.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        pub.put(PoseStamped.from_xy_yaw(3.0, 0.0, 0.0))
+        await wait_for(lambda: pose.received == 1 and control.received == 1)
+        pose.close()
+        pose.close()  # idempotent
+        assert pose not in bus._closables
+        pub.put(PoseStamped.from_xy_yaw(4.0, 0.0, 0.0))
+        await wait_for(lambda: control.received == 2)
+    kept, newest = pose.get(), control.get()
+    assert kept is not None
+    assert kept.x == 3.0
+    assert newest is not None
+    assert newest.x == 4.0
+    assert pose.received == 1
