@@ -11,7 +11,10 @@ class CycleStats:
     its work took (seconds of wall time spent computing, not waiting) and how much of
     that the loop's thread ran (CPU seconds; the rest it waited for a core)."""
 
-    __slots__ = ("_cpu", "_durations", "_first", "_last", "_updates", "period")
+    __slots__ = (
+        "_cpu", "_durations", "_first", "_last", "_lost", "_sleeps", "_slept", "_updates",
+        "period",
+    )  # fmt: skip
 
     def __init__(self, period: float) -> None:
         if not (math.isfinite(period) and period > 0.0):
@@ -22,13 +25,26 @@ class CycleStats:
         self._updates: list[float] = []  # local costmap updates between cycles, wall s
         self._first = math.nan
         self._last = math.nan
+        self._lost = 0  # control slots skipped (a cycle began >= 2 periods after the last)
+        self._slept = (math.nan, math.nan)  # the last sleep before a cycle: robot s, wall s
+        self._sleeps: list[tuple[float, float]] = []  # the sleeps before a loss
 
     def record(self, began: float, duration: float, cpu: float = math.nan) -> None:
         if not self._durations:
             self._first = began
+        elif began - self._last >= 2.0 * self.period - 1e-9:  # slots skipped since the last
+            self._lost += int((began - self._last) / self.period + 1e-9) - 1
+            if not math.isnan(self._slept[1]):
+                self._sleeps.append(self._slept)
         self._last = began
+        self._slept = (math.nan, math.nan)
         self._durations.append(duration)
         self._cpu.append(cpu)
+
+    def record_sleep(self, robot: float, wall: float) -> None:
+        """The loop slept ``robot`` clock seconds, ``wall`` wall seconds before the next cycle
+        (after a loss: a long wall time woke late; a short one, the robot's clock ran ahead)."""
+        self._slept = (robot, wall)
 
     def record_update(self, duration: float) -> None:
         """A local costmap update made between two cycles took ``duration`` wall s."""
@@ -55,14 +71,19 @@ class CycleStats:
 
     def summary(self) -> str:
         """One line: ``N cycles, rate R of C Hz, cycle p50 A ms p99 B ms max M ms, cpu p50
-        D ms p99 E ms, costmap updates U p50 F ms p99 G ms``."""
+        D ms p99 E ms, costmap updates U p50 F ms p99 G ms, slots lost L (the sleeps before
+        them: robot p50 H ms, wall p50 K ms p90 M ms)``."""
         updates = [_nearest_rank(self._updates, q) * 1e3 for q in (50, 99)]
+        robot = _nearest_rank([r for r, _ in self._sleeps], 50) * 1e3
+        wall = [_nearest_rank([w for _, w in self._sleeps], q) * 1e3 for q in (50, 90)]
         return (
             f"{self.cycles} cycles, rate {self.rate():.2f} of {1.0 / self.period:.2f} Hz, "
             f"cycle p50 {self.percentile(50) * 1e3:.2f} ms p99 {self.percentile(99) * 1e3:.2f} ms "
             f"max {self.percentile(100) * 1e3:.2f} ms, cpu p50 {self.cpu_percentile(50) * 1e3:.2f}"
             f" ms p99 {self.cpu_percentile(99) * 1e3:.2f} ms, costmap updates {len(self._updates)}"
-            f" p50 {updates[0]:.2f} ms p99 {updates[1]:.2f} ms"
+            f" p50 {updates[0]:.2f} ms p99 {updates[1]:.2f} ms, slots lost {self._lost} (the"
+            f" sleeps before them: robot p50 {robot:.0f} ms, wall p50 {wall[0]:.1f} ms p90"
+            f" {wall[1]:.1f} ms)"
         )
 
 

@@ -171,8 +171,11 @@ class ControllerService:
             if step.finished:
                 return result_of(step.error)
             self._update_costmap(stats)
-            delay = schedule.delay(self.clock.now())
-            if not await sleep_bounded(self.clock, delay, self.options.clock_timeout):
+            slept = self.clock.now(), time.perf_counter()
+            delay = schedule.delay(slept[0])
+            awake = await sleep_bounded(self.clock, delay, self.options.clock_timeout)
+            stats.record_sleep(self.clock.now() - slept[0], time.perf_counter() - slept[1])
+            if not awake:
                 return result_of(
                     ControllerError(
                         FollowPathError.TF_ERROR,
@@ -211,7 +214,7 @@ class ControllerService:
         handle.publish_feedback(
             FollowPath.Feedback(distance_to_goal=fb.distance_to_goal, speed=abs(step.cmd.v))
         )
-        if self._tracking is not None:
+        if self._tracking is not None and self._tracking.matched:  # built only for a reader
             self._tracking.put(tracking_feedback_msg(fb, self.clock.now(), frame_id))
 
     # -- local costmap clearing -------------------------------------------------------------

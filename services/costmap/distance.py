@@ -25,11 +25,10 @@ def row_distances(mask: BoolArray) -> FloatArray:
     return nearest
 
 
-def distance_transform(mask: BoolArray, bound: int) -> FloatArray:
-    """Euclidean distance in cells from each cell to the nearest True cell of ``mask``.
-
-    Exact where the distance is <= ``bound``; ``inf`` beyond it.
-    """
+def squared_distance_transform(mask: BoolArray, bound: int) -> FloatArray:
+    """Squared Euclidean distance in cells (a whole number) from each cell to the nearest
+    True cell of ``mask``: exact where the distance is <= ``bound``; beyond it, any value
+    > ``bound ** 2`` (``inf`` or a whole number)."""
     if mask.ndim != 2:
         raise ValueError(f"mask must be 2D, got shape {mask.shape}")
     bound = max(0, int(bound))
@@ -42,6 +41,14 @@ def distance_transform(mask: BoolArray, bound: int) -> FloatArray:
         shift = float(dy * dy)
         np.minimum(best[dy:], squared[:-dy] + shift, out=best[dy:])
         np.minimum(best[:-dy], squared[dy:] + shift, out=best[:-dy])
-    distances: FloatArray = np.sqrt(best)
-    distances[distances > bound] = np.inf
+    return best
+
+
+def distance_transform(mask: BoolArray, bound: int) -> FloatArray:
+    """Euclidean distance in cells from each cell to the nearest True cell of ``mask``.
+
+    Exact where the distance is <= ``bound``; ``inf`` beyond it.
+    """
+    distances: FloatArray = np.sqrt(squared_distance_transform(mask, bound))
+    distances[distances > max(0, int(bound))] = np.inf
     return distances

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from .distance import distance_transform
+from .distance import squared_distance_transform
 from .grid import INSCRIBED, LETHAL, NO_INFORMATION, CostArray, FloatArray, GridGeometry, IntArray
 
 
@@ -42,6 +43,16 @@ def costs_from_distance(distance_m: FloatArray, params: InflationParams) -> Cost
     return np.clip(costs, 0, LETHAL).astype(np.uint8)
 
 
+@functools.lru_cache(maxsize=16)
+def _cost_table(bound: int, resolution: float, params: InflationParams) -> CostArray:
+    """The cost at each squared cell distance 0 .. ``bound ** 2``, then 0 (farther):
+    :func:`costs_from_distance` of the same distances, computed once per parameters."""
+    squared = np.arange(bound * bound + 2, dtype=np.float64)
+    distance_m = np.sqrt(squared) * resolution
+    distance_m[-1] = np.inf
+    return costs_from_distance(distance_m, params)
+
+
 def inflate(master: CostArray, geometry: GridGeometry, params: InflationParams) -> CostArray:
     """Return ``master`` with inflation applied (Nav2 InflationLayer::updateCosts).
 
@@ -55,8 +66,10 @@ def inflate(master: CostArray, geometry: GridGeometry, params: InflationParams) 
     if not seeds.any():
         return master.copy()
     bound = geometry.cell_distance(params.inflation_radius)
-    distance_m = distance_transform(seeds, bound) * geometry.resolution
-    inflated = costs_from_distance(distance_m, params)
+    squared = squared_distance_transform(seeds, bound)  # whole cells squared: a table index
+    beyond = bound * bound + 1  # the table's last entry: farther than the bound, no cost
+    index = np.minimum(squared, beyond, out=squared).astype(np.intp)
+    inflated = _cost_table(bound, geometry.resolution, params)[index]
     unknown = master == NO_INFORMATION
     threshold = 1 if params.inflate_unknown else INSCRIBED
     result = np.maximum(master, inflated)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -104,33 +105,42 @@ def clear_and_mark(
     map's walls, the simulator's rasterized ones) would otherwise mark the free
     cell before it or the obstacle's own by the range's rounding, a mark that
     comes and goes as the robot moves (on the office world, replaying 145 folds
-    of a drive: 139 changed the costmap, 17 with the depth). Points outside the grid are ignored.
-    Returns the flat indices of the cells whose value changed (empty when the
-    scan changed nothing).
+    of a drive: 139 changed the costmap, 17 with the depth). Points outside the
+    grid are ignored. Returns the flat indices of the cells whose value changed
+    (empty when the scan changed nothing).
 
-    The samples are taken as one (rays x samples) matrix, those beyond a ray's
-    length masked, and the cells collected in per-cell masks: no gather of the
-    samples, no sort, no temporaries of the matrix's size (the same cells, from the
-    same arithmetic, as sample lists).
+    The samples are taken as one (rays x samples) matrix of cell coordinates (float32:
+    the sensor's cell plus the ray's direction in cells times the distance, about
+    1e-5 of a cell off on a window of a hundred cells: a sample that close to a cell's
+    edge may fall in the cell beside), those beyond a ray's length masked, and the
+    cells collected in per-cell masks: no gather of the samples, no sort.
     """
     if not (math.isfinite(scan.sensor_x) and math.isfinite(scan.sensor_y)):
         raise ValueError(f"scan sensor pose must be finite, got ({scan.sensor_x}, {scan.sensor_y})")
     angles, ranges, clear_len, hit = _rays(scan, params)
-    dx, dy = np.cos(angles), np.sin(angles)
+    res = geometry.resolution
+    dx, dy = np.cos(angles) / res, np.sin(angles) / res  # cells per m along each ray
+    sensor = ((scan.sensor_x - geometry.origin_x) / res, (scan.sensor_y - geometry.origin_y) / res)
     flat = grid.reshape(-1)
-    step = geometry.resolution * 0.5
+    step = res * 0.5
     longest = float(clear_len.max(initial=0.0))
     cleared = np.zeros(flat.size + 1, dtype=np.bool_)  # the last entry: outside the grid
     if longest > 0.0:
-        t = np.arange(0.0, longest, step)
-        inside = t[None, :] < (clear_len[:, None] - np.where(hit > 0, step, 0.0)[:, None])
-        offsets = (np.multiply.outer(dx, t), np.multiply.outer(dy, t))
-        cleared[_cell_index(geometry, scan, *offsets, inside)] = True
+        t = np.arange(0.0, longest, step).astype(np.float32)
+        ends = (clear_len - np.where(hit > 0, step, 0.0)).astype(np.float32)
+        inside = t[None, :] < ends[:, None]
+        cols = np.multiply.outer(dx.astype(np.float32), t)
+        rows = np.multiply.outer(dy.astype(np.float32), t)
+        cols += np.float32(sensor[0])
+        rows += np.float32(sensor[1])
+        cleared[_cell_index(geometry, cols, rows, inside)] = True
     marks = hit > 0
     marked = np.zeros(flat.size + 1, dtype=np.bool_)
+    # the hits in float64, as the points they are: (sensor + depth along the ray - origin)
     depth = ranges[marks] + HIT_DEPTH
-    offsets = (dx[marks] * depth, dy[marks] * depth)
-    marked[_cell_index(geometry, scan, *offsets)] = True
+    hit_x = (scan.sensor_x + np.cos(angles[marks]) * depth - geometry.origin_x) / res
+    hit_y = (scan.sensor_y + np.sin(angles[marks]) * depth - geometry.origin_y) / res
+    marked[_cell_index(geometry, hit_x, hit_y)] = True
     clear_mask, mark_mask = cleared[:-1], marked[:-1]
     cells = np.flatnonzero(clear_mask | mark_mask)
     before = flat[cells]
@@ -142,20 +152,13 @@ def clear_and_mark(
 
 def _cell_index(
     geometry: GridGeometry,
-    scan: Scan,
-    along_x: FloatArray,
-    along_y: FloatArray,
+    cols: npt.NDArray[np.floating[Any]],
+    rows: npt.NDArray[np.floating[Any]],
     keep: BoolArray | None = None,
 ) -> IntArray:
-    """Flat cell index of each point ``sensor + along`` (finite, inside the grid and
-    kept); ``width * height`` for the others (one past the grid's last cell). The
-    ``along`` arrays are reused (the arithmetic in place: no temporaries this size)."""
-    cols, rows = along_x, along_y
-    for values, sensor, origin in ((cols, scan.sensor_x, geometry.origin_x),
-                                   (rows, scan.sensor_y, geometry.origin_y)):  # fmt: skip
-        values += sensor
-        values -= origin
-        values /= geometry.resolution  # a cell coordinate; >= 0 inside: truncating floors
+    """Flat cell index of each point at cell coordinates (``cols``, ``rows``) (finite,
+    inside the grid and kept); ``width * height`` for the others (one past the grid's
+    last cell). Coordinates >= 0 inside: truncating floors."""
     ok = cols >= 0
     ok &= cols < geometry.width
     ok &= rows >= 0

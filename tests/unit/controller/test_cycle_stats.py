@@ -22,7 +22,8 @@ def test_rate_is_cycles_per_robot_second_and_percentiles_are_nearest_rank() -> N
         stats.record_update(update)
     assert stats.summary() == (
         "11 cycles, rate 16.67 of 20.00 Hz, cycle p50 6.00 ms p99 11.00 ms max 11.00 ms, "
-        "cpu p50 3.00 ms p99 5.50 ms, costmap updates 3 p50 3.00 ms p99 4.00 ms"
+        "cpu p50 3.00 ms p99 5.50 ms, costmap updates 3 p50 3.00 ms p99 4.00 ms, "
+        "slots lost 2 (the sleeps before them: robot p50 nan ms, wall p50 nan ms p90 nan ms)"
     )
 
 
@@ -55,3 +56,19 @@ def test_a_cycle_a_period_behind_starts_the_schedule_over_and_so_does_a_clock_re
     assert schedule.delay(0.06) == pytest.approx(0.05)
     with pytest.raises(ValueError, match="period"):
         CycleSchedule(0.0, 0.0)
+
+
+def test_slots_lost_are_counted_with_the_sleeps_before_them() -> None:
+    stats = CycleStats(0.05)
+    stats.record(0.0, 0.001)
+    stats.record_sleep(0.05, 0.005)  # on time at 10x
+    stats.record(0.05, 0.001)
+    stats.record_sleep(0.15, 0.006)  # robot time ran 25x: two slots skipped
+    stats.record(0.20, 0.001)
+    stats.record_sleep(0.10, 0.010)  # woke a period late at 10x: one slot skipped
+    stats.record(0.30, 0.001)
+    stats.record_sleep(0.09, 0.009)  # late, under a period: its slot kept
+    stats.record(0.39, 0.001)
+    assert stats.summary().endswith(
+        "slots lost 3 (the sleeps before them: robot p50 100 ms, wall p50 6.0 ms p90 10.0 ms)"
+    )
