@@ -25,6 +25,7 @@ from pydantic import ValidationError
 
 from aiobt.msgs import MessageError, Msg, wire_validator
 from aiobt.transport.bridge import PayloadTooLarge
+from aiobt.transport.repeats import BadMessages
 
 M = TypeVar("M", bound=Msg)
 _PUT = zenoh.SampleKind.PUT
@@ -39,14 +40,13 @@ class Latest(Generic[M]):
 
     __slots__ = (
         "_arrived",
+        "_bad",
         "_decoded",
         "_max_payload",
         "_raw",
-        "_reported",
         "_seen",
         "_undeclare",
         "_validate_json",
-        "dropped_invalid",
         "key",
         "model",
         "on_close",
@@ -57,14 +57,13 @@ class Latest(Generic[M]):
         self.key = key
         self.model = model
         self.received = 0
-        self.dropped_invalid = 0
+        self._bad = BadMessages(log)
         self._max_payload = max_payload
         self._validate_json = wire_validator(model)
         self._raw: tuple[bytes, float] | None = None  # Zenoh's thread swaps it whole
         self._seen: tuple[bytes, float] | None = None  # the payload decoded last (or refused)
         self._decoded: M | None = None
         self._arrived = float("nan")  # wall time of the payload ``_decoded`` came in
-        self._reported: set[str] = set()
         self._undeclare: Callable[[], None] = lambda: None
         self.on_close: Callable[[], None] | None = None
 
@@ -86,9 +85,9 @@ class Latest(Generic[M]):
                 raise PayloadTooLarge(self.key, len(payload), self._max_payload)
             self._decoded = self._validate_json(payload)
         except ValidationError as exc:
-            self._reject(MessageError.from_validation(self.model, exc, self.key))
+            self._bad.drop(MessageError.from_validation(self.model, exc, self.key))
         except PayloadTooLarge as exc:
-            self._reject(exc)
+            self._bad.drop(exc)
         else:
             self._arrived = arrived
         return self._decoded
@@ -99,14 +98,10 @@ class Latest(Generic[M]):
         self.get()
         return self._arrived
 
-    def _reject(self, exc: MessageError | PayloadTooLarge) -> None:
-        self.dropped_invalid += 1
-        tag = exc.field if isinstance(exc, MessageError) else "<size>"
-        if tag in self._reported:
-            log.debug("dropped bad message: %s", exc)
-            return
-        self._reported.add(tag)
-        log.warning("dropped bad message (reported once per field): %s", exc)
+    @property
+    def dropped_invalid(self) -> int:
+        """Payloads :meth:`get` found malformed or too large."""
+        return self._bad.count
 
     def bind(self, undeclare: Callable[[], None]) -> None:
         self._undeclare = undeclare

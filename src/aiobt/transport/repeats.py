@@ -17,6 +17,12 @@ import logging
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from aiobt.msgs import MessageError
+
+if TYPE_CHECKING:
+    from aiobt.transport.bridge import PayloadTooLarge
 
 Kind = tuple[str, str, int]
 
@@ -93,3 +99,25 @@ class RepeatedErrors:
             last,
         )
         tally.count, tally.since = 0, now
+
+
+class BadMessages:
+    """Malformed messages dropped from one key: ``count`` of them; the first of each
+    field (``<size>`` for one over the payload limit) logged as a warning on ``logger``,
+    the later ones at debug level (a flood of bad messages is one line per field)."""
+
+    __slots__ = ("_logger", "_said", "count")
+
+    def __init__(self, logger: logging.Logger) -> None:
+        self._logger = logger
+        self._said: set[str] = set()
+        self.count = 0
+
+    def drop(self, exc: MessageError | PayloadTooLarge) -> None:
+        self.count += 1
+        tag = exc.field if isinstance(exc, MessageError) else "<size>"
+        if tag in self._said:
+            self._logger.debug("dropped bad message: %s", exc)
+            return
+        self._said.add(tag)
+        self._logger.warning("dropped bad message (reported once per field): %s", exc)

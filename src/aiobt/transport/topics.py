@@ -17,7 +17,7 @@ from pydantic import ValidationError
 from aiobt.msgs import MessageError, Msg, wire_validator
 from aiobt.transport.bridge import LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.latest import Latest
-from aiobt.transport.repeats import RepeatedErrors
+from aiobt.transport.repeats import BadMessages, RepeatedErrors
 
 M = TypeVar("M", bound=Msg)
 _PUT = zenoh.SampleKind.PUT
@@ -62,7 +62,7 @@ class Subscription(Generic[M]):
         self.model = model
         self.latest: M | None = None
         self.received = 0
-        self.dropped_invalid = 0
+        self._bad = BadMessages(log)
         self._bridge = bridge
         self._callback = callback
         self._validate_json = wire_validator(model)
@@ -82,7 +82,6 @@ class Subscription(Generic[M]):
         self._overflow_said = False
         self._waiters: list[asyncio.Future[None]] = []
         self._closed = False
-        self._reported: set[str] = set()
         self._errors = RepeatedErrors(log, f"{key}: subscriber callback")
         self._first = asyncio.Event()
         self._undeclare: Callable[[], None] = lambda: None
@@ -145,13 +144,12 @@ class Subscription(Generic[M]):
             self._bridge.call(self._drain)
 
     def _reject(self, exc: MessageError | PayloadTooLarge) -> None:
-        self.dropped_invalid += 1
-        tag = exc.field if isinstance(exc, MessageError) else "<size>"
-        if tag in self._reported:
-            log.debug("dropped bad message: %s", exc)
-            return
-        self._reported.add(tag)
-        log.warning("dropped bad message (reported once per field): %s", exc)
+        self._bad.drop(exc)
+
+    @property
+    def dropped_invalid(self) -> int:
+        """Messages dropped as malformed or too large."""
+        return self._bad.count
 
     def _drain(self) -> None:
         """In the loop: deliver what came since the last drain (at most ``queue_size``),

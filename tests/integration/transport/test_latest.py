@@ -13,6 +13,8 @@ import pytest
 from aiobt.msgs import OccupancyGrid, PoseStamped
 from aiobt.transport import Bus, BusSettings, Latest, open_bus
 
+from .logs import assert_one_bad_message_warning
+
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(60)]
 
 
@@ -100,10 +102,7 @@ async def test_a_bad_payload_is_logged_once_and_the_last_good_message_stays(
     assert good is not None
     assert (good.x, good.y) == (1.0, 2.0)
     assert pose.dropped_invalid == 3
-    warnings = [r.getMessage() for r in caplog.records if "dropped bad message" in r.getMessage()]
-    assert len(warnings) == 1
-    assert key in warnings[0]
-    assert "'y'" in warnings[0]
+    assert_one_bad_message_warning(caplog, key, "'y'")
 
 
 async def test_a_payload_over_the_limit_is_refused(bus_settings: BusSettings) -> None:

@@ -11,6 +11,8 @@ from aiobt.core.clock import ManualClock
 from aiobt.msgs import Clock, OccupancyGrid, PoseStamped, Twist
 from aiobt.transport import Bus, BusSettings, PayloadTooLarge, SimClockFollower, open_bus
 
+from .logs import assert_one_bad_message_warning
+
 pytestmark = pytest.mark.integration
 
 
@@ -92,10 +94,7 @@ async def test_bad_payload_is_logged_once_and_dropped(
         raw.undeclare()  # type: ignore[no-untyped-call]
     assert (good.x, good.y) == (1.0, 2.0)
     assert sub.dropped_invalid == 3
-    warnings = [r.getMessage() for r in caplog.records if "dropped bad message" in r.getMessage()]
-    assert len(warnings) == 1
-    assert key in warnings[0]
-    assert "'y'" in warnings[0]
+    assert_one_bad_message_warning(caplog, key, "'y'")
 
 
 async def test_oversized_payload_is_refused(bus_settings: BusSettings) -> None:
