@@ -23,26 +23,44 @@ from aiobt_services.costmap.obstacle_layer import HIT_DEPTH, _rays
 
 def reference(grid: np.ndarray, g: GridGeometry, scan: Scan, params: ObstacleParams) -> np.ndarray:
     """Each ray sampled every half cell up to its clearing length (the hit's own cell not
-    cleared by its ray), then the hits marked; the flat cells whose value changed."""
+    cleared by its ray), then the hits marked; the flat cells whose value changed.
+
+    The samples in float32 cell coordinates, as :func:`clear_and_mark` documents its
+    arithmetic (the sensor's cell plus the ray's direction in cells times the distance:
+    a sample within ~1e-5 of a cell's edge may fall in the cell beside, so float64
+    world coordinates differ there); the hits in float64 world coordinates."""
     angles, ranges, clear_len, hit = _rays(scan, params)
-    step = g.resolution * 0.5
+    res = g.resolution
+    step = res * 0.5
     longest = float(clear_len.max(initial=0.0))
     samples = np.arange(0.0, longest, step) if longest > 0.0 else np.empty(0)
+    samples = samples.astype(np.float32)
+    sensor_col = np.float32((scan.sensor_x - g.origin_x) / res)
+    sensor_row = np.float32((scan.sensor_y - g.origin_y) / res)
     before = grid.copy()
     cleared: set[int] = set()
     marked: set[int] = set()
     for ray, angle in enumerate(angles):
-        dx, dy = math.cos(angle), math.sin(angle)
-        limit = clear_len[ray] - (step if hit[ray] > 0 else 0.0)
+        dx, dy = np.float32(np.cos(angle) / res), np.float32(np.sin(angle) / res)
+        limit = np.float32(clear_len[ray] - (step if hit[ray] > 0 else 0.0))
         for t in samples[samples < limit]:
-            cleared |= cell_of(g, scan.sensor_x + dx * t, scan.sensor_y + dy * t)
+            cleared |= cell_at(g, sensor_col + dx * t, sensor_row + dy * t)
         if hit[ray] > 0:
             r = ranges[ray] + HIT_DEPTH
-            marked |= cell_of(g, scan.sensor_x + dx * r, scan.sensor_y + dy * r)
+            marked |= cell_of(
+                g, scan.sensor_x + math.cos(angle) * r, scan.sensor_y + math.sin(angle) * r
+            )
     flat = grid.reshape(-1)
     flat[sorted(cleared)] = FREE
     flat[sorted(marked)] = LETHAL
     return np.flatnonzero(grid.reshape(-1) != before.reshape(-1))
+
+
+def cell_at(g: GridGeometry, col: np.float32, row: np.float32) -> set[int]:
+    """The cell at cell coordinates (``col``, ``row``), if inside."""
+    if 0 <= col < g.width and 0 <= row < g.height:
+        return {int(row) * g.width + int(col)}
+    return set()
 
 
 def cell_of(g: GridGeometry, x: float, y: float) -> set[int]:
