@@ -47,12 +47,26 @@ class Newest(Generic[M]):
         """The newest message so far (None when not held or none came yet)."""
         return None if self._open is None else self._open.get()
 
+    async def wait_for(
+        self,
+        predicate: Callable[[M], bool],
+        timeout: float,  # noqa: ASYNC109
+    ) -> M | None:
+        """The first message read (every ``poll`` wall s; subscribed meanwhile) that
+        satisfies ``predicate``; None on timeout."""
+        with contextlib.suppress(TimeoutError):
+            async with self.held(), asyncio.timeout(timeout):
+                while (message := self.peek()) is None or not predicate(message):  # noqa: ASYNC110
+                    await asyncio.sleep(self._poll)
+                return message
+        return None
+
     async def read(self, timeout: float = 5.0) -> M:  # noqa: ASYNC109
-        """The next newest message (subscribes if not held); TimeoutError if none came."""
-        async with self.held(), asyncio.timeout(timeout):
-            while (message := self.peek()) is None:  # noqa: ASYNC110 - no wake-ups: polled
-                await asyncio.sleep(self._poll)
-            return message
+        """The newest message (subscribing for it if not held); TimeoutError if none came."""
+        message = await self.wait_for(lambda _: True, timeout)
+        if message is None:
+            raise TimeoutError(f"no {self._name} message within {timeout} s")
+        return message
 
 
 class SimClock(Newest[Clock]):
@@ -77,24 +91,10 @@ class SimClock(Newest[Clock]):
 
 
 class RobotPose(Newest[PoseStamped]):
-    """The robot's newest pose (see :class:`Newest`), and waits on it (polled)."""
+    """The robot's newest pose (see :class:`Newest`), and a wait for it to stand still."""
 
     def __init__(self, bus: Bus, poll: float = 0.02) -> None:
         super().__init__(bus, "pose", PoseStamped, poll)
-
-    async def wait_for(
-        self,
-        predicate: Callable[[PoseStamped], bool],
-        timeout: float,  # noqa: ASYNC109
-    ) -> PoseStamped | None:
-        """The first pose read (every ``poll`` wall s) that satisfies ``predicate``;
-        None on timeout."""
-        with contextlib.suppress(TimeoutError):
-            async with self.held(), asyncio.timeout(timeout):
-                while (pose := self.peek()) is None or not predicate(pose):  # noqa: ASYNC110
-                    await asyncio.sleep(self._poll)
-                return pose
-        return None
 
     async def wait_still(self, seconds: float, timeout: float, tolerance: float = 0.01) -> bool:  # noqa: ASYNC109
         """True once the robot moved less than ``tolerance`` m over ``seconds`` of sim time."""
