@@ -155,18 +155,20 @@ class BehaviorService:
         goal: Any,
         handle: GoalHandle[Any, Any, Any],
     ) -> Any:
-        started = self.clock.now()
         try:
             behavior = make(goal)
         except BehaviorInputError as exc:
             log.warning("%s goal refused: %s", spec.name, exc.message)
-            return self._result(spec, Outcome.INVALID_INPUT, exc.message, started)
+            return self._result(spec, Outcome.INVALID_INPUT, exc.message, self.clock.now())
         run = self._claim(spec)
         if isinstance(behavior, AssistedTeleop):
             self._teleop_run = behavior
         log.info("%s: goal %s started", spec.name, handle.goal_id)
         try:
             async with self.feed.active(self.options.clock_timeout):  # pose, odom, scan
+                # timed from here: on --sim-time an idle service's clock is the last stamp
+                # it heard, stale until the goal holds it fresh (total_elapsed_time)
+                started = self.clock.now()
                 result = await self._loop(spec, behavior, run, handle, started)
             log.info(
                 "%s: goal %s ended %d %s (command-to-odometry delay %.3f s)",
