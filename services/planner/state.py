@@ -125,11 +125,30 @@ class GlobalCostmap:
             return
         self._take(msg)
 
-    def _take(self, msg: LaserScan) -> None:
+    def scan_due(self, stamp: float) -> bool:
+        """Whether a scan stamped ``stamp`` is folded as it is taken: the first since
+        :meth:`forget`, one ``scan_period`` newer than the last folded, or one whose
+        stamp went back (the robot restarted)."""
+        return stamp - self._folded >= self.options.scan_period or stamp < self._folded
+
+    @property
+    def folded_since_forget(self) -> bool:
+        return math.isfinite(self._folded)
+
+    def take_scan(self, msg: LaserScan, pose: PoseStamped) -> None:
+        """Take ``msg`` marked from ``pose``: the robot's pose stamped nearest it, found by
+        the caller (a reader of the robot's kept poses); no-op before a map."""
+        if self.costmap is None or msg is self._taken:
+            return
+        self._take(msg, (pose.x, pose.y, pose.yaw))
+
+    def _take(self, msg: LaserScan, pose: Pose2D | None = None) -> None:
         self._taken = msg
         stamp = msg.header.stamp
-        self._pending = (msg, min(self._poses, key=lambda kept: abs(kept[0] - stamp))[1])
-        if stamp - self._folded >= self.options.scan_period or stamp < self._folded:
+        if pose is None:
+            pose = min(self._poses, key=lambda kept: abs(kept[0] - stamp))[1]
+        self._pending = (msg, pose)
+        if self.scan_due(stamp):
             self._fold_pending()
             self.traversal()  # ready before a request reads it
 

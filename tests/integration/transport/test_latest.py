@@ -150,3 +150,67 @@ async def test_closed_it_keeps_the_last_message_and_hears_no_more(
     assert newest is not None
     assert newest.x == 4.0
     assert pose.received == 1
+
+
+async def test_kept_messages_come_newest_first_decoded_as_far_as_read(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    poses = bus.latest("pose", PoseStamped, keep=4)
+    assert list(poses.newest_first()) == []
+    async with open_bus(bus_settings) as robot:
+        pub = robot.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        for i in range(6):
+            pub.put(PoseStamped.from_xy_yaw(float(i), 0.0, 0.0))
+        await wait_for(lambda: poses.received == 6)
+    reading = poses.newest_first()
+    first = next(reading)
+    assert first.x == 5.0
+    assert poses.get() is first  # decoded once, shared with get()
+    assert [p.x for p in reading] == [4.0, 3.0, 2.0]  # the last 4 only
+    again = list(poses.newest_first())
+    assert again[0] is first  # not decoded twice
+    with pytest.raises(ValueError, match="keep"):
+        bus.latest("pose", PoseStamped, keep=0)
+
+
+async def test_a_malformed_kept_payload_is_skipped_and_counted_once(
+    bus: Bus, bus_settings: BusSettings
+) -> None:
+    poses = bus.latest("goal_pose", PoseStamped, keep=3)
+    async with open_bus(bus_settings) as other:
+        raw = other.session.declare_publisher(f"{bus.namespace}/goal_pose")
+        await asyncio.sleep(0.3)  # let the subscriber's declaration reach the router
+        raw.put(b'{"x": 1.0, "y": 2.0, "yaw": 0.0}')
+        raw.put(b'{"x": 1.0, "y": NaN}')
+        raw.put(b'{"x": 3.0, "y": 2.0, "yaw": 0.0}')
+        await wait_for(lambda: poses.received == 3)
+        raw.undeclare()  # type: ignore[no-untyped-call]
+    assert [p.x for p in poses.newest_first()] == [3.0, 1.0]
+    assert [p.x for p in poses.newest_first()] == [3.0, 1.0]
+    assert poses.dropped_invalid == 1
+
+
+async def test_wait_latest_wakes_on_the_first_message_only(
+    bus: Bus, bus_settings: BusSettings, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    counting = CountingLoop(bus.bridge.loop)
+    monkeypatch.setattr(bus.bridge, "loop", counting)
+    pose = bus.latest("pose", PoseStamped)
+    with pytest.raises(TimeoutError):
+        await pose.wait_latest(timeout=0.05)  # nothing yet: bounded
+    async with open_bus(bus_settings) as robot:
+        pub = robot.publisher("pose", PoseStamped)
+        assert await pub.wait_for_subscribers(5.0)
+        waiters = [asyncio.ensure_future(pose.wait_latest(timeout=5.0)) for _ in range(2)]
+        await asyncio.sleep(0)
+        pub.put(PoseStamped.from_xy_yaw(7.0, 0.0, 0.0))
+        got = await asyncio.gather(*waiters)
+        assert [g.x for g in got] == [7.0, 7.0]
+        handed = counting.handed
+        for i in range(30):
+            pub.put(PoseStamped.from_xy_yaw(float(i), 0.0, 0.0))
+        await wait_for(lambda: pose.received == 31)
+    assert handed >= 1
+    assert counting.handed == handed  # later arrivals: no call into the loop
+    assert (await pose.wait_latest(timeout=0.01)).x == 29.0  # there: no wait

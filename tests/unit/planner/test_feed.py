@@ -1,9 +1,10 @@
-"""RobotFeed: the planner's pose and scan subscribed while requests come."""
+"""RobotFeed: the planner's pose and scan read while requests come."""
 
 from __future__ import annotations
 
 import asyncio
-from collections.abc import Callable
+from collections import deque
+from collections.abc import Iterator
 from typing import Any, cast
 
 import pytest
@@ -18,23 +19,27 @@ from .test_actions import world
 from .test_service import lethal
 
 
-class FakeSub:
-    """A subscription the test feeds by hand (as the bus would, in the loop)."""
+class FakeLatest:
+    """A ``bus.latest`` reader the test feeds by hand (as Zenoh's thread would)."""
 
-    def __init__(self, callback: Callable[[Any], None]) -> None:
-        self.callback = callback
-        self.latest: Any = None
+    def __init__(self, keep: int) -> None:
+        self.kept: deque[Any] = deque(maxlen=keep)
         self.first = asyncio.Event()
         self.closed = False
 
     def deliver(self, msg: Any) -> None:
-        self.latest = msg
+        self.kept.append(msg)
         self.first.set()
-        self.callback(msg)
+
+    def get(self) -> Any:
+        return self.kept[-1] if self.kept else None
+
+    def newest_first(self) -> Iterator[Any]:
+        yield from reversed(list(self.kept))
 
     async def wait_latest(self, timeout: float | None = None) -> Any:  # noqa: ASYNC109
         await self.first.wait()
-        return self.latest
+        return self.get()
 
     def close(self) -> None:
         self.closed = True
@@ -42,16 +47,16 @@ class FakeSub:
 
 class FakeBus:
     def __init__(self) -> None:
-        self.subs: dict[str, list[FakeSub]] = {"pose": [], "scan": []}
-        self.queue_sizes: dict[str, object] = {}
+        self.subs: dict[str, list[FakeLatest]] = {"pose": [], "scan": []}
+        self.kept: dict[str, int] = {}
 
-    def subscribe(self, name: str, _model: object, callback: Any, **kw: object) -> FakeSub:
-        sub = FakeSub(callback)
+    def latest(self, name: str, _model: object, *, keep: int = 1) -> FakeLatest:
+        sub = FakeLatest(keep)
         self.subs[name].append(sub)
-        self.queue_sizes[name] = kw.get("queue_size")
+        self.kept[name] = keep
         return sub
 
-    def live(self, name: str) -> FakeSub:
+    def live(self, name: str) -> FakeLatest:
         sub = self.subs[name][-1]
         assert not sub.closed
         return sub
@@ -63,9 +68,12 @@ def scan(*ranges: float) -> LaserScan:
                      range_max=5.0, ranges=list(ranges))  # fmt: skip
 
 
-def feed_of(bus: FakeBus, clock: ManualClock, timeout: float = 1.0) -> RobotFeed:
+def feed_of(
+    bus: FakeBus, clock: ManualClock, timeout: float = 1.0, poll: float = 60.0
+) -> RobotFeed:
+    """A feed whose own look comes only after ``poll`` wall s (the tests' requests read)."""
     grid = world()
-    return RobotFeed(cast(Bus, bus), grid, clock, timeout=timeout, linger=5.0)
+    return RobotFeed(cast(Bus, bus), grid, clock, timeout=timeout, linger=5.0, poll=poll)
 
 
 async def test_a_request_attaches_waits_for_pose_and_scan_and_folds_the_scan() -> None:
@@ -114,6 +122,8 @@ async def test_without_a_robot_only_the_attaching_request_waits() -> None:
 def test_the_timeout_must_be_positive() -> None:
     with pytest.raises(ValueError, match="timeout"):
         RobotFeed(cast(Bus, FakeBus()), world(), ManualClock(), timeout=0.0)
+    with pytest.raises(ValueError, match="poll"):
+        RobotFeed(cast(Bus, FakeBus()), world(), ManualClock(), poll=0.0)
 
 
 async def test_a_request_arriving_while_another_attaches_waits_with_it() -> None:
@@ -139,7 +149,7 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
     grid = feed._world
     call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
     await asyncio.sleep(0)
-    assert bus.queue_sizes == {"pose": POSES_KEPT, "scan": 1}  # the newest scan; poses kept
+    assert bus.kept == {"pose": POSES_KEPT, "scan": 1}  # the newest scan; poses kept
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
     bus.live("scan").deliver(scan(0.4, 5.0, 5.0))  # a hit 0.4 m ahead, from (1, 1)
     assert await asyncio.wait_for(call, 1.0) == "first"
@@ -153,3 +163,64 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
     assert await asyncio.wait_for(feed.call(lambda _: "new")(None), 1.0) == "new"
     assert lethal(grid, 1.4, 2.0)
     feed.close()
+
+
+async def test_a_scan_is_marked_from_the_kept_pose_stamped_nearest_it() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = feed._world
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    for i, y in enumerate((2.0, 1.0, 1.5)):  # stamps 2.0, 2.02, 2.04: the scan's is 2.02
+        bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, y, 0.0, stamp=2.0 + 0.02 * i))
+    taken = scan(0.4, 5.0, 5.0)
+    taken.header.stamp = 2.02
+    bus.live("scan").deliver(taken)
+    assert await asyncio.wait_for(feed.call(lambda _: grid.pose)(None), 1.0) == (1.0, 1.5, 0.0)
+    assert lethal(grid, 1.4, 1.0)  # from the pose at 2.02, not the newest (1, 1.5)
+    assert not lethal(grid, 1.4, 1.5)
+    feed.close()
+
+
+async def test_a_scan_newer_than_every_pose_waits_for_its_pose() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = feed._world
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    early = scan(0.4, 5.0, 5.0)
+    early.header.stamp = 3.0
+    bus.live("scan").deliver(early)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=2.9))
+    await feed.call(lambda _: None)(None)
+    assert not lethal(grid, 1.4, 2.0)  # not marked from a pose 0.1 s before it
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=3.0))
+    await feed.call(lambda _: None)(None)
+    assert lethal(grid, 1.4, 1.0)
+    feed.close()
+
+
+async def test_while_attached_the_feed_folds_due_scans_without_a_request() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock, poll=0.005)
+    grid = feed._world
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=2.0))
+    hit = scan(0.4, 5.0, 5.0)
+    hit.header.stamp = 2.0
+    bus.live("scan").deliver(hit)
+    async with asyncio.timeout(2.0):
+        while not lethal(grid, 1.4, 1.0):  # noqa: ASYNC110 - the feed polls: nothing to await
+            await asyncio.sleep(0.005)
+    feed.close()
+    assert feed._poller is None
