@@ -11,10 +11,11 @@ and wait for nothing. The streams stay ``linger`` robot s after the last request
 
 Attached, the streams are read, not handed over: Zenoh's thread keeps the newest
 scan and the last poses (``bus.latest``), and the planner looks every ``poll`` wall
-s (and at each request) whether a scan is due for folding (Nav2's global costmap
-updates at 1 Hz); it decodes that scan and the pose stamped nearest it, nothing
-else. Handing every message to the event loop cost about a third of the planner's
-CPU while driving at 10x (a loop wake-up and a decode for each of 600 a wall second).
+s whether a scan is due for folding (Nav2's global costmap updates at 1 Hz); it
+decodes that scan and the pose stamped nearest it, nothing else. A request takes
+the newest pose, and folds only the first scan after attaching. Handing every
+message to the event loop cost about a third of the planner's CPU while driving
+at 10x (a loop wake-up and a decode for each of 600 a wall second).
 
 What is lost: scans seen while nobody asked (the robot driven by something else:
 teleoperation, a controller goal with no planning) are not marked in the global
@@ -102,17 +103,17 @@ class RobotFeed:
             await asyncio.sleep(self._poll)  # wall time: how often Zenoh's buffers are read
             self.read()
 
-    def read(self) -> None:
-        """Take the newest pose, and the newest scan if it is due for folding (marked from
-        the pose stamped nearest it; a scan newer than every pose waits for its pose,
-        unless it is the first since attaching)."""
+    def read(self, *, fold: bool = True) -> None:
+        """Take the newest pose and, if ``fold``, the newest scan if it is due for folding
+        (marked from the pose stamped nearest it; a scan newer than every pose waits for
+        its pose, unless it is the first since attaching)."""
         poses, scans, world = self._poses, self._scan, self._world
         if poses is None or scans is None or (newest := poses.get()) is None:
             return
         if newest is not self._pose_read:
             self._pose_read = newest
             world.on_pose(newest)
-        scan = scans.get()
+        scan = scans.get() if fold else None
         if scan is None or not world.scan_due(stamp := scan.header.stamp):
             return
         if newest.header.stamp < stamp and world.folded_since_forget:
@@ -123,10 +124,12 @@ class RobotFeed:
 
     @contextlib.asynccontextmanager
     async def fresh(self) -> AsyncIterator[bool]:
-        """Within: the robot's streams attached and read, with a due scan folded in (True
-        if a pose and a scan came within the timeout)."""
+        """Within: the robot's streams attached, the newest pose taken and, after
+        attaching, the first scan folded in (True if a pose and a scan came within the
+        timeout). Later scans are folded by the periodic look, never on a request's
+        path: a request reads the costmap as the last fold left it, as Nav2's does."""
         async with self.on_demand.active(self._timeout) as came:
-            self.read()
+            self.read(fold=not self._world.folded_since_forget)
             yield came
 
     def action(

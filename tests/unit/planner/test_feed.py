@@ -156,11 +156,12 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
     assert lethal(grid, 1.4, 1.0)
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=1.1))  # moved
     assert await asyncio.wait_for(feed.call(lambda _: "again")(None), 1.0) == "again"
+    feed.read()  # the periodic look
     assert not lethal(grid, 1.4, 2.0)  # the same scan, not marked again from (1, 2)
     newer = scan(0.4, 5.0, 5.0)  # a new scan from there, due (1 robot s later), is
     newer.header.stamp = 1.1  # with the pose at (1, 2)
     bus.live("scan").deliver(newer)
-    assert await asyncio.wait_for(feed.call(lambda _: "new")(None), 1.0) == "new"
+    feed.read()
     assert lethal(grid, 1.4, 2.0)
     feed.close()
 
@@ -179,7 +180,8 @@ async def test_a_scan_is_marked_from_the_kept_pose_stamped_nearest_it() -> None:
     taken = scan(0.4, 5.0, 5.0)
     taken.header.stamp = 2.02
     bus.live("scan").deliver(taken)
-    assert await asyncio.wait_for(feed.call(lambda _: grid.pose)(None), 1.0) == (1.0, 1.5, 0.0)
+    feed.read()
+    assert grid.pose == (1.0, 1.5, 0.0)  # the newest pose
     assert lethal(grid, 1.4, 1.0)  # from the pose at 2.02, not the newest (1, 1.5)
     assert not lethal(grid, 1.4, 1.5)
     feed.close()
@@ -198,10 +200,10 @@ async def test_a_scan_newer_than_every_pose_waits_for_its_pose() -> None:
     early.header.stamp = 3.0
     bus.live("scan").deliver(early)
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=2.9))
-    await feed.call(lambda _: None)(None)
+    feed.read()
     assert not lethal(grid, 1.4, 2.0)  # not marked from a pose 0.1 s before it
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=3.0))
-    await feed.call(lambda _: None)(None)
+    feed.read()
     assert lethal(grid, 1.4, 1.0)
     feed.close()
 
@@ -224,3 +226,25 @@ async def test_while_attached_the_feed_folds_due_scans_without_a_request() -> No
             await asyncio.sleep(0.005)
     feed.close()
     assert feed._poller is None
+
+
+async def test_a_request_takes_the_newest_pose_but_leaves_folding_to_the_look() -> None:
+    """Only the first scan after attaching is folded on a request's path; later ones by
+    the periodic look (a plan never waits behind a fold)."""
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = feed._world
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=2.0))
+    due = scan(0.4, 5.0, 5.0)
+    due.header.stamp = 2.0
+    bus.live("scan").deliver(due)
+    assert await asyncio.wait_for(feed.call(lambda _: grid.pose_stamp)(None), 1.0) == 2.0
+    assert not lethal(grid, 1.4, 1.0)  # due, but not folded by the request
+    feed.read()
+    assert lethal(grid, 1.4, 1.0)
+    feed.close()
