@@ -10,8 +10,11 @@ subscribes to every topic the stack reads (clock, odom, pose, scan) and drives
 it as a wanderer: ``cmd_vel`` every 0.05 s of sim time, forward, turning away
 while the scan shows something close ahead. Per run, from ``/proc/<pid>/stat``
 and the clock topic: the robot's CPU in % of a core, its CPU ms per sim second,
-and the speed-up achieved; from the robot's log (its 5 s reports over the whole
-run), the sim time given up to lag and the wall time held for late commands.
+and the speed-up achieved; how the clock moves as the client receives it (the sim
+ms it advanced within 5 ms of wall after each stamp, p50/p90/p99: the steps the
+robot runs per wake-up come as one bunch); from the robot's log (its 5 s reports
+over the whole run), the sim time given up to lag and the wall time held for late
+commands.
 The figure is the ratio this / baseline of CPU per
 sim second.
 """
@@ -45,6 +48,7 @@ class Wanderer:
 
     def __init__(self, bus: Bus) -> None:
         self.sim = math.nan
+        self.stamps: list[tuple[float, float]] = []  # (wall, sim) of each stamp received
         self.ticking = asyncio.Event()
         self.turn = 0.0
         self.scans = 0
@@ -56,6 +60,7 @@ class Wanderer:
 
     def _on_clock(self, msg: Clock) -> None:
         self.sim = msg.clock
+        self.stamps.append((time.monotonic(), msg.clock))
         self.ticking.set()
 
     def _on_scan(self, msg: LaserScan) -> None:
@@ -86,12 +91,29 @@ async def measure(
         driver = asyncio.create_task(client.drive(0.05 / args.speed, stop))
         await asyncio.sleep(args.warmup)
         cpu0, sim0, wall0 = cpu_seconds(robot.pid), client.sim, time.monotonic()
+        client.stamps.clear()
         await asyncio.sleep(args.seconds)
         cpu, sim = cpu_seconds(robot.pid) - cpu0, client.sim - sim0
         wall = time.monotonic() - wall0
         stop.set()
         await driver
-    return {"cpu_pct": 100 * cpu / wall, "ms_per_sim_s": 1e3 * cpu / sim, "speed": sim / wall}
+    steps = np.percentile(clock_steps(client.stamps, 0.005), [50, 90, 99]) * 1e3
+    return {
+        "cpu_pct": 100 * cpu / wall,
+        "ms_per_sim_s": 1e3 * cpu / sim,
+        "speed": sim / wall,
+        **{f"clock_5ms_p{q}": float(v) for q, v in zip((50, 90, 99), steps, strict=True)},
+    }
+
+
+def clock_steps(stamps: list[tuple[float, float]], window: float) -> np.ndarray:
+    """For each (wall, sim) stamp, the sim time the newest stamp within ``window`` wall s
+    after it is ahead of it (how far the clock moves at once, as received)."""
+    if not stamps:
+        return np.array([math.nan])
+    wall, sim = np.array(stamps).T
+    last = np.searchsorted(wall, wall + window, side="right") - 1
+    return np.asarray(sim[last] - sim)
 
 
 def run_one(
@@ -115,13 +137,16 @@ def run_one(
 def summary(runs: dict[str, list[dict[str, float]]]) -> list[str]:
     lines = [
         "| code | CPU % of a core | CPU ms per sim s | speed-up | lag: sim s given up "
-        "| held for commands, wall s |",
-        "|---|---|---|---|---|---|",
+        "| held for commands, wall s | clock: sim ms within 5 ms wall, p50 p90 p99 |",
+        "|---|---|---|---|---|---|---|",
     ]
     for label, figs in runs.items():
         keys = ("cpu_pct", "ms_per_sim_s", "speed", "lag_lost_sim_s", "held_wall_s")
+        steps = " / ".join(
+            " ".join(f"{f[f'clock_5ms_p{q}']:.0f}" for q in (50, 90, 99)) for f in figs
+        )
         cells = [" / ".join(f"{f[k]:.1f}" for f in figs) for k in keys]
-        lines.append(f"| {label} | " + " | ".join(cells) + " |")
+        lines.append(f"| {label} | " + " | ".join(cells) + f" | {steps} |")
     pairs = zip(runs["base"], runs["this"], strict=True)
     ratios = [t["ms_per_sim_s"] / b["ms_per_sim_s"] for b, t in pairs]
     each = ", ".join(f"{r:.2f}" for r in ratios)
