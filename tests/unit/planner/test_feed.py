@@ -13,7 +13,7 @@ from aiobt.core.clock import ManualClock
 from aiobt.msgs import LaserScan, PoseStamped
 from aiobt.transport import Bus
 from aiobt_services.planner.feed import RobotFeed
-from aiobt_services.planner.state import POSES_KEPT
+from aiobt_services.planner.state import POSES_KEPT, GlobalCostmap
 
 from .test_actions import world
 from .test_service import lethal
@@ -74,6 +74,25 @@ def feed_of(
     """A feed whose own look comes only after ``poll`` wall s (the tests' requests read)."""
     grid = world()
     return RobotFeed(cast(Bus, bus), grid, clock, timeout=timeout, linger=5.0, poll=poll)
+
+
+async def attached(poll: float = 60.0) -> tuple[FakeBus, RobotFeed, GlobalCostmap]:
+    """A feed whose first request attached, with the robot at (1, 1) at robot time 1.0
+    and a scan that saw nothing folded."""
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock, poll=poll)
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
+    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    return bus, feed, feed._world
+
+
+def scan_at(stamp: float, *ranges: float) -> LaserScan:
+    taken = scan(*ranges)
+    taken.header.stamp = stamp
+    return taken
 
 
 async def test_a_request_attaches_waits_for_pose_and_scan_and_folds_the_scan() -> None:
@@ -167,19 +186,10 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
 
 
 async def test_a_scan_is_marked_from_the_kept_pose_stamped_nearest_it() -> None:
-    bus, clock = FakeBus(), ManualClock()
-    feed = feed_of(bus, clock)
-    grid = feed._world
-    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
-    await asyncio.sleep(0)
-    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
-    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
-    assert await asyncio.wait_for(call, 1.0) == "first"
+    bus, feed, grid = await attached()
     for i, y in enumerate((2.0, 1.0, 1.5)):  # stamps 2.0, 2.02, 2.04: the scan's is 2.02
         bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, y, 0.0, stamp=2.0 + 0.02 * i))
-    taken = scan(0.4, 5.0, 5.0)
-    taken.header.stamp = 2.02
-    bus.live("scan").deliver(taken)
+    bus.live("scan").deliver(scan_at(2.02, 0.4, 5.0, 5.0))
     feed.read()
     assert grid.pose == (1.0, 1.5, 0.0)  # the newest pose
     assert lethal(grid, 1.4, 1.0)  # from the pose at 2.02, not the newest (1, 1.5)
@@ -188,17 +198,8 @@ async def test_a_scan_is_marked_from_the_kept_pose_stamped_nearest_it() -> None:
 
 
 async def test_a_scan_newer_than_every_pose_waits_for_its_pose() -> None:
-    bus, clock = FakeBus(), ManualClock()
-    feed = feed_of(bus, clock)
-    grid = feed._world
-    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
-    await asyncio.sleep(0)
-    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
-    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
-    assert await asyncio.wait_for(call, 1.0) == "first"
-    early = scan(0.4, 5.0, 5.0)
-    early.header.stamp = 3.0
-    bus.live("scan").deliver(early)
+    bus, feed, grid = await attached()
+    bus.live("scan").deliver(scan_at(3.0, 0.4, 5.0, 5.0))
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0, stamp=2.9))
     feed.read()
     assert not lethal(grid, 1.4, 2.0)  # not marked from a pose 0.1 s before it
@@ -209,18 +210,9 @@ async def test_a_scan_newer_than_every_pose_waits_for_its_pose() -> None:
 
 
 async def test_while_attached_the_feed_folds_due_scans_without_a_request() -> None:
-    bus, clock = FakeBus(), ManualClock()
-    feed = feed_of(bus, clock, poll=0.005)
-    grid = feed._world
-    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
-    await asyncio.sleep(0)
-    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
-    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
-    assert await asyncio.wait_for(call, 1.0) == "first"
+    bus, feed, grid = await attached(0.005)
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=2.0))
-    hit = scan(0.4, 5.0, 5.0)
-    hit.header.stamp = 2.0
-    bus.live("scan").deliver(hit)
+    bus.live("scan").deliver(scan_at(2.0, 0.4, 5.0, 5.0))
     async with asyncio.timeout(2.0):
         while not lethal(grid, 1.4, 1.0):  # noqa: ASYNC110 - the feed polls: nothing to await
             await asyncio.sleep(0.005)
@@ -231,18 +223,9 @@ async def test_while_attached_the_feed_folds_due_scans_without_a_request() -> No
 async def test_a_request_takes_the_newest_pose_but_leaves_folding_to_the_look() -> None:
     """Only the first scan after attaching is folded on a request's path; later ones by
     the periodic look (a plan never waits behind a fold)."""
-    bus, clock = FakeBus(), ManualClock()
-    feed = feed_of(bus, clock)
-    grid = feed._world
-    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
-    await asyncio.sleep(0)
-    bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
-    bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
-    assert await asyncio.wait_for(call, 1.0) == "first"
+    bus, feed, grid = await attached()
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=2.0))
-    due = scan(0.4, 5.0, 5.0)
-    due.header.stamp = 2.0
-    bus.live("scan").deliver(due)
+    bus.live("scan").deliver(scan_at(2.0, 0.4, 5.0, 5.0))
     assert await asyncio.wait_for(feed.call(lambda _: grid.pose_stamp)(None), 1.0) == 2.0
     assert not lethal(grid, 1.4, 1.0)  # due, but not folded by the request
     feed.read()
