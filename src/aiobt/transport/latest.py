@@ -55,7 +55,6 @@ class Latest(Generic[M]):
         "_kept",
         "_max_payload",
         "_raw",
-        "_seen",
         "_undeclare",
         "_validate_json",
         "_waiter",
@@ -80,7 +79,6 @@ class Latest(Generic[M]):
         # Zenoh's thread swaps in [payload, arrival, decoded]; a reader fills the third
         self._raw: list[Any] | None = None
         self._kept: deque[list[Any]] | None = deque(maxlen=keep) if keep > 1 else None
-        self._seen: list[Any] | None = None  # the payload decoded last (or refused)
         self._decoded: M | None = None
         self._arrived = float("nan")  # wall time of the payload ``_decoded`` came in
         self._bridge = bridge
@@ -105,10 +103,9 @@ class Latest(Generic[M]):
     def get(self) -> M | None:
         """The newest good message (None before the first); decodes a new payload once."""
         raw = self._raw  # read once: Zenoh's thread may swap in a newer one meanwhile
-        if raw is None or raw is self._seen:
-            return self._decoded
-        self._seen = raw
-        decoded = self._decode(raw)
+        if raw is None:
+            return None
+        decoded = self._decode(raw)  # cached in the entry: decoded once
         if decoded is not None:
             self._decoded, self._arrived = decoded, raw[1]
         return self._decoded
@@ -132,7 +129,7 @@ class Latest(Generic[M]):
                 waiter = self._waiter  # shared by every reader waiting
                 if waiter is None or waiter.done():
                     waiter = self._waiter = self._bridge.loop.create_future()
-                if self._raw is not None and self._raw is not self._seen:
+                if self._raw is not None and self._raw[2] is None:
                     continue  # came between get() and the waiter: decode it
                 await asyncio.shield(waiter)  # a reader giving up leaves it to the others
         return newest
