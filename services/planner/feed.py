@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-from collections.abc import AsyncIterator, Awaitable, Callable, Iterable
+from collections.abc import AsyncIterator, Awaitable, Callable
 from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock
@@ -41,18 +41,6 @@ Resp = TypeVar("Resp")
 R = TypeVar("R")
 FEED_TIMEOUT = 1.0  # wall s a request after idle waits for a pose and a scan
 POLL = 0.05  # wall s between two looks for a scan due (a 1 Hz fold is 0.1 wall s at 10x)
-
-
-def nearest(poses: Iterable[PoseStamped], stamp: float) -> PoseStamped | None:
-    """Of ``poses`` (newest first), the one stamped nearest ``stamp``; stops at the
-    first stamped at or before it (older ones are farther)."""
-    best: PoseStamped | None = None
-    for pose in poses:
-        if best is None or abs(pose.header.stamp - stamp) < abs(best.header.stamp - stamp):
-            best = pose
-        if pose.header.stamp <= stamp:
-            break
-    return best
 
 
 class RobotFeed:
@@ -116,11 +104,8 @@ class RobotFeed:
         scan = scans.get() if fold else None
         if scan is None or not world.scan_due(stamp := scan.header.stamp):
             return
-        if newest.header.stamp < stamp and world.folded_since_forget:
-            return  # its pose is not here yet: the next look
-        pose = nearest(poses.newest_first(), stamp)
-        if pose is not None:
-            world.take_scan(scan, pose)
+        if not world.waits_for_pose(stamp, newest.header.stamp):  # else: the next look
+            world.take_scan(scan, poses.newest_first())
 
     @contextlib.asynccontextmanager
     async def fresh(self) -> AsyncIterator[bool]:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 import math
 from collections import deque
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 from aiobt.msgs import LaserScan, OccupancyGrid, PoseStamped
@@ -23,6 +24,19 @@ from .traversal import SearchParams, Traversal
 log = logging.getLogger("aiobt_services.planner.state")
 MAP_FRAMES = ("", "map")
 POSES_KEPT = 32  # the last poses, by stamp: a scan is marked from the one taken with it
+
+
+def nearest(poses: Iterable[PoseStamped], stamp: float) -> PoseStamped | None:
+    """Of ``poses`` (newest first), the one stamped nearest ``stamp``; stops at the first
+    stamped at or before it (older ones are farther). Read lazily: a reader of kept
+    payloads decodes only as far as this goes."""
+    best: PoseStamped | None = None
+    for pose in poses:
+        if best is None or abs(pose.header.stamp - stamp) < abs(best.header.stamp - stamp):
+            best = pose
+        if pose.header.stamp <= stamp:
+            break
+    return best
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,7 +76,7 @@ class GlobalCostmap:
         self.costmap: Costmap | None = None
         self.pose: Pose2D | None = None
         self.pose_stamp = 0.0
-        self._poses: deque[tuple[float, Pose2D]] = deque(maxlen=POSES_KEPT)
+        self._poses: deque[PoseStamped] = deque(maxlen=POSES_KEPT)
         self._pending: tuple[LaserScan, Pose2D] | None = None
         self._early: LaserScan | None = None  # a scan that came before its pose
         self._taken: LaserScan | None = None  # the last scan taken (folded or waiting)
@@ -95,11 +109,11 @@ class GlobalCostmap:
             return
         self.pose = (msg.x, msg.y, msg.yaw)
         self.pose_stamp = msg.header.stamp
-        self._poses.append((self.pose_stamp, self.pose))
+        self._poses.append(msg)
         early = self._early
         if early is not None and self.pose_stamp >= early.header.stamp:
             self._early = None
-            self._take(early)
+            self._take(early, nearest(reversed(self._poses), early.header.stamp))
 
     def forget(self) -> None:
         """Drop the robot's pose and the waiting scan (the streams start again: a pose
@@ -120,10 +134,10 @@ class GlobalCostmap:
         does with the newest) is not taken twice: it is folded or waiting already."""
         if self.costmap is None or self.pose is None or msg is self._taken:
             return
-        if self.pose_stamp < msg.header.stamp and math.isfinite(self._folded):
+        if self.waits_for_pose(msg.header.stamp, self.pose_stamp):
             self._early = msg
             return
-        self._take(msg)
+        self._take(msg, nearest(reversed(self._poses), msg.header.stamp))
 
     def scan_due(self, stamp: float) -> bool:
         """Whether a scan stamped ``stamp`` is folded as it is taken: the first since
@@ -135,19 +149,24 @@ class GlobalCostmap:
     def folded_since_forget(self) -> bool:
         return math.isfinite(self._folded)
 
-    def take_scan(self, msg: LaserScan, pose: PoseStamped) -> None:
-        """Take ``msg`` marked from ``pose``: the robot's pose stamped nearest it, found by
-        the caller (a reader of the robot's kept poses); no-op before a map."""
+    def waits_for_pose(self, scan_stamp: float, newest_pose_stamp: float) -> bool:
+        """Whether a scan newer than the newest pose waits for its pose (not the first
+        after :meth:`forget`: a request waits on that one)."""
+        return newest_pose_stamp < scan_stamp and self.folded_since_forget
+
+    def take_scan(self, msg: LaserScan, poses: Iterable[PoseStamped]) -> None:
+        """Take ``msg`` marked from the one of ``poses`` (the robot's, newest first: a
+        reader of its kept poses) stamped nearest it; no-op before a map."""
         if self.costmap is None or msg is self._taken:
             return
-        self._take(msg, (pose.x, pose.y, pose.yaw))
+        self._take(msg, nearest(poses, msg.header.stamp))
 
-    def _take(self, msg: LaserScan, pose: Pose2D | None = None) -> None:
+    def _take(self, msg: LaserScan, pose: PoseStamped | None) -> None:
+        if pose is None:
+            return
         self._taken = msg
         stamp = msg.header.stamp
-        if pose is None:
-            pose = min(self._poses, key=lambda kept: abs(kept[0] - stamp))[1]
-        self._pending = (msg, pose)
+        self._pending = (msg, (pose.x, pose.y, pose.yaw))
         if self.scan_due(stamp):
             self._fold_pending()
             self.traversal()  # ready before a request reads it
