@@ -27,6 +27,7 @@ DEFAULT_MAX_PAYLOAD = 16 * 1024 * 1024
 OPEN_TIMEOUT_MS = 2000  # a link handshake (Zenoh's default, 10 s, unless a file sets one)
 OPEN_TIMEOUT_KEY = "transport/unicast/open_timeout"
 _ZENOH_OPEN_TIMEOUT_MS = 10000
+SHARED_MEMORY_KEY = "transport/shared_memory/enabled"
 # where a router or peer listens unless a flag or the config file says otherwise
 # (Zenoh's own default is every interface: tcp/[::]:7447, tcp/[::]:0)
 LOOPBACK_LISTEN = {"router": DEFAULT_ROUTER, "peer": "tcp/127.0.0.1:0"}
@@ -91,7 +92,13 @@ class BusSettings:
           holds the event loop nor overruns ``--connect-timeout`` for long;
         - a router or peer listens on loopback only (``LOOPBACK_LISTEN``), not on
           every interface: listening beyond it takes ``--listen`` or a file's
-          ``listen/endpoints``.
+          ``listen/endpoints``;
+        - shared memory off (unless the file says anything about ``shared_memory``):
+          Zenoh's default copies every message over 3 KB between processes of one
+          host into shared memory, and sets that up on a process's first two such
+          messages (a 16 MB pool, mapped and locked in memory, then a segment and
+          watchdog threads): each of those sends blocked 10-30 ms, and a plan or a
+          path arrived that much late (``bench/transport/first_large.py``).
         """
         config = self._base_config()
         mode = self.mode or ("client" if _unset(config, "mode") else None)
@@ -116,10 +123,21 @@ class BusSettings:
         if json.loads(config.get_json(OPEN_TIMEOUT_KEY)) == _ZENOH_OPEN_TIMEOUT_MS:
             _insert(config, OPEN_TIMEOUT_KEY, OPEN_TIMEOUT_MS)
         _insert(config, "timestamping/enabled", True)  # needed by latched (cached) publishers
+        if not self._file_mentions("shared_memory"):
+            _insert(config, SHARED_MEMORY_KEY, False)
         _insert_credentials(config)
         for key, value in self.extra.items():
             _insert(config, key, value)
         return config
+
+    def _file_mentions(self, word: str) -> bool:
+        """Whether the config file's text names ``word`` (a default it may have set
+        to Zenoh's own value, which the parsed config cannot tell from unset)."""
+        path = self.effective_config_file
+        if not path:
+            return False
+        with open(path, encoding="utf-8", errors="replace") as file:
+            return word in file.read()
 
     def _base_config(self) -> zenoh.Config:
         path = self.effective_config_file
