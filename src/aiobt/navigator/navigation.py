@@ -4,14 +4,19 @@ The loop is bt_navigator's ``BehaviorTreeEngine::run`` with the navigator's
 ``onLoop`` and ``onPreempt``: tick, end on SUCCESS or FAILURE, else take a newer
 goal (same tree: the goal entry is rewritten, the tree replans; another tree:
 the running one is halted and the new one starts), publish feedback, and wait
-for the loop period or a wake-up. Cancellation (a canceled goal) halts the tree,
-which cancels every goal its leaves hold on servers.
+for the loop period or a wake-up. The period is on the robot's clock; feedback
+goes out at most once per period of *wall* time, as often as Nav2 sends it (its
+loop is a ``WallRate``): at a sim speed-up of 10 the loop turns ten times as
+often, and a feedback reply each turn was half of the navigator's CPU.
+Cancellation (a canceled goal) halts the tree, which cancels every goal its
+leaves hold on servers.
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
+import time
 from typing import TYPE_CHECKING, Protocol
 
 from aiobt.core.blackboard import Blackboard
@@ -62,6 +67,7 @@ class Navigation:
         self._btlog: BtlogLogger | None = None
         self._recording: Recording | None = None
         self._stalled = False
+        self._feedback_due = 0.0  # time.monotonic() from which the next feedback goes out
 
     # -- control from outside ----------------------------------------------------------
     def stop(self, reason: str) -> None:
@@ -126,7 +132,7 @@ class Navigation:
             if self._stop is not None:
                 return self._stop
             await self._take_newer_goal()  # may start another tree
-            self.channel.publish_feedback(self._feedback())
+            self._publish_feedback()
             await self._wait(self.tree or tree, period)
             if self._stop is not None:
                 return self._stop
@@ -183,6 +189,7 @@ class Navigation:
         previous = self.request
         self.request = newer
         self.started = self.navigator.clock.now()
+        self._feedback_due = 0.0  # the new goal's first feedback at once
         if self.navigator.tree_of(newer) == self.tree_source:
             log.info("goal %s replaces %s on the running tree", newer.goal_id, previous.goal_id)
             self._set_goal(newer)
@@ -238,6 +245,14 @@ class Navigation:
                 self._recording = None
 
     # -- feedback ------------------------------------------------------------------------
+    def _publish_feedback(self) -> None:
+        """Feedback, unless some went out less than a loop period of wall time ago."""
+        now = time.monotonic()
+        if now < self._feedback_due:
+            return
+        self._feedback_due = now + self.navigator.options.bt_loop_duration
+        self.channel.publish_feedback(self._feedback())
+
     def _feedback(self) -> Msg:
         robot = self.navigator.robot
         pose = robot.current_pose()

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pytest
 
+from aiobt.core.clock import ManualClock
 from aiobt.msgs import NavigateThroughPoses, NavigateToPose
 from aiobt.msgs import Path as PathMsg
 from aiobt.navigator.progress import PathProgress, time_remaining
@@ -84,6 +85,60 @@ async def test_feedback_distance_time_recoveries_and_poses_remaining(tmp_path: P
     assert feedback.navigation_time >= 0.0
     rig.gates.open("drive")
     await asyncio.wait_for(task, WAIT)
+
+
+class WallClock:
+    """``time.monotonic`` as the navigation reads it, moved by the test."""
+
+    def __init__(self) -> None:
+        self.now = 1000.0
+
+    def monotonic(self) -> float:
+        return self.now
+
+
+async def test_feedback_goes_out_at_most_once_per_loop_period_of_wall_time(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The loop turns on the robot's clock (ten times a wall period at a sim speed-up of
+    10); feedback goes out once per period of wall time, and at once for a newer goal."""
+    wall = WallClock()
+    monkeypatch.setattr("aiobt.navigator.navigation.time", wall)
+    clock = ManualClock()
+    rig = make_rig(tmp_path, TREES, clock=clock)
+    channel = FakeChannel()
+    task = asyncio.create_task(rig.navigator.navigate(to_pose("g"), channel))
+    await rig.gates.wait_started("drive")
+    navigation = rig.navigator.current
+    assert navigation is not None
+    period = rig.navigator.options.bt_loop_duration
+
+    async def turns(count: int) -> None:
+        """``count`` turns of the loop, each a period of robot time."""
+        for _ in range(count):
+            ticks = navigation.ticks
+            clock.advance(period)
+            async with asyncio.timeout(WAIT):
+                while navigation.ticks == ticks:  # noqa: ASYNC110 - the loop turns in this loop
+                    await asyncio.sleep(0)
+
+    await turns(20)  # no wall time passed: only the first turn's feedback
+    assert len(channel.feedback) == 1
+    wall.now += period
+    await turns(20)
+    assert len(channel.feedback) == 2
+    wall.now += period / 2
+    await turns(5)
+    assert len(channel.feedback) == 2
+    channel.newer.append(to_pose("h", 3.0, 3.0))
+    await turns(2)  # a newer goal's feedback goes out at once, not a period later
+    assert len(channel.feedback) == 3
+    assert navigation.request.goal_id == "h"
+    assert navigation.ticks >= 48
+    rig.gates.open("drive")
+    await rig.gates.wait_started("park")
+    rig.gates.open("park")
+    assert (await asyncio.wait_for(task, WAIT)).error_code == 0
 
 
 async def test_a_goal_before_any_robot_pose_fails_with_tf_error(tmp_path: Path) -> None:
