@@ -17,8 +17,9 @@ Without TF, the frames known are the pose's (``map``) and the odometry's
 
 from __future__ import annotations
 
+import itertools
 import logging
-from collections import deque
+import math
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from aiobt.msgs import BatteryState, Msg, Odometry, PoseStamped, TrackingFeedback
@@ -44,63 +45,69 @@ _MODELS: dict[str, type[Msg]] = {
     TRACKING: TrackingFeedback,
 }
 ODOM_SMOOTHING_WINDOW = 0.3  # s of odometry averaged for the speed (Nav2's OdomSmoother)
+ODOM_KEEP = 32  # odometry messages kept: 0.64 s at the robot's 50 Hz, over the window
 BRAKE_ACCEL_LIMIT = -10.0  # m/s^2: a harder deceleration means the robot hit something
 
 
 class OdomSmoother:
     """The robot's speed: the twists of the last ``window`` seconds of odometry
-    (by their stamps), averaged, as Nav2's ``nav2_util::OdomSmoother``."""
+    (by their stamps), averaged, as Nav2's ``nav2_util::OdomSmoother``; read from
+    the messages the odometry topic keeps, when asked."""
 
     def __init__(self, odom: SharedTopic[Odometry], window: float = ODOM_SMOOTHING_WINDOW) -> None:
         self.window = window
-        self._history: deque[Odometry] = deque()
-        odom.listen(self._add)
-
-    def _add(self, message: Odometry) -> None:
-        history = self._history
-        if history and message.header.stamp < history[-1].header.stamp:
-            history.clear()  # time went back (a simulation reset): start afresh
-        history.append(message)
-        newest = message.header.stamp
-        while history and history[0].header.stamp < newest - self.window:
-            history.popleft()
+        self._odom = odom
 
     def speed(self) -> float | None:
         """Mean planar speed (m/s) over the window; None before any odometry."""
-        if not self._history:
+        vx = vy = 0.0
+        n = 0
+        newest = later = math.inf
+        for message in self._odom.newest_first():
+            stamp = message.header.stamp
+            if n == 0:
+                newest = stamp
+            elif stamp > later or stamp < newest - self.window:
+                break  # time went back (a simulation reset) before it, or out of the window
+            later = stamp
+            vx += message.twist.linear.x
+            vy += message.twist.linear.y
+            n += 1
+        if n == 0:
             return None
-        n = len(self._history)
-        vx = sum(m.twist.linear.x for m in self._history) / n
-        vy = sum(m.twist.linear.y for m in self._history) / n
+        vx, vy = vx / n, vy / n
         return float((vx * vx + vy * vy) ** 0.5)
 
 
 class BrakeDetector:
     """IsStuck's measure (Nav2): the acceleration between the last two odometry
-    messages; below ``BRAKE_ACCEL_LIMIT`` the robot is stuck (it braked on something)."""
+    messages when asked; below ``BRAKE_ACCEL_LIMIT`` the robot is stuck (it braked
+    on something). Two messages with the same stamp leave the last verdict."""
 
     def __init__(self, odom: SharedTopic[Odometry]) -> None:
         self.accel = 0.0
-        self.stuck = False
-        self._previous: Odometry | None = None
+        self._stuck = False
+        self._odom = odom
         self._reported = False
-        odom.listen(self._add)
 
-    def _add(self, message: Odometry) -> None:
-        previous, self._previous = self._previous, message
-        if previous is None:
-            return
+    @property
+    def stuck(self) -> bool:
+        last_two = list(itertools.islice(self._odom.newest_first(), 2))
+        if len(last_two) < 2:
+            return self._stuck
+        message, previous = last_two
         dt = message.header.stamp - previous.header.stamp
         if dt <= 0.0:  # repeated or reordered stamps: no rate to measure
             if not self._reported:
                 self._reported = True
                 log.warning("odometry stamps do not increase (dt=%.3f s); ignored", dt)
-            return
+            return self._stuck
         self.accel = (message.twist.linear.x - previous.twist.linear.x) / dt
         stuck = self.accel < BRAKE_ACCEL_LIMIT
-        if stuck != self.stuck:
+        if stuck != self._stuck:
             log.info("robot %s (accel %.2f m/s^2)", "got stuck" if stuck else "is free", self.accel)
-        self.stuck = stuck
+        self._stuck = stuck
+        return stuck
 
 
 class RobotState:
@@ -109,13 +116,16 @@ class RobotState:
     def __init__(self, topics: SharedTopics) -> None:
         self.topics = topics
 
+    def odom_topic(self) -> SharedTopic[Odometry]:
+        return self.topics.topic(ODOM, Odometry, keep=ODOM_KEEP)
+
     @property
     def pose(self) -> PoseStamped | None:
         return self.topics.topic(POSE, PoseStamped).latest
 
     @property
     def odometry(self) -> Odometry | None:
-        return self.topics.topic(ODOM, Odometry).latest
+        return self.odom_topic().latest
 
     @property
     def initial_pose(self) -> PoseStamped | None:
@@ -146,20 +156,23 @@ class RobotState:
     def speed(self) -> float | None:
         """The smoothed planar speed (m/s), None before any odometry."""
         smoother: OdomSmoother = self.topics.shared(
-            "odom_smoother", lambda t: OdomSmoother(t.topic(ODOM, Odometry))
+            "odom_smoother", lambda _: OdomSmoother(self.odom_topic())
         )
         return smoother.speed()
 
     def brake(self) -> BrakeDetector:
         detector: BrakeDetector = self.topics.shared(
-            "brake_detector", lambda t: BrakeDetector(t.topic(ODOM, Odometry))
+            "brake_detector", lambda _: BrakeDetector(self.odom_topic())
         )
         return detector
 
     def prepare(self, *names: str) -> None:
         """Subscribe now to the keys a node will read (so data arrive before its first tick)."""
         for name in names:
-            self.topics.topic(name, _MODELS.get(name, BatteryState))
+            if name == ODOM:
+                self.odom_topic()
+            else:
+                self.topics.topic(name, _MODELS.get(name, BatteryState))
 
 
 def robot_state(nav: NavContext, who: str) -> RobotState:

@@ -3,16 +3,17 @@
 Nav2's nodes each open their own ROS subscription; here every node and every
 tree that reads ``{ns}/odom`` (or a selector's topic) on the same bus and
 namespace shares one Zenoh subscription, declared on first use and kept until
-the bus closes. The last good message is kept: a malformed payload is dropped
-and reported once by the subscription, so a node reading ``latest`` never
-sees it and never raises because of it.
+the bus closes. It is read, not delivered: Zenoh's thread keeps the newest
+payload and a node reading ``latest`` decodes it (``Bus.latest``). The last good
+message is kept: a malformed payload is dropped and reported once, so a node
+reading ``latest`` never sees it and never raises because of it.
 """
 
 from __future__ import annotations
 
 import logging
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from aiobt.core.errors import LogicError
@@ -21,39 +22,58 @@ from aiobt.transport.keys import check_name
 
 if TYPE_CHECKING:
     from aiobt.nav.context import NavContext
-    from aiobt.transport import Bus, Subscription
+    from aiobt.transport import Bus, Latest
 
 M = TypeVar("M", bound=Msg)
 log = logging.getLogger("aiobt.nav.shared_topics")
 
 
 class SharedTopic(Generic[M]):
-    """The last good message on one key (``latest``, None until one came) and the
-    functions called with every message (``listen``)."""
+    """The newest good message on one key (``latest``, None until one came), read
+    through :meth:`Bus.latest <aiobt.transport.Bus.latest>`: Zenoh's thread keeps the
+    payload, a reader decodes it. No message wakes the event loop: at a sim speed-up
+    of 10 the robot's pose and odometry are 1,000 messages a wall second, and
+    handing each to the navigator's loop (and decoding it) was most of its intake.
+    ``keep`` > 1 also keeps the last ``keep`` messages (:meth:`newest_first`)."""
 
-    __slots__ = ("_listeners", "key", "latched", "latest", "model", "received", "subscription")
+    __slots__ = ("_received", "keep", "key", "latched", "model", "reader")
 
-    def __init__(self, key: str, model: type[M], latched: bool) -> None:
+    def __init__(self, key: str, model: type[M], latched: bool, keep: int = 1) -> None:
         self.key = key
         self.model = model
         self.latched = latched
-        self.latest: M | None = None
-        self.received = 0
-        self.subscription: Subscription[M] | None = None
-        self._listeners: list[Callable[[M], object]] = []
+        self.keep = keep
+        self.reader: Latest[M] | None = None
+        self._received = 0  # by readers closed before (a pause)
 
-    def listen(self, listener: Callable[[M], object]) -> None:
-        """Call ``listener(message)`` in the event loop for every good message."""
-        self._listeners.append(listener)
+    @property
+    def latest(self) -> M | None:
+        reader = self.reader
+        return None if reader is None else reader.get()
 
-    def deliver(self, message: M) -> None:
-        self.latest = message
-        self.received += 1
-        for listener in self._listeners:
-            try:
-                listener(message)
-            except Exception:
-                log.exception("%s: listener %r failed", self.key, listener)
+    @property
+    def received(self) -> int:
+        """Messages that arrived (good or not) since the topic was first subscribed."""
+        reader = self.reader
+        return self._received + (0 if reader is None else reader.received)
+
+    def newest_first(self) -> Iterator[M]:
+        """The kept messages, newest first, decoded as far as the iteration goes."""
+        reader = self.reader
+        return iter(()) if reader is None else reader.newest_first()
+
+    async def wait_latest(self, timeout: float | None = None) -> M:  # noqa: ASYNC109
+        """The newest good message, waiting (at most ``timeout`` s) for one."""
+        if self.reader is None:
+            raise LogicError(f"{self.key} is paused: nothing to wait for")
+        return await self.reader.wait_latest(timeout)
+
+    def close(self) -> None:
+        """Stop reading (a pause): ``latest`` is None until read again."""
+        reader, self.reader = self.reader, None
+        if reader is not None:
+            self._received += reader.received
+            reader.close()
 
 
 class SharedTopics:
@@ -72,8 +92,11 @@ class SharedTopics:
             raise LogicError(f"the bus of namespace {self.namespace!r} is gone")
         return bus
 
-    def topic(self, name: str, model: type[M], *, latched: bool = False) -> SharedTopic[M]:
-        """The shared reader of ``{ns}/{name}``, subscribed on the first call."""
+    def topic(
+        self, name: str, model: type[M], *, latched: bool = False, keep: int = 1
+    ) -> SharedTopic[M]:
+        """The shared reader of ``{ns}/{name}``, subscribed on the first call (which
+        sets ``keep``: the messages kept for :meth:`SharedTopic.newest_first`)."""
         found = self._topics.get(name)
         if found is not None:
             if found.model is not model:
@@ -81,36 +104,38 @@ class SharedTopics:
                     f"{found.key} is read as {found.model.__name__} and as {model.__name__}: "
                     "one key carries one message type"
                 )
+            if keep > found.keep:
+                raise LogicError(
+                    f"{found.key} keeps {found.keep} messages, asked for {keep}: "
+                    "the first reader sets how many"
+                )
             return found
-        topic: SharedTopic[M] = SharedTopic(f"{self.namespace}/{name}", model, latched)
+        topic: SharedTopic[M] = SharedTopic(f"{self.namespace}/{name}", model, latched, keep)
         self._declare(name, topic)
         self._topics[name] = topic
         return topic
 
-    def _declare(self, name: str, topic: SharedTopic[M]) -> Subscription[M]:
-        topic.subscription = self.bus.subscribe(
-            name, topic.model, topic.deliver, latched=topic.latched, namespace=self.namespace
+    def _declare(self, name: str, topic: SharedTopic[M]) -> Latest[M]:
+        topic.reader = self.bus.latest(
+            name, topic.model, latched=topic.latched, namespace=self.namespace, keep=topic.keep
         )
         log.debug("subscribed to %s (%s)", topic.key, topic.model.__name__)
-        return topic.subscription
+        return topic.reader
 
     def pause(self) -> None:
-        """Close the subscriptions of the topics not latched (the robot's streams) and
-        forget their last message, until :meth:`resume`; listeners stay registered."""
+        """Stop reading the topics not latched (the robot's streams) and forget their
+        last message, until :meth:`resume`."""
         for topic in self._topics.values():
-            if topic.latched or topic.subscription is None:
-                continue
-            topic.subscription.close()
-            topic.subscription = None
-            topic.latest = None
+            if not topic.latched:
+                topic.close()
 
-    def resume(self) -> dict[str, Subscription[Any]]:
-        """Subscribe again to the paused topics; every topic's subscription, by name."""
-        subs: dict[str, Subscription[Any]] = {}
+    def resume(self) -> dict[str, Latest[Any]]:
+        """Read the paused topics again; every topic's reader, by name."""
+        readers: dict[str, Latest[Any]] = {}
         for name, topic in self._topics.items():
-            sub = topic.subscription
-            subs[name] = sub if sub is not None else self._declare(name, topic)
-        return subs
+            reader = topic.reader
+            readers[name] = reader if reader is not None else self._declare(name, topic)
+        return readers
 
     def subscribed(self) -> list[str]:
         """The keys subscribed so far."""
@@ -118,7 +143,7 @@ class SharedTopics:
 
     def live(self) -> list[str]:
         """The keys subscribed now (not paused)."""
-        return [topic.key for topic in self._topics.values() if topic.subscription is not None]
+        return [topic.key for topic in self._topics.values() if topic.reader is not None]
 
     def shared(self, name: str, make: Callable[[SharedTopics], Any]) -> Any:
         """One ``make(self)`` per bus and namespace (e.g. the odometry smoother)."""

@@ -15,6 +15,7 @@ import logging
 from typing import Any
 
 from aiobt.core.clock import Clock
+from aiobt.core.errors import LogicError
 from aiobt.msgs import (
     ActionResult,
     BtSnapshot,
@@ -36,7 +37,7 @@ from aiobt.navigator.goals import (
     NavRequest,
 )
 from aiobt.navigator.navigator import Navigator
-from aiobt.transport import Bus, Subscription
+from aiobt.transport import Bus, Latest
 from aiobt.transport.actions.goals import GoalHandle
 from aiobt.transport.on_demand import OnDemand
 from aiobt.transport.simtime import FRESH_TIMEOUT, clock_held
@@ -59,16 +60,20 @@ class NavRobotState:
     def __init__(self, nav: NavContext, clock: Clock, pose_timeout: float) -> None:
         self._robot = robot_state(nav, "navigator")
         self._robot.prepare(POSE, ODOM)
-        self._pose_seen = asyncio.Event()
-        self._robot.topics.topic(POSE, PoseStamped).listen(lambda _: self._pose_seen.set())
-        topics = self._robot.topics
-        topics.pause()  # the robot's streams only while a navigation runs (``active``)
-        self._feed = OnDemand(self._attach, self._pose_seen.clear, clock, released=topics.pause)
+        self._pose = self._robot.topics.topic(POSE, PoseStamped)
+        self._attached = asyncio.Event()
+        self._robot.topics.pause()  # the robot's streams only while a navigation runs
+        self._feed = OnDemand(self._attach, lambda: None, clock, released=self._released)
         self._pose_timeout = pose_timeout
 
-    def _attach(self) -> list[Subscription[Any]]:
-        subs = self._robot.topics.resume()
-        return [subs[POSE], subs[ODOM]]
+    def _attach(self) -> list[Latest[Any]]:
+        readers = self._robot.topics.resume()  # paused: nothing from before is kept
+        self._attached.set()
+        return [readers[POSE], readers[ODOM]]
+
+    def _released(self) -> None:
+        self._attached.clear()
+        self._robot.topics.pause()
 
     def active(self) -> contextlib.AbstractAsyncContextManager[bool]:
         """The robot's streams subscribed around a navigation (a fresh pose and
@@ -83,8 +88,9 @@ class NavRobotState:
             return True
         try:
             async with asyncio.timeout(timeout):  # not wait_for: see Navigation._wait
-                await self._pose_seen.wait()
-        except TimeoutError:
+                await self._attached.wait()  # the streams are read while a navigation runs
+                await self._pose.wait_latest()
+        except (TimeoutError, LogicError):  # LogicError: let go again meanwhile
             return False
         return self.current_pose() is not None
 

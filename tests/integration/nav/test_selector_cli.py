@@ -15,7 +15,7 @@ from aiobt.msgs import String
 from aiobt.nav import NavContext
 from aiobt.nav.shared_topics import SharedTopic, shared_topics
 from aiobt.transport import Bus
-from tests.unit.nav.state_support import nav_tree
+from tests.unit.nav.state_support import nav_tree, wait_received
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(120)]
 PLANNER = (
@@ -62,10 +62,9 @@ async def zenoh_put(router: str, key: str, value: str) -> None:
 
 
 async def put_and_wait(bus: Bus, router: str, topic: SharedTopic[String], value: str) -> None:
-    arrived = asyncio.Event()
-    topic.listen(lambda _: arrived.set())
+    before = topic.received
     await zenoh_put(router, topic.key, value)
-    await asyncio.wait_for(arrived.wait(), 30)
+    await wait_received(topic, before, 30.0)
 
 
 async def test_zenoh_put_switches_the_planner_selector(bus: Bus, router_endpoint: str) -> None:

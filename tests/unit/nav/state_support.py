@@ -1,17 +1,18 @@
 """Helpers of the Nav2 node tests: trees with the Nav2 node set on an in-process bus,
-and publishing a message until the nodes' shared subscription has it."""
+and publishing a message until the nodes' shared topic has it."""
 
 from __future__ import annotations
 
 import asyncio
-from typing import TypeVar
+from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock
 from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import Msg, Path, PoseStamped
 from aiobt.nav import NavContext, register_nav2_nodes
-from aiobt.nav.shared_topics import shared_topics
+from aiobt.nav.robot_state import ODOM, ODOM_KEEP
+from aiobt.nav.shared_topics import SharedTopic, shared_topics
 from aiobt.testing.stubs import Stubs, tree_xml
 from aiobt.transport import Bus
 
@@ -28,19 +29,28 @@ def nav_tree(
     return factory.create_tree_from_text(tree_xml(body), clock=clock)
 
 
+async def wait_received(topic: SharedTopic[Any], more_than: int, timeout: float = WAIT) -> None:  # noqa: ASYNC109
+    """Until ``topic`` has received more than ``more_than`` messages (a shared topic is
+    read, not delivered: there is no arrival to await)."""
+    async with asyncio.timeout(timeout):
+        while topic.received <= more_than:  # noqa: ASYNC110 - nothing to await
+            await asyncio.sleep(0.005)
+
+
 async def deliver(bus: Bus, name: str, message: M, *, latched: bool = False) -> None:
-    """Publish ``message`` on ``{ns}/{name}`` and wait until the shared subscription has it."""
-    topic = shared_topics(NavContext(bus=bus), "test").topic(name, type(message), latched=latched)
-    arrived = asyncio.Event()
-    topic.listen(lambda m: arrived.set() if m == message else None)
+    """Publish ``message`` on ``{ns}/{name}`` and wait until the shared topic has it."""
+    hub = shared_topics(NavContext(bus=bus), "test")
+    topic = hub.topic(name, type(message), latched=latched, keep=ODOM_KEEP if name == ODOM else 1)
     publisher = (
         bus.latched_publisher(name, type(message))
         if latched
         else bus.publisher(name, type(message))
     )
     assert await publisher.wait_for_subscribers(WAIT), f"nobody subscribed to {name}"
+    before = topic.received
     publisher.put(message)
-    await asyncio.wait_for(arrived.wait(), WAIT)
+    await wait_received(topic, before)
+    assert topic.latest == message
     publisher.close()
 
 

@@ -3,7 +3,6 @@ every node, tree and factory; the last good value kept through bad data."""
 
 from __future__ import annotations
 
-import asyncio
 import logging
 
 import pytest
@@ -18,7 +17,7 @@ from aiobt.nav.robot_state import robot_state
 from aiobt.nav.shared_topics import shared_topics
 from aiobt.testing.bus import open_local_bus
 from aiobt.transport import Bus
-from tests.unit.nav.state_support import WAIT, at, deliver, nav_tree
+from tests.unit.nav.state_support import at, deliver, nav_tree, wait_received
 
 S, F = Status.SUCCESS, Status.FAILURE
 pytestmark = pytest.mark.timeout(60)
@@ -72,17 +71,16 @@ async def test_bad_pose_data_keeps_the_last_good_pose_and_logs_once(
     tree = nav_tree(local_bus, '<GetCurrentPose current_pose="{p}"/>')
     await deliver(local_bus, "pose", at(2.0))
     topic = shared_topics(NavContext(bus=local_bus), "test").topic("pose", PoseStamped)
-    assert topic.subscription is not None
+    assert topic.reader is not None
     key = f"{local_bus.namespace}/pose"
     with caplog.at_level(logging.WARNING):
         for payload in (b'{"x": "far"}', b"not json", b'{"x": "far"}', b'{"x": 1e999}', b"{"):
+            before = topic.received
             local_bus.session.put(key, payload)
-        async with asyncio.timeout(WAIT):
-            while topic.subscription.dropped_invalid < 5:  # noqa: ASYNC110 - no drop event
-                await asyncio.sleep(0.01)
-        for _ in range(3):
+            await wait_received(topic, before)  # read while it is the newest
             assert await tree.tick_exactly_once() is S
             assert tree.root_blackboard["p"].x == 2.0
+    assert topic.reader.dropped_invalid == 5
     warnings = [r for r in caplog.records if key in r.getMessage()]
     assert len(warnings) == 2  # once per bad field ("x", the payload), not per message
 

@@ -3,7 +3,6 @@ one shared latched subscription per key."""
 
 from __future__ import annotations
 
-import asyncio
 import logging
 
 import pytest
@@ -13,7 +12,7 @@ from aiobt.msgs import String
 from aiobt.nav import NavContext
 from aiobt.nav.shared_topics import shared_topics
 from aiobt.transport import Bus
-from tests.unit.nav.state_support import WAIT, deliver, nav_tree
+from tests.unit.nav.state_support import deliver, nav_tree, wait_received
 
 S, F = Status.SUCCESS, Status.FAILURE
 PLANNER = (
@@ -70,10 +69,8 @@ async def test_raw_text_a_json_string_and_std_msgs_string_all_switch_it(
         '<ControllerSelector default_controller="FollowPath" selected_controller="{c}"/>',
     )
     topic = shared_topics(NavContext(bus=local_bus), "test").topic("controller_selector", String)
-    arrived = asyncio.Event()
-    topic.listen(lambda _: arrived.set())
     local_bus.session.put(f"{local_bus.namespace}/controller_selector", payload)
-    await asyncio.wait_for(arrived.wait(), WAIT)
+    await wait_received(topic, 0)
     assert await tree.tick_exactly_once() is S
     assert tree.root_blackboard["c"] == "FollowPathB"
 
@@ -88,10 +85,7 @@ async def test_a_late_selector_gets_the_latched_value(local_bus: Bus) -> None:
     topic = shared_topics(NavContext(bus=local_bus), "test").topic(
         "goal_checker_selector", String, latched=True
     )
-    if topic.latest is None:
-        arrived = asyncio.Event()
-        topic.listen(lambda _: arrived.set())
-        await asyncio.wait_for(arrived.wait(), WAIT)
+    await wait_received(topic, 0)
     assert await tree.tick_exactly_once() is S
     assert tree.root_blackboard["g"] == "precise_goal_checker"
 
@@ -114,15 +108,15 @@ async def test_bad_data_keeps_the_last_good_value_and_is_logged_once(
     await deliver(local_bus, "planner_selector", String(data="Good"))
     hub = shared_topics(NavContext(bus=local_bus), "test")
     topic = hub.topic("planner_selector", String)
-    assert topic.subscription is not None
+    assert topic.reader is not None
     with caplog.at_level(logging.WARNING):
-        for _ in range(6):
+        for _ in range(6):  # each read while it is the newest
+            before = topic.received
             local_bus.session.put(f"{local_bus.namespace}/planner_selector", b'{"data": 5}')
-        async with asyncio.timeout(WAIT):
-            while topic.subscription.dropped_invalid < 6:  # noqa: ASYNC110 - no drop event
-                await asyncio.sleep(0.01)
-    assert await tree.tick_exactly_once() is S
-    assert tree.root_blackboard["planner"] == "Good"
+            await wait_received(topic, before)
+            assert await tree.tick_exactly_once() is S
+            assert tree.root_blackboard["planner"] == "Good"
+    assert topic.reader.dropped_invalid == 6
     assert sum("planner_selector" in r.getMessage() for r in caplog.records) == 1
 
 
