@@ -118,3 +118,21 @@ async def test_a_closed_bus_is_not_kept_alive_by_its_shared_topics() -> None:
     del bus
     gc.collect()
     assert gone() is None
+
+
+async def test_speed_is_the_mean_over_the_last_window_of_odometry_stamps(local_bus: Bus) -> None:
+    def moving(stamp: float, vx: float) -> Odometry:
+        return Odometry.model_validate(
+            {"header": {"stamp": stamp, "frame_id": "odom"}, "twist": {"linear": {"x": vx}}}
+        )
+
+    robot = robot_state(NavContext(bus=local_bus), "test")
+    robot.prepare("odom")
+    assert robot.speed() is None
+    for stamp, vx in ((1.0, 1.0), (1.1, 1.0), (1.5, 0.0), (1.6, 0.2)):
+        await deliver(local_bus, "odom", moving(stamp, vx))
+    assert robot.speed() == pytest.approx(0.1)  # 1.5 and 1.6: within 0.3 s of the newest
+    await deliver(local_bus, "odom", moving(0.2, 0.4))  # time went back (a reset)
+    assert robot.speed() == pytest.approx(0.4)  # only what came since
+    await deliver(local_bus, "odom", moving(0.3, 0.0))
+    assert robot.speed() == pytest.approx(0.2)
