@@ -7,7 +7,8 @@ the running one is halted and the new one starts), publish feedback, and wait
 for the loop period or a wake-up. The period is on the robot's clock; feedback
 goes out at most once per period of *wall* time, as often as Nav2 sends it (its
 loop is a ``WallRate``): at a sim speed-up of 10 the loop turns ten times as
-often, and a feedback reply each turn was half of the navigator's CPU.
+often, and a feedback reply each turn cost the navigator's main thread about a
+sixth of its CPU (``bench/RESULTS.md``, system).
 Cancellation (a canceled goal) halts the tree, which cancels every goal its
 leaves hold on servers.
 """
