@@ -32,8 +32,8 @@ class SharedTopic(Generic[M]):
     """The newest good message on one key (``latest``, None until one came), read
     through :meth:`Bus.latest <aiobt.transport.Bus.latest>`: Zenoh's thread keeps the
     payload, a reader decodes it. No message wakes the event loop: at a sim speed-up
-    of 10 the robot's pose and odometry are 1,000 messages a wall second, and
-    handing each to the navigator's loop (and decoding it) was most of its intake.
+    of 10 the robot's pose and odometry are 1,000 messages a wall second, each a
+    hand-over to the navigator's loop and a decode when they were delivered.
     ``keep`` > 1 also keeps the last ``keep`` messages (:meth:`newest_first`)."""
 
     __slots__ = ("_received", "keep", "key", "latched", "model", "reader")

@@ -22,7 +22,7 @@ class IsStuck(RobotStateNode, ConditionNode):
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
         if self.nav.bus is not None:
-            self.robot.brake()  # measuring from now, not from the first tick
+            self.robot.brake()  # the odometry it reads is kept from now (READS)
 
     def check(self) -> bool:
         return self.robot.brake().stuck
