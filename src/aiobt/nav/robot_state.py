@@ -46,6 +46,7 @@ _MODELS: dict[str, type[Msg]] = {
 }
 ODOM_SMOOTHING_WINDOW = 0.3  # s of odometry averaged for the speed (Nav2's OdomSmoother)
 ODOM_KEEP = 32  # odometry messages kept: 0.64 s at the robot's 50 Hz, over the window
+KEEP = {ODOM: ODOM_KEEP}  # messages each key keeps (the others: the newest only)
 BRAKE_ACCEL_LIMIT = -10.0  # m/s^2: a harder deceleration means the robot hit something
 
 
@@ -116,8 +117,8 @@ class RobotState:
     def __init__(self, topics: SharedTopics) -> None:
         self.topics = topics
 
-    def odom_topic(self) -> SharedTopic[Odometry]:
-        return self.topics.topic(ODOM, Odometry, keep=ODOM_KEEP)
+    def _odom(self) -> SharedTopic[Odometry]:
+        return self.topics.topic(ODOM, Odometry, keep=KEEP[ODOM])
 
     @property
     def pose(self) -> PoseStamped | None:
@@ -125,7 +126,7 @@ class RobotState:
 
     @property
     def odometry(self) -> Odometry | None:
-        return self.odom_topic().latest
+        return self._odom().latest
 
     @property
     def initial_pose(self) -> PoseStamped | None:
@@ -156,23 +157,20 @@ class RobotState:
     def speed(self) -> float | None:
         """The smoothed planar speed (m/s), None before any odometry."""
         smoother: OdomSmoother = self.topics.shared(
-            "odom_smoother", lambda _: OdomSmoother(self.odom_topic())
+            "odom_smoother", lambda _: OdomSmoother(self._odom())
         )
         return smoother.speed()
 
     def brake(self) -> BrakeDetector:
         detector: BrakeDetector = self.topics.shared(
-            "brake_detector", lambda _: BrakeDetector(self.odom_topic())
+            "brake_detector", lambda _: BrakeDetector(self._odom())
         )
         return detector
 
     def prepare(self, *names: str) -> None:
         """Subscribe now to the keys a node will read (so data arrive before its first tick)."""
         for name in names:
-            if name == ODOM:
-                self.odom_topic()
-            else:
-                self.topics.topic(name, _MODELS.get(name, BatteryState))
+            self.topics.topic(name, _MODELS.get(name, BatteryState), keep=KEEP.get(name, 1))
 
 
 def robot_state(nav: NavContext, who: str) -> RobotState:

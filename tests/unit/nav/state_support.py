@@ -11,7 +11,7 @@ from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import Msg, Path, PoseStamped
 from aiobt.nav import NavContext, register_nav2_nodes
-from aiobt.nav.robot_state import ODOM, ODOM_KEEP
+from aiobt.nav.robot_state import KEEP
 from aiobt.nav.shared_topics import SharedTopic, shared_topics
 from aiobt.testing.stubs import Stubs, tree_xml
 from aiobt.transport import Bus
@@ -40,7 +40,7 @@ async def wait_received(topic: SharedTopic[Any], more_than: int, timeout: float 
 async def deliver(bus: Bus, name: str, message: M, *, latched: bool = False) -> None:
     """Publish ``message`` on ``{ns}/{name}`` and wait until the shared topic has it."""
     hub = shared_topics(NavContext(bus=bus), "test")
-    topic = hub.topic(name, type(message), latched=latched, keep=ODOM_KEEP if name == ODOM else 1)
+    topic = hub.topic(name, type(message), latched=latched, keep=KEEP.get(name, 1))
     publisher = (
         bus.latched_publisher(name, type(message))
         if latched
