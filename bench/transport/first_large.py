@@ -38,19 +38,14 @@ from aiobt.testing.bus import running_router
 from aiobt.transport import BusSettings
 
 KEY = "bench/first_large"
+ROOT = str(Path(__file__).resolve().parents[2])  # where ``bench`` imports from
 SENDER = textwrap.dedent(
     """
     import json, sys, time, zenoh
-    from aiobt.transport import BusSettings
+    from bench.transport.first_large import session_config
     endpoint, variant, size, count, gap, key = sys.argv[1:7]
-    if variant == "zenoh":
-        config = zenoh.Config()
-        config.insert_json5("mode", '"client"')
-        config.insert_json5("connect/endpoints", f'["{endpoint}"]')
-    else:
-        config = BusSettings(connect=(endpoint,)).zenoh_config()
     payload = b"x" * int(size)
-    with zenoh.open(config) as session:
+    with zenoh.open(session_config(variant, endpoint)) as session:
         querier = session.declare_querier(key)
         deadline = time.monotonic() + 20.0
         while not querier.matching_status.matching:
@@ -91,6 +86,8 @@ class Arrivals:
 
 
 def session_config(variant: str, endpoint: str) -> zenoh.Config:
+    """A client of ``endpoint`` with aiobt's settings or Zenoh's defaults (this process's
+    and the senders')."""
     if variant == "aiobt":
         return BusSettings(connect=(endpoint,)).zenoh_config()
     config = zenoh.Config()
@@ -103,7 +100,11 @@ def one_session(endpoint: str, variant: str, args: argparse.Namespace) -> list[t
     """(delivery, call) seconds of each query of one new sender process."""
     argv = [endpoint, variant, str(args.size), str(args.queries), str(args.gap), KEY]
     done = subprocess.run(
-        [sys.executable, "-c", SENDER, *argv], capture_output=True, text=True, timeout=120
+        [sys.executable, "-c", SENDER, *argv],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=ROOT,  # ``-c`` imports from the working directory: ``bench`` is there
     )
     if done.returncode != 0:
         raise SystemExit(f"sender ({variant}) failed:\n{done.stderr}")
