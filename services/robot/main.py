@@ -115,6 +115,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             speed=args.speed,
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
             command_wait=args.command_wait,
+            max_lag=args.max_lag,
         )
         _wire(bus, service)
         settle()  # start-up's objects (the world's too) out of the collector's full passes

@@ -9,6 +9,7 @@ from aiobt_services._cli import non_negative, positive
 
 from .drive import DriveLimits
 from .pacing import parse_speed
+from .runner import MAX_LAG
 from .sensors import LidarConfig, NoiseConfig
 from .sim import SimConfig
 
@@ -55,6 +56,15 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
         type=positive,
         default=0.5,
         help="stop when no cmd_vel for this long, s of sim time (default: %(default)s)",
+    )
+    add(
+        "--max-lag",
+        type=positive,
+        default=MAX_LAG,
+        metavar="SECONDS",
+        help="when the machine cannot keep up and the sim falls more than this many wall "
+        "seconds behind its --speed, give that sim time up instead of catching it up in a "
+        "burst of steps no client can act in (default: %(default)s)",
     )
     add(
         "--command-wait",

@@ -35,6 +35,13 @@ LATE_WALL = 0.02
 # steps due after it run back to back (a loop pass between each). Fewer wake-ups: each
 # one preempts whichever process has the core (the controller, at 10x: 1000 a second).
 MIN_SLEEP = 0.004
+# Behind its target by more than this (wall s), the sim gives the sim time up instead of
+# catching it up in a burst: two of the shortest sleeps (at 10x 80 ms of sim time, under
+# two periods of a 20 Hz controller). Every sim second run in a burst is one no client
+# can act in: after a 30 ms stall of this process at 10x a catch-up would step 0.3 s of
+# sim time in a few ms of wall time, on the last command, and a controller following
+# the clock loses the control cycles that were due in it.
+MAX_LAG = 2 * MIN_SLEEP
 
 
 class Outputs(Protocol):
@@ -72,7 +79,7 @@ class SimRunner:
         rates: Rates | None = None,
         wall: Clock | None = None,
         publish_clock: bool = True,
-        max_lag: float = 0.25,
+        max_lag: float = MAX_LAG,
         report_every: float = 5.0,
         command_wait: float = 0.5,
     ) -> None:

@@ -17,7 +17,7 @@ from aiobt_services.robot.drive import DriveController
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.options import add_robot_arguments
 from aiobt_services.robot.pacing import Pacer, parse_speed
-from aiobt_services.robot.runner import LATE_WALL, MIN_SLEEP, SimRunner
+from aiobt_services.robot.runner import LATE_WALL, MAX_LAG, MIN_SLEEP, SimRunner
 from aiobt_services.robot.sim import Simulation
 from aiobt_services.robot.worlds import SMALL
 
@@ -143,6 +143,18 @@ def test_speed_flag_takes_max_and_names_bad_values(capsys: pytest.CaptureFixture
     assert "'max'" in err
 
 
+def test_max_lag_flag_defaults_to_two_shortest_sleeps_and_names_bad_values(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    parser = argparse.ArgumentParser()
+    add_robot_arguments(parser)
+    assert parser.parse_args([]).max_lag == MAX_LAG == 2 * MIN_SLEEP
+    assert parser.parse_args(["--max-lag", "0.25"]).max_lag == 0.25
+    with pytest.raises(SystemExit):
+        parser.parse_args(["--max-lag", "0"])
+    assert "--max-lag" in capsys.readouterr().err
+
+
 def test_pacer_refuses_bad_parameters() -> None:
     with pytest.raises(ValueError, match="speed"):
         Pacer(0.0, DT)
@@ -160,6 +172,40 @@ async def test_run_paces_sim_time_at_the_speed_up(sim: Simulation) -> None:
     assert sim.time == pytest.approx(20.0, abs=MIN_SLEEP * 10.0 + 0.02)  # a batch behind
     # one wake-up per MIN_SLEEP (4 steps at 10x), not one per step (2000)
     assert 2.0 / MIN_SLEEP * 0.9 <= wall.sleeps <= 2.0 / MIN_SLEEP + 1
+
+
+class StallingWall(FakeWall):
+    """A fake wall on which the ``at``-th sleep lasts ``stall`` wall seconds longer (this
+    process preempted on a loaded machine); the sim time reached at each wake-up."""
+
+    def __init__(self, sim: Simulation, at: int, stall: float) -> None:
+        super().__init__()
+        self.sim, self.at, self.stall = sim, at, stall
+        self.woke_at: list[float] = []
+
+    async def sleep(self, seconds: float) -> None:
+        self.woke_at.append(self.sim.time)
+        await super().sleep(seconds + (self.stall if self.sleeps == self.at else 0.0))
+
+
+@pytest.mark.parametrize("max_lag", [MAX_LAG, 0.25])
+async def test_a_stall_is_given_up_not_caught_up_in_a_burst(
+    sim: Simulation, max_lag: float
+) -> None:
+    """A 30 ms stall at 10x: by default (8 ms) the 0.34 s of sim time due at the wake-up
+    is given up, so no wake-up runs more than 8 ms' worth (80 ms of sim time) of steps
+    back to back; with a 0.25 s lag allowed the whole 0.34 s runs at once."""
+    wall = StallingWall(sim, at=50, stall=0.03)
+    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, max_lag=max_lag)
+    await run_until(runner, wall, 0.5)
+    longest = max(b - a for a, b in itertools.pairwise(wall.woke_at))
+    given_up = 0.5 * 10.0 - sim.time
+    if max_lag == MAX_LAG:
+        assert longest <= MAX_LAG * 10.0
+        assert given_up == pytest.approx(0.34, abs=0.05)
+    else:
+        assert longest == pytest.approx(0.34, abs=DT / 2)
+        assert given_up == pytest.approx(0.0, abs=0.05)
 
 
 async def test_every_step_lets_the_loop_in_whatever_the_lag(sim: Simulation) -> None:
