@@ -2,7 +2,7 @@
 
 Each stamp is decoded on Zenoh's thread and handed to a :class:`SimTime`, which
 wakes the event loop only when a sleeper is due: a service that sleeps one control
-period at a time (or idles) no longer pays a loop wake-up for each of the 1,000
+period at a time (or idles) no longer pays a loop wake-up for each of the 250
 stamps a second the simulation sends at a speed-up of 10. A plain
 :class:`ManualClock` passed in is set in the loop at every stamp, as before.
 With ``on_demand`` the subscription is held only while the :class:`SimTime` is

@@ -1,13 +1,14 @@
 """A :class:`ManualClock` fed from another thread, woken only when a sleeper is due,
 listening to the simulation only while something needs its time.
 
-The simulation publishes its time at 100 Hz of sim time: 1,000 stamps a wall second
-at a speed-up of 10. Setting a clock in the event loop for each of them costs a
-service that sleeps once per control period (or not at all, idle) a loop wake-up
-per stamp. :class:`SimTime` lets the receiving thread record the newest stamp
-(:meth:`receive`, one float) and says when the loop must look: only when the
-stamp reaches the earliest sleeper's deadline. Readers of :meth:`now` in the loop
-see the newest stamp received, as promptly as before.
+The simulation publishes its time at 100 Hz of sim time, at a speed-up once per
+wake-up of its loop: 250 stamps a wall second at a speed-up of 10. Setting a clock
+in the event loop for each of them costs a service that sleeps once per control
+period (or not at all, idle) a loop wake-up per stamp. :class:`SimTime` lets the
+receiving thread record the newest stamp (:meth:`receive`, one float) and says when
+the loop must look: only when the stamp reaches the earliest sleeper's deadline.
+Readers of :meth:`now` in the loop see the newest stamp received, as promptly as
+before.
 
 Receiving the stamps at all still costs Zenoh's threads a few % of a core. Bound
 to a :class:`ClockSource` (:meth:`SimTime.bind`), the clock is listened to only

@@ -12,7 +12,9 @@ from collections.abc import Iterator
 
 import pytest
 
+from aiobt.msgs import Clock as ClockMsg
 from aiobt.msgs import Msg
+from aiobt_services.robot.bumper import ContactEvent
 from aiobt_services.robot.drive import DriveController
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.options import add_robot_arguments
@@ -48,15 +50,24 @@ class FakeWall:
 
 
 class CostlySink:
-    """The runner's outputs; every published clock stamp costs wall time (a slow step)."""
+    """The runner's outputs, the clock stamps kept; each physics step of ``sim`` costs
+    ``step_cost`` of wall time (a slow step)."""
 
-    def __init__(self, wall: FakeWall, step_cost: float) -> None:
+    def __init__(self, sim: Simulation, wall: FakeWall, step_cost: float) -> None:
+        self.clock: list[tuple[float, float]] = []  # (wall, stamp) of each clock message
         self.wall = wall
-        self.step_cost = step_cost
+        step = sim.step
+
+        def costly_step(count: int = 1) -> list[ContactEvent]:
+            events = step(count)
+            wall.pass_time(step_cost * count)
+            return events
+
+        sim.step = costly_step  # type: ignore[method-assign]
 
     def publish(self, topic: str, msg: Msg) -> None:
-        if topic == "clock":
-            self.wall.pass_time(self.step_cost)
+        if isinstance(msg, ClockMsg):
+            self.clock.append((self.wall.time, msg.clock))
 
 
 @pytest.fixture
@@ -167,7 +178,7 @@ def test_pacer_refuses_bad_parameters() -> None:
 
 async def test_run_paces_sim_time_at_the_speed_up(sim: Simulation) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall)
     await run_until(runner, wall, 2.0)
     assert sim.time == pytest.approx(20.0, abs=MIN_SLEEP * 10.0 + 0.02)  # a batch behind
     # one wake-up per MIN_SLEEP (4 steps at 10x), not one per step (2000)
@@ -196,7 +207,7 @@ async def test_a_stall_is_given_up_not_caught_up_in_a_burst(
     is given up, so no wake-up runs more than 8 ms' worth (80 ms of sim time) of steps
     back to back; with a 0.25 s lag allowed the whole 0.34 s runs at once."""
     wall = StallingWall(sim, at=50, stall=0.03)
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, max_lag=max_lag)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall, max_lag=max_lag)
     await run_until(runner, wall, 0.5)
     longest = max(b - a for a, b in itertools.pairwise(wall.woke_at))
     given_up = 0.5 * 10.0 - sim.time
@@ -208,10 +219,64 @@ async def test_a_stall_is_given_up_not_caught_up_in_a_burst(
         assert given_up == pytest.approx(0.0, abs=0.05)
 
 
+async def test_at_10x_the_clock_goes_out_once_per_wake_up_with_the_batch_end_time(
+    sim: Simulation,
+) -> None:
+    """Four steps per wake-up at 10x: one stamp at the batch's end (250 a wall second,
+    not 1,000), stamped with the sim time the followers then wake on, before the sleep."""
+    wall = StallingWall(sim, at=-1, stall=0.0)  # records the sim time at each sleep
+    sink = CostlySink(sim, wall, 0.0)
+    runner = SimRunner(sim, sink, speed=10.0, wall=wall)
+    await run_until(runner, wall, 1.0)
+    stamps = [stamp for _, stamp in sink.clock]
+    assert 1.0 / MIN_SLEEP * 0.9 <= len(stamps) <= 1.0 / MIN_SLEEP + 2
+    slept_at = {round(s, 9) for s in wall.woke_at if s > 0.0}
+    assert slept_at <= {round(s, 9) for s in stamps}  # each sleep's time is out before it
+    gaps = [b - a for a, b in itertools.pairwise(stamps)]
+    assert min(gaps) > 0.0
+    assert max(gaps) <= 0.05 + 1e-9  # a wake-up's batch (4-5 steps), never more
+    assert stamps[-1] == pytest.approx(sim.time)  # the last batch's too, at the end
+
+
+@pytest.mark.parametrize(("speed", "step_cost"), [(1.0, 0.0), (math.inf, 0.001)])
+async def test_at_1x_and_unpaced_every_clock_stamp_due_goes_out(
+    sim: Simulation, speed: float, step_cost: float
+) -> None:
+    wall = FakeWall()
+    sink = CostlySink(sim, wall, step_cost)
+    runner = SimRunner(sim, sink, speed=speed, wall=wall)
+    await run_until(runner, wall, 0.5)
+    stamps = [stamp for _, stamp in sink.clock]
+    assert len(stamps) >= sim.steps - 1  # one per step (100 Hz of sim time, dt 10 ms)
+    assert all(b - a == pytest.approx(DT) for a, b in itertools.pairwise(stamps))
+
+
+async def test_behind_and_never_sleeping_the_clock_still_goes_out_every_batch(
+    sim: Simulation,
+) -> None:
+    """5 ms of wall per 10 ms step at 10x: the sim never sleeps, yet a stamp goes out
+    at least every four steps (a wake-up's batch), never held back longer."""
+    wall = FakeWall()
+    sink = CostlySink(sim, wall, 0.005)
+    runner = SimRunner(sim, sink, speed=10.0, wall=wall)
+    await run_until(runner, wall, 1.0)
+    stamps = [stamp for _, stamp in sink.clock]
+    assert sim.steps >= 150
+    assert max(b - a for a, b in itertools.pairwise(stamps)) == pytest.approx(4 * DT)
+
+
+async def test_stepped_mode_sends_every_clock_stamp_due(sim: Simulation) -> None:
+    wall = FakeWall()
+    sink = CostlySink(sim, wall, 0.0)
+    runner = SimRunner(sim, sink, speed=10.0, wall=wall)
+    await runner.advance(0.1)
+    assert [stamp for _, stamp in sink.clock] == pytest.approx([DT * k for k in range(1, 11)])
+
+
 async def test_every_step_lets_the_loop_in_whatever_the_lag(sim: Simulation) -> None:
     """A slow machine (5 ms per 10 ms step at 10x): far behind, yet one step per loop pass."""
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.005), speed=10.0, wall=wall)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.005), speed=10.0, wall=wall)
     seen: list[int] = []
 
     async def watcher() -> None:
@@ -229,7 +294,7 @@ async def test_command_timeout_is_sim_time_even_when_behind(sim: Simulation) -> 
     """A client commanding every 0.1 s of sim time keeps the base moving though the sim
     lags far behind its 20x target (the old loop stepped 5 s of sim time in one batch)."""
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.002), speed=20.0, wall=wall)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.002), speed=20.0, wall=wall)
     stopped_at: list[float] = []
     last = -math.inf
 
@@ -251,7 +316,7 @@ async def test_command_timeout_is_sim_time_even_when_behind(sim: Simulation) -> 
 
 async def test_command_timeout_stops_after_its_sim_time(sim: Simulation) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall)
     moving: list[tuple[float, float]] = []
     sim.command(0.3, 0.0)
 
@@ -269,7 +334,7 @@ async def test_lag_is_reported_periodically(
     sim: Simulation, caplog: pytest.LogCaptureFixture
 ) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.004), speed=10.0, wall=wall, report_every=0.5)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.004), speed=10.0, wall=wall, report_every=0.5)
     with caplog.at_level(logging.WARNING, logger="aiobt_services.robot.runner"):
         await run_until(runner, wall, 1.6)
     lines = [r.getMessage() for r in caplog.records if "behind --speed 10" in r.getMessage()]
@@ -281,7 +346,9 @@ async def test_speed_max_never_sleeps_and_reports_the_speed_up(
     sim: Simulation, caplog: pytest.LogCaptureFixture
 ) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.001), speed=math.inf, wall=wall, report_every=0.5)
+    runner = SimRunner(
+        sim, CostlySink(sim, wall, 0.001), speed=math.inf, wall=wall, report_every=0.5
+    )
     with caplog.at_level(logging.INFO, logger="aiobt_services.robot.runner"):
         await run_until(runner, wall, 1.0)
     assert wall.sleeps == 0
@@ -318,7 +385,7 @@ class StreamingClient:
 
 async def test_the_sim_waits_for_a_stalled_command_stream(sim: Simulation) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall)
     client = StreamingClient(sim, pause_at=1.0, pause=0.3)
     await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
     assert client.paused is not None
@@ -333,7 +400,7 @@ async def test_a_command_late_by_less_than_a_scheduler_slot_is_not_waited_for(
     sim: Simulation, caplog: pytest.LogCaptureFixture
 ) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, report_every=0.5)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall, report_every=0.5)
     client = StreamingClient(sim, pause_at=1.0, pause=0.015)  # 3 periods late, under LATE_WALL
     with caplog.at_level(logging.INFO, logger="aiobt_services.robot.runner"):
         await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
@@ -358,7 +425,7 @@ async def test_a_client_gone_is_waited_for_once_then_the_command_timeout_stops_t
     sim: Simulation, caplog: pytest.LogCaptureFixture
 ) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, report_every=0.5)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall, report_every=0.5)
     client = StreamingClient(sim, pause_at=1.0, pause=math.inf)
     with caplog.at_level(logging.WARNING, logger="aiobt_services.robot.runner"):
         await asyncio.gather(run_until(runner, wall, 1.5), client.run(wall))
@@ -369,7 +436,7 @@ async def test_a_client_gone_is_waited_for_once_then_the_command_timeout_stops_t
 
 async def test_command_wait_zero_never_waits(sim: Simulation) -> None:
     wall = FakeWall()
-    runner = SimRunner(sim, CostlySink(wall, 0.0), speed=10.0, wall=wall, command_wait=0.0)
+    runner = SimRunner(sim, CostlySink(sim, wall, 0.0), speed=10.0, wall=wall, command_wait=0.0)
     client = StreamingClient(sim, pause_at=1.0, pause=math.inf)
     await asyncio.gather(run_until(runner, wall, 1.0), client.run(wall))
     assert sim.time == pytest.approx(10.0, abs=0.05)
