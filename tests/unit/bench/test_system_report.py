@@ -1,8 +1,9 @@
-"""bench.system.report's planner rows: the spread, and the first trip against the rest."""
+"""bench.system.report's rows: the planner's spread and first trip, the controller's goal lines."""
 
 from __future__ import annotations
 
-from bench.system.report import Figures, planner_rows
+from aiobt_services.controller.cycle_stats import CycleStats
+from bench.system.report import CYCLES, Figures, controller_rows, planner_rows
 
 
 def test_the_first_trip_is_shown_against_the_slowest_of_the_others() -> None:
@@ -15,3 +16,19 @@ def test_the_first_trip_is_shown_against_the_slowest_of_the_others() -> None:
 def test_with_one_trip_there_is_nothing_to_set_it_against() -> None:
     _, first = planner_rows(Figures(round_trips=[0.02]))
     assert "| n/a |" in first
+
+
+def test_the_controller_rows_come_from_its_goal_lines_with_the_slots_served() -> None:
+    stats = CycleStats(0.05)
+    for began in (0.0, 0.05, 0.10, 0.25, 0.30):  # two slots lost before 0.25
+        stats.record(began, 0.001)
+    line = f"follow_path: goal abc: {stats.summary()}"
+    goals = [
+        (int(m[0]), float(m[1]), float(m[2]), float(m[4]), float(m[5]), int(m[6]))
+        for m in CYCLES.findall(f"noise\n{line}\n")
+    ]
+    assert goals == [(5, 13.33, 20.0, 1.0, 1.0, 2)]
+    rate, served, p99 = controller_rows(goals)
+    assert "| 66.6%, 66.6% |" in rate  # 4 periods in 0.3 s: 13.33 Hz (logged) of 20
+    assert "| 71.4%, 71.4% |" in served  # 5 cycles of 7 slots
+    assert "| 1.00, 1.00; 1.00 |" in p99
