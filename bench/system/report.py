@@ -17,7 +17,8 @@ navigator; processes as the end-to-end tests run them) and measures:
   tree (it would be aborted by the probe); the navigator is up, and drives the
   reaction runs;
 - the controller's cycle time, achieved rate and slots served (its per-goal log lines);
-- the sim speed-up achieved (``{ns}/clock`` vs wall) in both phases, vs asked;
+- the sim speed-up achieved (``{ns}/clock`` vs wall) in both phases, vs asked, and the
+  sim time the robot gave up to lag (its pacing reports);
 - ``--reactions`` times: a box spawned ahead of the driving robot, sim and wall
   seconds until the first ``cmd_vel`` under half the speed commanded before.
 
@@ -51,6 +52,9 @@ CYCLES = re.compile(
     r"(\d+) cycles, rate ([\d.]+|nan) of ([\d.]+) Hz, cycle p50 ([\d.]+) ms "
     r"p99 ([\d.]+) ms max ([\d.]+) ms.*?slots lost (\d+)"
 )
+# the robot's pacing report (every 5 s of wall time in which it fell behind or waited)
+LAG = re.compile(r"fell more than [\d.]+ s behind (\d+) time\(s\), ([\d.]+) s of sim time given up")
+HOLDS = re.compile(r"waited (\d+) time\(s\), ([\d.]+) s in all, for a late cmd_vel")
 Goal = tuple[float, float, float]
 
 
@@ -67,6 +71,7 @@ class Figures:
     reactions: list[tuple[float, float] | None] = field(default_factory=list)
     # per goal: cycles, rate and configured rate (Hz), cycle p99 and max (ms), slots lost
     controller: list[tuple[int, float, float, float, float, int]] = field(default_factory=list)
+    robot_log: str = ""  # the robot's output: its pacing reports
 
 
 async def drive(bus: Bus, probe: PlannerProbe, goals: list[Goal], limit: float) -> int:
@@ -166,6 +171,7 @@ async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) ->
         (int(m[0]), float(m[1]), float(m[2]), float(m[4]), float(m[5]), int(m[6]))
         for m in CYCLES.findall(stack.processes["controller"].output())
     ]
+    figures.robot_log = stack.processes["robot"].output()
     return figures
 
 
@@ -215,6 +221,19 @@ def controller_rows(goals: list[tuple[int, float, float, float, float, int]]) ->
     ]
 
 
+def pacing_row(robot_log: str) -> str:
+    """The sim time the robot gave up to lag and the waits for a late command, summed
+    over its pacing reports (each on 5 s of wall time; the run's last seconds may be
+    missing)."""
+    lags = [(int(n), float(s)) for n, s in LAG.findall(robot_log)]
+    holds = [(int(n), float(s)) for n, s in HOLDS.findall(robot_log)]
+    value = (
+        f"{sum(s for _, s in lags):.2f} s in {sum(n for n, _ in lags)} / "
+        f"{sum(n for n, _ in holds)}, {sum(s for _, s in holds):.2f} wall s"
+    )
+    return row("robot: sim time given up to lag, times / waits for a late cmd_vel", value, "")
+
+
 def table(figures: Figures, speed: float) -> list[str]:
     lines = [row("figure", "value", "target"), row("---", "---", "---")]
     for name, idle in figures.cpu_idle.items():
@@ -229,6 +248,7 @@ def table(figures: Figures, speed: float) -> list[str]:
     lines.append(
         row(f"sim speed-up idle / driving (asked {speed:g})", achieved, f">= {0.9 * speed:g}")
     )
+    lines.append(pacing_row(figures.robot_log))
     lines.append(row("goals reached", f"{figures.reached} / {figures.goals}", ""))
     done = [r for r in figures.reactions if r is not None]
     label = (

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from aiobt_services.controller.cycle_stats import CycleStats
-from bench.system.report import CYCLES, Figures, controller_rows, planner_rows
+from bench.system.report import CYCLES, Figures, controller_rows, pacing_row, planner_rows
 
 
 def test_the_first_trip_is_shown_against_the_slowest_of_the_others() -> None:
@@ -32,3 +32,17 @@ def test_the_controller_rows_come_from_its_goal_lines_with_the_slots_served() ->
     assert "| 66.6%, 66.6% |" in rate  # 4 periods in 0.3 s: 13.33 Hz (logged) of 20
     assert "| 71.4%, 71.4% |" in served  # 5 cycles of 7 slots
     assert "| 1.00, 1.00; 1.00 |" in p99
+
+
+def test_the_pacing_row_sums_the_robots_reports() -> None:
+    log = (
+        "W simulation behind --speed 10: achieved x9.1 over the last 5.0 s; fell more than "
+        "0.008 s behind 3 time(s), 0.42 s of sim time given up; waited 2 time(s), 0.05 s in "
+        "all, for a late cmd_vel\n"
+        "W simulation at --speed 10: achieved x9.9 over the last 5.0 s; waited 1 time(s), "
+        "0.02 s in all, for a late cmd_vel\n"
+        "W simulation behind --speed 10: achieved x8.0 over the last 5.0 s; fell more than "
+        "0.008 s behind 5 time(s), 1.10 s of sim time given up\n"
+    )
+    assert "| 1.52 s in 8 / 3, 0.07 wall s |" in pacing_row(log)
+    assert "| 0.00 s in 0 / 0, 0.00 wall s |" in pacing_row("robot up\n")
