@@ -85,6 +85,7 @@ async def test_boxed_in_recovers_in_order_then_fails_with_the_leaf_error_then_na
     done = await world.navigate(*SOUTH_MIDDLE_ROOM, timeout=200.0)
 
     assert done.state is GoalState.ABORTED, done.result
+    assert await goals.wait_settled(10.0), goals.summary()  # the leaves' last results in
     codes = [goals.last_code[leaf] for leaf in LEAVES if goals.last_code.get(leaf)]
     assert codes, f"the watcher holds no leaf's error code ({goals.summary()})"
     assert done.result.error_code == min(codes), (done.result, goals.last_code)

@@ -204,6 +204,18 @@ class ServerGoals:
         """True once no server has an active goal."""
         return await self.wait_for(lambda: not self.active(), timeout)
 
+    async def wait_settled(self, timeout: float) -> bool:  # noqa: ASYNC109
+        """True once no server has an active goal and each has put as many results as
+        goals ended: a goal's result and its last status come on separate keys, so the
+        result (and :attr:`last_code`) may trail the status, and a client's answer."""
+
+        def settled() -> bool:
+            return not self.active() and all(
+                self.results.get(server, 0) >= len(goals) for server, goals in self.states.items()
+            )
+
+        return await self.wait_for(settled, timeout)
+
     def close(self) -> None:
         for sub in self._subs:
             sub.close()
