@@ -16,6 +16,7 @@ from typing import Any, TypeVar
 
 from aiobt.system.signals import stop_on_signals as stop_on_signals  # for the services
 from aiobt.transport import Bus, BusConfigError, BusSettings, BusUnavailable, open_bus
+from aiobt_services.realtime import RealtimePriorityError
 
 T = TypeVar("T")
 
@@ -81,12 +82,13 @@ async def open_bus_unless_stopped(
 
 
 def run_service(main: Coroutine[Any, Any, None], log: logging.Logger, name: str) -> int:
-    """Run ``main`` to its end: 0, or 1 (logged on ``log``) when the bus cannot be opened."""
+    """Run ``main`` to its end: 0, or 1 (logged on ``log``) when the bus cannot be opened
+    or the real-time priority asked for cannot be had."""
     try:
         asyncio.run(main)
     except KeyboardInterrupt:
         pass
-    except (BusUnavailable, BusConfigError) as exc:
+    except (BusUnavailable, BusConfigError, RealtimePriorityError) as exc:
         log.error("%s: %s", name, exc)
         return 1
     return 0

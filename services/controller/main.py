@@ -18,6 +18,7 @@ from dataclasses import replace
 from aiobt.core.clock import Clock
 from aiobt.transport import Bus, add_bus_arguments
 from aiobt_services._cli import non_negative, positive, run_service
+from aiobt_services.realtime import CONTROLLER_PRIORITY, add_realtime_argument
 
 from .dwb import DWBController, DWBParams
 from .robot_io import (
@@ -67,6 +68,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="CONTROLLER_TIMED_OUT after this long, s; 0: no limit (default: %(default)s)",
     )
     add_local_costmap_arguments(group)
+    add_realtime_argument(group, CONTROLLER_PRIORITY)
 
 
 def config_from(args: argparse.Namespace) -> ControllerConfig:
@@ -88,7 +90,8 @@ async def serve(args: argparse.Namespace) -> None:
         options = ServiceOptions(args.clock_timeout, robot_time=args.sim_time)
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 
-    await serve_on_clock(args, "controller", start, f" at {args.rate:g} Hz", log)
+    detail = f" at {args.rate:g} Hz"
+    await serve_on_clock(args, "controller", start, detail, log, args.realtime_priority)
 
 
 def run(args: argparse.Namespace) -> int:

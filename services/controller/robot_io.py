@@ -23,6 +23,7 @@ from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
 from aiobt.system.announce import announce
 from aiobt.system.heap import settle
 from aiobt_services._cli import open_bus_unless_stopped, positive, stop_on_signals, unless_stopped
+from aiobt_services.realtime import realtime_if_asked
 
 from .freshness import Freshness
 from .geometry import STOP, Pose2D, Velocity
@@ -230,15 +231,19 @@ async def serve_on_clock(
     start: Callable[[Bus, Clock], None],
     detail: str = "",
     logger: logging.Logger = log,
+    realtime: int | None = None,
 ) -> None:
-    """Open the bus, wait for the clock (``--sim-time``), ``start(bus, clock)``, announce
-    ``nodes/{name}``, then run until SIGINT/SIGTERM; "``name`` up" goes to ``logger``."""
+    """Open the bus, raise this thread to ``realtime`` priority if given (see
+    :mod:`aiobt_services.realtime`), wait for the clock (``--sim-time``), ``start(bus,
+    clock)``, announce ``nodes/{name}``, then run until SIGINT/SIGTERM; "``name`` up"
+    goes to ``logger``."""
     from aiobt.transport import BusSettings
 
     stop = stop_on_signals()
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
+        detail += realtime_if_asked(realtime)
         stopper = asyncio.create_task(stop.wait())
         made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
         if made is None:

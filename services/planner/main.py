@@ -28,6 +28,7 @@ from aiobt_services._cli import (
 )
 from aiobt_services.controller.robot_io import make_clock
 from aiobt_services.costmap import InflationParams, ObstacleParams
+from aiobt_services.realtime import PLANNER_PRIORITY, add_realtime_argument, realtime_if_asked
 
 from .actions import SMOOTHERS, ActionOptions, PlannerActions
 from .coverage import CoverageParams
@@ -92,6 +93,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add("--max-planning-time", type=positive, default=2.0, help="s, then TIMEOUT (%(default)s)")
     add("--row-spacing", type=positive, default=0.5, help="coverage rows, m (%(default)s)")
     add("--headland-width", type=non_negative, default=0.5, help="coverage, m (%(default)s)")
+    add_realtime_argument(group, PLANNER_PRIORITY)
 
 
 def build(args: argparse.Namespace) -> tuple[GlobalCostmap, PlannerActions]:
@@ -122,6 +124,7 @@ async def serve(args: argparse.Namespace) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
+        realtime = realtime_if_asked(args.realtime_priority)  # the searches' threads too
         clock: Clock = SystemClock()
         if args.sim_time:
             stopper = asyncio.create_task(stop.wait())
@@ -131,7 +134,7 @@ async def serve(args: argparse.Namespace) -> None:
             clock = made[0]
         PlannerService(bus, world, actions, sim_time=args.sim_time, clock=clock).start()
         settle()  # start-up's objects out of the collector's full passes (a request's tail)
-        log.info("planner up on namespace '%s'", bus.namespace)
+        log.info("planner up on namespace '%s'%s", bus.namespace, realtime)
         await stop.wait()
 
 

@@ -32,6 +32,7 @@ from aiobt.system.announce import announce
 from aiobt.system.heap import settle
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt_services._cli import open_bus_unless_stopped, run_service, stop_on_signals
+from aiobt_services.realtime import realtime_if_asked
 
 from . import convert, messages
 from .mapfile import MapError, load_map
@@ -107,6 +108,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
+        realtime = realtime_if_asked(args.realtime_priority)
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
         runner = SimRunner(
@@ -121,11 +123,12 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
         settle()  # start-up's objects (the world's too) out of the collector's full passes
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(
-            "robot up on namespace '%s': world %s, %s, dt %g s",
+            "robot up on namespace '%s': world %s, %s, dt %g s%s",
             bus.namespace,
             sim.world.source,
             "stepped by srv/step" if args.stepped else f"speed {speed_label(args.speed)}",
             sim.config.dt,
+            realtime,
         )
         if args.stepped:
             _serve_steps(bus, runner)

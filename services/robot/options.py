@@ -6,6 +6,7 @@ import argparse
 import math
 
 from aiobt_services._cli import non_negative, positive
+from aiobt_services.realtime import ROBOT_PRIORITY, add_realtime_argument
 
 from .drive import DriveLimits
 from .pacing import parse_speed
@@ -75,6 +76,7 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
         "process on a loaded machine), wait for it up to this many wall seconds instead "
         "of driving on blind; 0: never wait (default: %(default)s)",
     )
+    add_realtime_argument(group, ROBOT_PRIORITY)
     add("--scan-hz", type=positive, default=10.0, help="lidar rate (default: %(default)s)")
     add("--odom-hz", type=positive, default=50.0, help="odom and pose rate (default: %(default)s)")
     add("--lidar-rays", type=int, default=360, help="beams per scan (default: %(default)s)")

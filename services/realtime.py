@@ -1,0 +1,96 @@
+"""Soft real-time priority for a service's execution thread: Nav2's ``use_realtime_priority``.
+
+Nav2's controller server can run its control loop's thread under ``SCHED_FIFO`` at
+priority 90, "to better ensure resources to time sensitive portions of the codebase"
+(off by default; the user grants the right with an ``rtprio`` limit). Here the
+option is ``--realtime-priority [N]`` on the robot, the controller and the planner.
+
+On a loaded machine a ``SCHED_FIFO`` thread that wakes runs at once, ahead of every
+ordinary process, instead of waiting its turn: the control loop keeps its rate and
+the simulation its pace while a plan, the router and the other services share what
+is left. Only the thread that calls :func:`raise_priority` (the service's event loop,
+after its bus is open) and the threads it starts later (the controller's costmap
+worker, the planner's searches) get it: Zenoh's own threads keep the ordinary policy,
+as Nav2 raises the action server's execution thread only. The services block between
+their cycles (the loop in ``epoll``, the robot between steps), so they leave the CPU
+to the others; the kernel's real-time throttling (``sched_rt_runtime_us``, 95 % by
+default) bounds a runaway one.
+
+Priorities order the services when both want a core: the robot (the hardware's
+stand-in: its clock is everyone's) and the controller at 90 (Nav2's), the planner
+below them at 70 (a search may take tens of milliseconds; it must not hold off a
+control cycle). Without the right to use ``SCHED_FIFO`` the service stops with an
+error naming the fix, as Nav2's does.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+PRIORITY_MIN, PRIORITY_MAX = 1, 99
+# the priority ``--realtime-priority`` alone gives each service (see the module's docstring)
+ROBOT_PRIORITY = 90
+CONTROLLER_PRIORITY = 90  # Nav2's
+PLANNER_PRIORITY = 70
+
+
+class RealtimePriorityError(Exception):
+    """``SCHED_FIFO`` could not be set (no permission, or not Linux)."""
+
+
+def priority(text: str) -> int:
+    """argparse type: a ``SCHED_FIFO`` priority, an integer in 1..99."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer in 1..99, got {text!r}") from None
+    if not PRIORITY_MIN <= value <= PRIORITY_MAX:
+        raise argparse.ArgumentTypeError(f"must be an integer in 1..99, got {value}")
+    return value
+
+
+def add_realtime_argument(parser: argparse.ArgumentParser | argparse._ArgumentGroup,
+                          default: int) -> None:  # fmt: skip
+    """``--realtime-priority [N]`` (off unless given; given alone: ``default``)."""
+    parser.add_argument(
+        "--realtime-priority",
+        nargs="?",
+        type=priority,
+        const=default,
+        metavar="N",
+        help="run the service's event loop (and the threads it starts) under SCHED_FIFO at "
+        f"priority N, 1..99 (Nav2's use_realtime_priority; N defaults to {default}); needs "
+        "CAP_SYS_NICE or an rtprio limit (/etc/security/limits.conf: '<user> - rtprio 99')",
+    )
+
+
+def raise_priority(level: int) -> None:
+    """Put the calling thread under ``SCHED_FIFO`` at ``level``; RealtimePriorityError
+    (naming the fix) if the system does not allow it."""
+    setter = getattr(os, "sched_setscheduler", None)
+    fifo = getattr(os, "SCHED_FIFO", None)
+    if setter is None or fifo is None:
+        raise RealtimePriorityError(
+            f"--realtime-priority {level}: SCHED_FIFO is not available on this system "
+            "(Linux only); run without it"
+        )
+    try:
+        setter(0, fifo, os.sched_param(level))
+    except PermissionError:
+        raise RealtimePriorityError(
+            f"--realtime-priority {level}: not permitted to use SCHED_FIFO (needs CAP_SYS_NICE "
+            "or an rtprio limit: '<user> - rtprio 99' in /etc/security/limits.conf, or "
+            "'cap_add: [SYS_NICE]' in docker-compose); run without it"
+        ) from None
+    except OSError as exc:
+        raise RealtimePriorityError(f"--realtime-priority {level}: {exc}") from None
+
+
+def realtime_if_asked(level: int | None) -> str:
+    """:func:`raise_priority` to ``level`` unless None; the words for the service's "up"
+    line ("" when not asked)."""
+    if level is None:
+        return ""
+    raise_priority(level)
+    return f", real-time priority {level} (SCHED_FIFO)"
