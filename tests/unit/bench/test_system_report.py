@@ -2,8 +2,19 @@
 
 from __future__ import annotations
 
+import math
+
+import pytest
+
 from aiobt_services.controller.cycle_stats import CycleStats
-from bench.system.report import CYCLES, Figures, controller_rows, pacing_row, planner_rows
+from bench.system.report import (
+    CYCLES,
+    Figures,
+    controller_rows,
+    pacing_row,
+    planner_rows,
+    pooled_rate,
+)
 
 
 def test_the_first_trip_is_shown_against_the_slowest_of_the_others() -> None:
@@ -29,9 +40,18 @@ def test_the_controller_rows_come_from_its_goal_lines_with_the_slots_served() ->
     ]
     assert goals == [(5, 13.33, 20.0, 1.0, 1.0, 2)]
     rate, served, p99 = controller_rows(goals)
-    assert "| 66.6%, 66.6% |" in rate  # 4 periods in 0.3 s: 13.33 Hz (logged) of 20
+    assert "| 66.6%, 66.6%; 66.7% |" in rate  # 4 periods in 0.3 s: 13.33 Hz (logged) of 20
     assert "| 71.4%, 71.4% |" in served  # 5 cycles of 7 slots
     assert "| 1.00, 1.00; 1.00 |" in p99
+
+
+def test_the_pooled_rate_weighs_each_goal_by_its_robot_time() -> None:
+    # 1001 cycles at 20 Hz (50 s) and a 2-cycle goal whose one interval came 20 ms late
+    goals = [(1001, 20.0, 20.0, 1.0, 1.0, 0), (2, 1 / 0.07, 20.0, 1.0, 1.0, 0)]
+    assert pooled_rate(goals) == pytest.approx(1001 / 50.07 / 20.0)  # 99.98 %
+    rate = controller_rows(goals)[0]
+    assert "| 85.7%, 71.4%; 100.0% |" in rate  # the short goal's 71 % is the min
+    assert math.isnan(pooled_rate([(1, math.nan, 20.0, 1.0, 1.0, 0)]))  # no interval at all
 
 
 def test_the_pacing_row_sums_the_robots_reports() -> None:
