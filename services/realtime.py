@@ -1,4 +1,4 @@
-"""Soft real-time priority for a service's execution thread: Nav2's ``use_realtime_priority``.
+"""Soft real-time priority for a service's whole process: Nav2's ``use_realtime_priority``.
 
 Nav2's controller server can run its control loop's thread under ``SCHED_FIFO`` at
 priority 90, "to better ensure resources to time sensitive portions of the codebase"
@@ -7,14 +7,18 @@ option is ``--realtime-priority [N]`` on the robot, the controller and the plann
 
 On a loaded machine a ``SCHED_FIFO`` thread that wakes runs at once, ahead of every
 ordinary process, instead of waiting its turn: the control loop keeps its rate and
-the simulation its pace while a plan, the router and the other services share what
-is left. Only the thread that calls :func:`raise_priority` (the service's event loop,
-after its bus is open) and the threads it starts later (the controller's costmap
-worker, the planner's searches) get it: Zenoh's own threads keep the ordinary policy,
-as Nav2 raises the action server's execution thread only. The services block between
-their cycles (the loop in ``epoll``, the robot between steps), so they leave the CPU
-to the others; the kernel's real-time throttling (``sched_rt_runtime_us``, 95 % by
-default) bounds a runaway one.
+the simulation its pace. The whole process is raised, not the event loop's thread
+alone: :func:`raise_priority` runs before the bus is opened, so Zenoh's threads (which
+receive the poses, odometry and commands the loop acts on) and every thread started
+later (the controller's costmap worker, the planner's searches) inherit it. Raising
+the loop alone, as Nav2 raises its executor thread, was measured at 10x on 2 cores
+(``bench/RESULTS.md``): the loop then outran its own transport threads, which
+delivered the robot's state late, and in 11 of 16 runs a goal failed to make
+progress or the robot bumped into a box it should have stopped for; with the whole
+process raised, in none of 16 (nor in 17 runs without the option). The services
+block between their cycles (the loop in ``epoll``, the robot between steps), so they
+leave the CPU to the others; the kernel's real-time throttling
+(``sched_rt_runtime_us``, 95 % by default) bounds a runaway one.
 
 Priorities order the services when both want a core: the robot (the hardware's
 stand-in: its clock is everyone's) and the controller at 90 (Nav2's), the planner
@@ -59,15 +63,17 @@ def add_realtime_argument(parser: argparse.ArgumentParser | argparse._ArgumentGr
         type=priority,
         const=default,
         metavar="N",
-        help="run the service's event loop (and the threads it starts) under SCHED_FIFO at "
-        f"priority N, 1..99 (Nav2's use_realtime_priority; N defaults to {default}); needs "
-        "CAP_SYS_NICE or an rtprio limit (/etc/security/limits.conf: '<user> - rtprio 99')",
+        help="run the service (its event loop, Zenoh's threads and the threads it starts) "
+        f"under SCHED_FIFO at priority N, 1..99 (Nav2's use_realtime_priority; N defaults "
+        f"to {default}); needs CAP_SYS_NICE or an rtprio limit (/etc/security/limits.conf: "
+        "'<user> - rtprio 99')",
     )
 
 
 def raise_priority(level: int) -> None:
-    """Put the calling thread under ``SCHED_FIFO`` at ``level``; RealtimePriorityError
-    (naming the fix) if the system does not allow it."""
+    """Put the calling thread, and the threads it starts from then on, under
+    ``SCHED_FIFO`` at ``level``; RealtimePriorityError (naming the fix) if the system
+    does not allow it."""
     setter = getattr(os, "sched_setscheduler", None)
     fifo = getattr(os, "SCHED_FIFO", None)
     if setter is None or fifo is None:

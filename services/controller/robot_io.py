@@ -233,17 +233,17 @@ async def serve_on_clock(
     logger: logging.Logger = log,
     realtime: int | None = None,
 ) -> None:
-    """Open the bus, raise this thread to ``realtime`` priority if given (see
-    :mod:`aiobt_services.realtime`), wait for the clock (``--sim-time``), ``start(bus,
-    clock)``, announce ``nodes/{name}``, then run until SIGINT/SIGTERM; "``name`` up"
-    goes to ``logger``."""
+    """Raise the process to ``realtime`` priority if given (before the bus: Zenoh's
+    threads too, see :mod:`aiobt_services.realtime`), open the bus, wait for the clock
+    (``--sim-time``), ``start(bus, clock)``, announce ``nodes/{name}``, then run until
+    SIGINT/SIGTERM; "``name`` up" goes to ``logger``."""
     from aiobt.transport import BusSettings
 
+    detail += realtime_if_asked(realtime)
     stop = stop_on_signals()
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        detail += realtime_if_asked(realtime)
         stopper = asyncio.create_task(stop.wait())
         made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
         if made is None:

@@ -121,10 +121,10 @@ def build(args: argparse.Namespace) -> tuple[GlobalCostmap, PlannerActions]:
 async def serve(args: argparse.Namespace) -> None:
     stop = stop_on_signals()
     world, actions = build(args)
+    realtime = realtime_if_asked(args.realtime_priority)  # before the bus: its threads too
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        realtime = realtime_if_asked(args.realtime_priority)  # the searches' threads too
         clock: Clock = SystemClock()
         if args.sim_time:
             stopper = asyncio.create_task(stop.wait())

@@ -104,11 +104,11 @@ def _serve_steps(bus: Bus, runner: SimRunner) -> None:
 
 
 async def serve(args: argparse.Namespace, sim: Simulation) -> None:
+    realtime = realtime_if_asked(args.realtime_priority)  # before the bus: its threads too
     stop = stop_on_signals()
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        realtime = realtime_if_asked(args.realtime_priority)
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
         runner = SimRunner(
