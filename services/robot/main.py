@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import asyncio
 import logging
+import math
 import os
 from pathlib import Path
 
@@ -141,6 +142,12 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
 def run(args: argparse.Namespace) -> int:
     if args.gui and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
         log.error("robot: --gui needs a display (DISPLAY is not set); run headless without it")
+        return 2
+    if args.realtime_priority is not None and math.isinf(args.speed):
+        log.error(
+            "robot: --realtime-priority with --speed max: at max the sim never sleeps, and "
+            "under SCHED_FIFO it would hold a core from every other process; give a speed"
+        )
         return 2
     try:
         world = load_map(world_path(args.world))

@@ -86,3 +86,15 @@ def test_the_service_exits_1_with_the_error_logged(monkeypatch, caplog):
     with caplog.at_level(logging.ERROR):
         assert run_service(refused(), logging.getLogger("aiobt_services.test"), "robot") == 1
     assert "robot: --realtime-priority 90: not permitted" in caplog.text
+
+
+def test_the_robot_refuses_it_at_speed_max_where_it_would_never_sleep(monkeypatch, caplog):
+    from aiobt_services.robot import main as robot_main
+
+    raised: list[int] = []
+    monkeypatch.setattr(os, "sched_setscheduler", lambda *a: raised.append(1))
+    args = _parse(robot_arguments, ["--speed", "max", "--realtime-priority"])
+    with caplog.at_level(logging.ERROR):
+        assert robot_main.run(args) == 2
+    assert "--realtime-priority with --speed max" in caplog.text
+    assert raised == []  # refused before anything was raised or started
