@@ -31,19 +31,12 @@ from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
+from ..services import common, up
+
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 To = ComputePathToPose.ErrorCode
 BOX = (4.0, 9.75, 0.4, 1.0)  # x, y, size_x, size_y: in the corridor, 2 m ahead of the robot
-
-
-def common(settings: BusSettings) -> list[str]:
-    return ["--connect", settings.connect[0], "--namespace", settings.namespace]
-
-
-async def up(bus: Bus, name: str, proc: ServiceProcess) -> None:
-    if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):
-        pytest.fail(f"{name} did not come up:\n{proc.output()}")
 
 
 async def plan(bus: Bus, x: float, y: float, **kw: object) -> ComputePathToPose.Result:

@@ -16,6 +16,8 @@ from aiobt.msgs import ComputePathToPose, PoseStamped
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 
+from ..services import common, up
+
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(120)]
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 ZENOH_THREADS = ("rx-", "tx-", "net-", "app-", "acc-")  # Zenoh's own (tokio) threads
@@ -47,15 +49,6 @@ def threads(pid: int) -> dict[int, tuple[str, int, int]]:
                 os.sched_getparam(tid).sched_priority,
             )
     return out
-
-
-def common(settings: BusSettings) -> list[str]:
-    return ["--connect", settings.connect[0], "--namespace", settings.namespace]
-
-
-async def up(bus: Bus, name: str, proc: ServiceProcess) -> None:
-    if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(30.0):
-        pytest.fail(f"{name} did not come up:\n{proc.output()}")
 
 
 @needs_fifo
