@@ -27,6 +27,12 @@ keeps each process's output there (``controller.log``, ``robot.log``, ...).
 ``--realtime``: the robot, the controller and the planner run with
 ``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so root or
 CAP_SYS_NICE).
+
+The table's "rest of the machine" row is every other process's CPU (each one's
+``/proc/<pid>/stat``) and the CPU stolen by the hypervisor (``/proc/stat``): what the
+stack competed with. ``--busy N`` makes that competition known: N processes, each
+spinning on a core at ordinary priority for the whole run, stand in for a machine
+with other work (a build, a browser, another robot's stack).
 """
 
 from __future__ import annotations
@@ -38,6 +44,8 @@ import math
 import os
 import re
 import statistics
+import subprocess
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -51,7 +59,7 @@ from aiobt.transport import ActionError, Bus, ServiceError, open_bus
 from ..nav.goals import pick_goals, static_grid
 from ..nav.run import START, loadavg
 from .probes import Commands, PlannerProbe, Refused, RobotPose, SimClock, percentile, reaction
-from .procstat import percent_of_core, sample
+from .procstat import machine, others_percent, percent_of_core, sample
 
 CYCLES = re.compile(
     r"(\d+) cycles, rate ([\d.]+|nan) of ([\d.]+) Hz, cycle p50 ([\d.]+) ms "
@@ -68,6 +76,8 @@ REALTIME = ("robot", "controller", "planner")  # the services ``--realtime`` rai
 class Figures:
     cpu_idle: dict[str, float] = field(default_factory=dict)
     cpu_driving: dict[str, float] = field(default_factory=dict)
+    # the rest of the machine (other processes, stolen), % of a core: idle, driving
+    others: list[tuple[float, float]] = field(default_factory=list)
     speed_idle: float = math.nan
     speed_driving: float = math.nan
     round_trips: list[float] = field(default_factory=list)
@@ -158,17 +168,19 @@ async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) ->
         if await track.wait_for(lambda _: True, 30.0) is None:
             raise SystemExit("no pose from the robot")
         await asyncio.sleep(2.0)  # the services' start-up work done
-        first, mark = sample(pids), await clock.mark()
+        first, whole, mark = sample(pids), machine(), await clock.mark()
         await asyncio.sleep(args.idle)  # the idle phase: its length is the measurement
         figures.cpu_idle = percent_of_core(first, sample(pids))
+        figures.others.append(others_percent(whole, machine(), pids.values()))
         figures.speed_idle = await clock.factor_since(mark)
         stop = asyncio.Event()
-        first, mark = sample(pids), await clock.mark()
+        first, whole, mark = sample(pids), machine(), await clock.mark()
         prober = asyncio.create_task(probe.run(stop))
         figures.reached = await drive(bus, probe, goals, args.timeout)
         stop.set()
         await prober
         figures.cpu_driving = percent_of_core(first, sample(pids))
+        figures.others.append(others_percent(whole, machine(), pids.values()))
         figures.speed_driving = await clock.factor_since(mark)
         figures.goals = len(goals)
         figures.round_trips, figures.probe_failures = probe.round_trips, probe.failures
@@ -197,6 +209,15 @@ def row(*cells: object) -> str:
 
 def ms(seconds: float) -> str:
     return f"{seconds * 1e3:.1f}"
+
+
+def others_row(others: list[tuple[float, float]]) -> str:
+    """The rest of the machine in both phases: other processes' CPU, and stolen."""
+    if len(others) != 2:
+        return row("CPU the rest of the machine", "n/a", "")
+    (idle, idle_stolen), (busy, busy_stolen) = others
+    value = f"{idle:.1f} / {busy:.1f}; stolen {idle_stolen:.1f} / {busy_stolen:.1f}"
+    return row("CPU the rest of the machine % of a core: idle / driving; stolen", value, "")
 
 
 def planner_rows(figures: Figures) -> list[str]:
@@ -272,6 +293,7 @@ def table(figures: Figures, speed: float) -> list[str]:
         lines.append(
             row(f"CPU {name} % of a core: idle / driving", f"{idle:.1f} / {busy:.1f}", target)
         )
+    lines.append(others_row(figures.others))
     lines.extend(planner_rows(figures))
     lines.extend(controller_rows(figures.controller))
     achieved = f"{figures.speed_idle:.2f} / {figures.speed_driving:.2f}"
@@ -305,23 +327,47 @@ def main(argv: list[str] | None = None) -> int:
         help="robot, controller and planner with --realtime-priority (SCHED_FIFO at each "
         "one's default: 90, 90, 70; see aiobt_services.realtime)",
     )
+    parser.add_argument(
+        "--busy",
+        type=int,
+        default=0,
+        metavar="N",
+        help="N other processes spinning at ordinary priority for the whole run (default: 0)",
+    )
     args = parser.parse_args(argv)
+    if args.busy < 0:
+        parser.error(f"--busy must be 0 or more processes, got {args.busy}")
     before = loadavg()
     extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
     config = StackConfig(world="office", speed=args.speed, seed=args.seed, extra=extra)
-    router, endpoint = start_router(extra_args=("--lease-ms", str(config.lease_ms)), timeout=60.0)
+    spinners = [spin() for _ in range(args.busy)]
     try:
-        with NavStack.launch(endpoint, config) as stack:
-            figures = asyncio.run(measure(stack, router.pid, args))
+        router, endpoint = start_router(
+            extra_args=("--lease-ms", str(config.lease_ms)), timeout=60.0
+        )
+        try:
+            with NavStack.launch(endpoint, config) as stack:
+                figures = asyncio.run(measure(stack, router.pid, args))
+        finally:
+            router.cleanup()
     finally:
-        router.cleanup()
+        for spinner in spinners:
+            spinner.kill()
+            spinner.wait(timeout=10.0)
     if args.realtime:
         print(f"real-time priority (SCHED_FIFO): {', '.join(REALTIME)}\n")
+    if args.busy:
+        print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")
     print("\n".join(table(figures, args.speed)))
     print(f"\nload average before: {before}; after: {loadavg()}")
     for failure in sorted(set(figures.probe_failures))[:5]:
         print(f"planner probe failure: {failure}")
     return 0
+
+
+def spin() -> subprocess.Popen[bytes]:
+    """A process that spins on a core at ordinary priority until killed (``--busy``)."""
+    return subprocess.Popen([sys.executable, "-c", "while True: pass"])
 
 
 if __name__ == "__main__":

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import math
+import os
 
 import pytest
 
 from aiobt_services.controller.cycle_stats import CycleStats
+from bench.system.procstat import TICKS, Machine, machine, others_percent, stolen_seconds
 from bench.system.report import (
     CYCLES,
     Figures,
     controller_rows,
+    main,
+    others_row,
     pacing_row,
     planner_rows,
     pooled_rate,
@@ -66,3 +70,36 @@ def test_the_pacing_row_sums_the_robots_reports() -> None:
     )
     assert "| 1.52 s in 8 / 3, 0.07 wall s |" in pacing_row(log)
     assert "| 0.00 s in 0 / 0, 0.00 wall s |" in pacing_row("robot up\n")
+
+
+def test_the_rest_of_the_machine_is_every_other_process_and_the_time_stolen() -> None:
+    first = Machine(10.0, {1: 5.0, 20: 1.0, 30: 2.0, 40: 9.0}, steal=3.0)
+    # 2 s later: the stack (20, 30) used 1.2 s; pid 1 used 0.5 s, pid 50 started and used
+    # 1.0 s, pid 40 ended (missed); 0.2 s stolen
+    last = Machine(12.0, {1: 5.5, 20: 2.0, 30: 2.2, 50: 1.0}, steal=3.2)
+    others, stolen = others_percent(first, last, [20, 30])
+    assert others == pytest.approx(75.0)  # 1.5 s in 2 s
+    assert stolen == pytest.approx(10.0)
+    assert "| 2.0 / 75.0; stolen 0.0 / 10.0 |" in others_row([(2.0, 0.0), (75.0, 10.0)])
+    assert "| n/a |" in others_row([])
+
+
+def test_the_stolen_time_comes_from_the_all_cores_line() -> None:
+    assert stolen_seconds(f"cpu  100 0 20 900 5 0 0 {3 * TICKS} 0 0\n") == pytest.approx(3.0)
+    with pytest.raises(ValueError, match="all-cores line: 'cpu0 1 2 3 4 5 6 7 8'"):
+        stolen_seconds("cpu0 1 2 3 4 5 6 7 8")
+    with pytest.raises(ValueError, match="in order"):
+        others_percent(Machine(2.0, {}, 0.0), Machine(1.0, {}, 0.0), [])
+
+
+def test_a_live_sample_holds_this_process_and_its_cpu() -> None:
+    sample = machine()
+    assert sample.cpu[os.getpid()] > 0.0
+    assert sample.steal >= 0.0
+
+
+def test_busy_must_not_be_negative(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exited:
+        main(["--busy", "-1"])
+    assert exited.value.code == 2
+    assert "--busy must be 0 or more processes, got -1" in capsys.readouterr().err
