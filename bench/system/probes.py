@@ -110,7 +110,9 @@ class RobotPose(Newest[PoseStamped]):
 
 class PlannerProbe:
     """Sends ComputePathToPose goals one after another (from the robot's pose to one of
-    ``goals``), every ``period`` wall seconds; keeps each round trip (wall s).
+    ``goals``), every ``period`` wall seconds; keeps each round trip (wall s) and each
+    plan's ``planning_time`` (the planner's own wall time from taking the goal to its
+    result: the rest of the round trip is the way there and back).
 
     The planner serves one goal at a time (a newer one aborts the older, as in Nav2),
     so every request, the probe's and :meth:`plan`'s, holds ``lock``."""
@@ -127,6 +129,7 @@ class PlannerProbe:
         self.goals = list(goals)
         self.period = period
         self.round_trips: list[float] = []
+        self.planning_times: list[float] = []
         self.failures: list[str] = []
         self.lock = asyncio.Lock()
 
@@ -161,6 +164,8 @@ class PlannerProbe:
         self.round_trips.append(round_trip)
         if result.error_code != 0:
             self.failures.append(f"{result.error_code} {result.error_msg}")
+        else:
+            self.planning_times.append(result.planning_time)
 
 
 class Commands:

@@ -26,7 +26,8 @@ Prints one table (markdown) with the load average before and after; ``--logs DIR
 keeps each process's output there (``controller.log``, ``robot.log``, ...).
 ``--realtime``: the robot, the controller and the planner run with
 ``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so root or
-CAP_SYS_NICE).
+CAP_SYS_NICE); ``--priority NAME=N`` (repeatable) gives one of them level N instead
+of its default.
 
 The table's "rest of the machine" row is every other process's CPU (each one's
 ``/proc/<pid>/stat``) and the CPU stolen by the hypervisor (``/proc/stat``): what the
@@ -81,6 +82,7 @@ class Figures:
     speed_idle: float = math.nan
     speed_driving: float = math.nan
     round_trips: list[float] = field(default_factory=list)
+    planning_times: list[float] = field(default_factory=list)  # the planner's own, wall s
     probe_failures: list[str] = field(default_factory=list)
     reached: int = 0
     goals: int = 0
@@ -184,6 +186,7 @@ async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) ->
         figures.speed_driving = await clock.factor_since(mark)
         figures.goals = len(goals)
         figures.round_trips, figures.probe_failures = probe.round_trips, probe.failures
+        figures.planning_times = probe.planning_times
         await react(bus, client, track, goals, figures, clock, args.reactions)
     figures.controller = [
         (int(m[0]), float(m[1]), float(m[2]), float(m[4]), float(m[5]), int(m[6]))
@@ -222,14 +225,19 @@ def others_row(others: list[tuple[float, float]]) -> str:
 
 def planner_rows(figures: Figures) -> list[str]:
     """The round trip's spread, and its first trip (the drive's start, after the idle
-    phase) against the slowest of the others: with ~50 trips the p99 is the slowest."""
+    phase) against the slowest of the others: with ~50 trips the p99 is the slowest; and
+    the planner's own time (``planning_time``: taking the goal to its result, searches
+    waited for included), so the rest of a slow trip is the way there and back."""
     trips, failed = figures.round_trips, len(figures.probe_failures)
     spread = [ms(percentile(trips, q)) for q in (50, 99, 100)]
     label = f"planner round trip ms p50 / p99 / max (n={len(trips)}, failed {failed})"
     first = f"{ms(trips[0])} / {ms(max(trips[1:]))}" if len(trips) > 1 else "n/a"
+    own = figures.planning_times
+    inside = " / ".join(ms(percentile(own, q)) for q in (50, 99, 100)) if own else "n/a"
     return [
         row(label, " / ".join(spread), "p99 < 50"),
         row("planner round trip ms: the first / the slowest of the others", first, ""),
+        row("of which in the planner (planning_time) ms p50 / p99 / max", inside, ""),
     ]
 
 
@@ -334,11 +342,25 @@ def main(argv: list[str] | None = None) -> int:
         metavar="N",
         help="N other processes spinning at ordinary priority for the whole run (default: 0)",
     )
+    parser.add_argument(
+        "--priority",
+        action="append",
+        default=[],
+        metavar="NAME=N",
+        help=f"with --realtime: service NAME ({', '.join(REALTIME)}) at level N, not its default",
+    )
     args = parser.parse_args(argv)
     if args.busy < 0:
         parser.error(f"--busy must be 0 or more processes, got {args.busy}")
+    try:
+        levels = priorities(args.priority)
+    except ValueError as exc:
+        parser.error(str(exc))
+    if levels and not args.realtime:
+        parser.error("--priority needs --realtime")
     before = loadavg()
     extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
+    extra.update({name: ["--realtime-priority", str(level)] for name, level in levels.items()})
     config = StackConfig(world="office", speed=args.speed, seed=args.seed, extra=extra)
     spinners = [spin() for _ in range(args.busy)]
     try:
@@ -355,7 +377,8 @@ def main(argv: list[str] | None = None) -> int:
             spinner.kill()
             spinner.wait(timeout=10.0)
     if args.realtime:
-        print(f"real-time priority (SCHED_FIFO): {', '.join(REALTIME)}\n")
+        named = ", ".join(f"{n} {levels[n]}" if n in levels else n for n in REALTIME)
+        print(f"real-time priority (SCHED_FIFO): {named}\n")
     if args.busy:
         print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")
     print("\n".join(table(figures, args.speed)))
@@ -363,6 +386,19 @@ def main(argv: list[str] | None = None) -> int:
     for failure in sorted(set(figures.probe_failures))[:5]:
         print(f"planner probe failure: {failure}")
     return 0
+
+
+def priorities(given: list[str]) -> dict[str, int]:
+    """``--priority NAME=N`` values: each a service ``--realtime`` raises, at 1-99."""
+    levels: dict[str, int] = {}
+    for text in given:
+        name, _, level = text.partition("=")
+        if name not in REALTIME:
+            raise ValueError(f"--priority {text!r}: NAME must be one of {', '.join(REALTIME)}")
+        if not (level.isdigit() and 1 <= int(level) <= 99):
+            raise ValueError(f"--priority {text!r}: N must be a SCHED_FIFO level, 1 to 99")
+        levels[name] = int(level)
+    return levels
 
 
 def spin() -> subprocess.Popen[bytes]:

@@ -1,4 +1,4 @@
-"""bench.system.report's rows: the planner's spread and first trip, the controller's goal lines."""
+"""bench.system.report's rows (planner, controller, robot's pacing, the rest of the machine) and options."""
 
 from __future__ import annotations
 
@@ -18,18 +18,27 @@ from bench.system.report import (
     pacing_row,
     planner_rows,
     pooled_rate,
+    priorities,
 )
 
 
 def test_the_first_trip_is_shown_against_the_slowest_of_the_others() -> None:
     figures = Figures(round_trips=[0.080, 0.012, 0.045, 0.010])
-    spread, first = planner_rows(figures)
+    spread, first, _ = planner_rows(figures)
     assert spread.startswith("| planner round trip ms p50 / p99 / max (n=4, failed 0) |")
     assert "| 80.0 / 45.0 |" in first
 
 
+def test_the_planners_own_time_is_shown_beside_the_round_trip() -> None:
+    figures = Figures(round_trips=[0.030, 0.060], planning_times=[0.004, 0.020, 0.010])
+    *_, inside = planner_rows(figures)
+    assert "| of which in the planner (planning_time) ms p50 / p99 / max | 10.0 / " in inside
+    assert inside.endswith(" / 20.0 |  |")
+    assert "| n/a |" in planner_rows(Figures(round_trips=[0.03]))[2]
+
+
 def test_with_one_trip_there_is_nothing_to_set_it_against() -> None:
-    _, first = planner_rows(Figures(round_trips=[0.02]))
+    _, first, _ = planner_rows(Figures(round_trips=[0.02]))
     assert "| n/a |" in first
 
 
@@ -103,3 +112,19 @@ def test_busy_must_not_be_negative(capsys: pytest.CaptureFixture[str]) -> None:
         main(["--busy", "-1"])
     assert exited.value.code == 2
     assert "--busy must be 0 or more processes, got -1" in capsys.readouterr().err
+
+
+def test_a_priority_names_a_raised_service_and_a_fifo_level() -> None:
+    assert priorities(["planner=90", "robot=80"]) == {"planner": 90, "robot": 80}
+    with pytest.raises(ValueError, match="'router=80': NAME must be one of robot, controller"):
+        priorities(["router=80"])
+    with pytest.raises(ValueError, match="'planner=100': N must be a SCHED_FIFO level"):
+        priorities(["planner=100"])
+    with pytest.raises(ValueError, match="'planner': N must be"):
+        priorities(["planner"])
+
+
+def test_a_priority_needs_realtime(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        main(["--priority", "planner=90"])
+    assert "--priority needs --realtime" in capsys.readouterr().err
