@@ -1,4 +1,4 @@
-"""bench.system.report's rows (planner, controller, robot's pacing, the rest of the machine) and options."""
+"""bench.system.report's rows (planner, controller, pacing, the rest of the machine), options."""
 
 from __future__ import annotations
 
