@@ -4,11 +4,19 @@ from __future__ import annotations
 
 import math
 import os
+import time
 
 import pytest
 
 from aiobt_services.controller.cycle_stats import CycleStats
-from bench.system.procstat import TICKS, Machine, machine, others_percent, stolen_seconds
+from bench.system.procstat import (
+    TICKS,
+    Machine,
+    cpu_seconds,
+    machine,
+    others_percent,
+    stolen_seconds,
+)
 from bench.system.report import (
     CYCLES,
     Figures,
@@ -19,6 +27,7 @@ from bench.system.report import (
     planner_rows,
     pooled_rate,
     priorities,
+    spin,
 )
 
 
@@ -128,3 +137,18 @@ def test_a_priority_needs_realtime(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit):
         main(["--priority", "planner=90"])
     assert "--priority needs --realtime" in capsys.readouterr().err
+
+
+@pytest.mark.timeout(30)
+def test_a_busy_process_spins_until_killed() -> None:
+    spinner = spin()
+    try:
+        deadline = time.monotonic() + 20.0
+        while cpu_seconds(spinner.pid) < 0.2 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert cpu_seconds(spinner.pid) >= 0.2  # it works, not sleeps
+        assert spinner.poll() is None
+    finally:
+        spinner.kill()
+        spinner.wait(timeout=10.0)
+    assert spinner.returncode == -9
