@@ -3,7 +3,8 @@
 Nav2's controller server can run its control loop's thread under ``SCHED_FIFO`` at
 priority 90, "to better ensure resources to time sensitive portions of the codebase"
 (off by default; the user grants the right with an ``rtprio`` limit). Here the
-option is ``--realtime-priority [N]`` on the robot, the controller and the planner.
+option is ``--realtime-priority [N]`` on the robot, the controller, the planner and
+the navigator.
 
 On a loaded machine a ``SCHED_FIFO`` thread that wakes runs at once, ahead of every
 ordinary process, instead of waiting its turn: the control loop keeps its rate and
@@ -23,8 +24,11 @@ leave the CPU to the others; the kernel's real-time throttling
 Priorities order the services when both want a core: the robot (the hardware's
 stand-in: its clock is everyone's) and the controller at 90 (Nav2's), the planner
 below them at 70 (a search may take tens of milliseconds; it must not hold off a
-control cycle). Without the right to use ``SCHED_FIFO`` the service stops with an
-error naming the fix, as Nav2's does.
+control cycle), the navigator at 60 below them all. The navigator asks for the plans
+and paths: on a machine with other busy processes, plans from a raised planner still
+waited for the ordinary process that asked for them (round trip p99 39-64 ms against
+24-36 ms with the asker raised, ``bench/RESULTS.md``). Without the right to use
+``SCHED_FIFO`` the service stops with an error naming the fix, as Nav2's does.
 """
 
 from __future__ import annotations
@@ -37,6 +41,7 @@ PRIORITY_MIN, PRIORITY_MAX = 1, 99
 ROBOT_PRIORITY = 90
 CONTROLLER_PRIORITY = 90  # Nav2's
 PLANNER_PRIORITY = 70
+NAVIGATOR_PRIORITY = 60
 
 
 class RealtimePriorityError(Exception):

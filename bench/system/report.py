@@ -24,10 +24,11 @@ navigator; processes as the end-to-end tests run them) and measures:
 
 Prints one table (markdown) with the load average before and after; ``--logs DIR``
 keeps each process's output there (``controller.log``, ``robot.log``, ...).
-``--realtime``: the robot, the controller and the planner run with
+``--realtime``: the robot, the controller, the planner and the navigator run with
 ``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so root or
-CAP_SYS_NICE); ``--priority NAME=N`` (repeatable) gives one of them level N instead
-of its default.
+CAP_SYS_NICE), and so does this client at the navigator's level: it asks for the
+plans and paths in the navigator's stead. ``--priority NAME=N`` (repeatable) gives
+one of the services level N instead of its default.
 
 The table's "rest of the machine" row is every other process's CPU (each one's
 ``/proc/<pid>/stat``) and the CPU stolen by the hypervisor (``/proc/stat``): what the
@@ -56,6 +57,7 @@ from aiobt.testing.bus import start_router
 from aiobt.testing.navwatch import NavClient, start_navigation
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import ActionError, Bus, ServiceError, open_bus
+from aiobt_services.realtime import NAVIGATOR_PRIORITY, raise_priority
 
 from ..nav.goals import pick_goals, static_grid
 from ..nav.run import START, loadavg
@@ -70,7 +72,7 @@ CYCLES = re.compile(
 LAG = re.compile(r"fell more than [\d.]+ s behind (\d+) time\(s\), ([\d.]+) s of sim time given up")
 HOLDS = re.compile(r"waited (\d+) time\(s\), ([\d.]+) s in all, for a late cmd_vel")
 Goal = tuple[float, float, float]
-REALTIME = ("robot", "controller", "planner")  # the services ``--realtime`` raises
+REALTIME = ("robot", "controller", "planner", "navigator")  # the services ``--realtime`` raises
 
 
 @dataclass
@@ -159,6 +161,8 @@ async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) ->
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     pids = {"router": router_pid, **{n: p.pid for n, p in stack.processes.items()}}
     pids["bench client"] = os.getpid()  # the instrument's own cost, on the same 2 cores
+    if args.realtime:  # before the bus: its threads too; after the stack's processes started
+        raise_priority(NAVIGATOR_PRIORITY)
     async with open_bus(stack.settings()) as bus:
         await stack.wait_ready(bus, timeout=120.0)
         settle()  # the instrument's own collector passes (17-117 ms) out of its figures
@@ -332,8 +336,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--realtime",
         action="store_true",
-        help="robot, controller and planner with --realtime-priority (SCHED_FIFO at each "
-        "one's default: 90, 90, 70; see aiobt_services.realtime)",
+        help="robot, controller, planner and navigator with --realtime-priority (SCHED_FIFO "
+        "at each one's default: 90, 90, 70, 60; see aiobt_services.realtime), and this "
+        "client at the navigator's level",
     )
     parser.add_argument(
         "--busy",
@@ -378,7 +383,7 @@ def main(argv: list[str] | None = None) -> int:
             spinner.wait(timeout=10.0)
     if args.realtime:
         named = ", ".join(f"{n} {levels[n]}" if n in levels else n for n in REALTIME)
-        print(f"real-time priority (SCHED_FIFO): {named}\n")
+        print(f"real-time priority (SCHED_FIFO): {named}; this client {NAVIGATOR_PRIORITY}\n")
     if args.busy:
         print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")
     print("\n".join(table(figures, args.speed)))

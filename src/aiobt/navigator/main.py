@@ -42,6 +42,7 @@ from aiobt_services._cli import (
     unless_stopped,
 )
 from aiobt_services.controller.robot_io import add_clock_arguments, make_clock
+from aiobt_services.realtime import NAVIGATOR_PRIORITY, add_realtime_argument, realtime_if_asked
 
 log = logging.getLogger("aiobt.navigator.main")
 # s; more than the nodes' own default: a busy or just-started service (numpy warming
@@ -124,6 +125,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="let Groot2 attach live to the current navigation's tree (ZeroMQ on "
         f"127.0.0.1, PORT and PORT+1, default {DEFAULT_PORT})",
     )
+    add_realtime_argument(group, NAVIGATOR_PRIORITY)
 
 
 def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigator:
@@ -155,6 +157,7 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
 
 async def serve(args: argparse.Namespace) -> int:
     stop = stop_on_signals()
+    realtime = realtime_if_asked(args.realtime_priority)  # before the bus: its threads too
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return 0
@@ -176,7 +179,7 @@ async def serve(args: argparse.Namespace) -> int:
             settle()  # start-up's objects (the trees' too) out of the collector's full passes
             announce(bus, "navigator", sim_time=args.sim_time)
             time = "sim" if args.sim_time else "wall"
-            log.info("navigator up on namespace '%s' (%s time)", bus.namespace, time)
+            log.info("navigator up on namespace '%s' (%s time)%s", bus.namespace, time, realtime)
             await stopper
             await service.aclose()
     return 0

@@ -60,7 +60,11 @@ async def test_the_event_loop_zenohs_threads_and_the_threads_it_starts_run_fifo(
     planner = spawn(["-m", "aiobt_services.planner", "--realtime-priority", *common(bus_settings)])
     controller = spawn(["-m", "aiobt_services.controller", "--sim-time", "--realtime-priority",
                         "80", *common(bus_settings)])  # fmt: skip
-    for name, proc in (("robot", robot), ("planner", planner), ("controller", controller)):
+    navigator = spawn(["-m", "aiobt.navigator", "--sim-time", "--realtime-priority",
+                       *common(bus_settings)])  # fmt: skip
+    raised = (("robot", robot, 90), ("planner", planner, 70), ("controller", controller, 80),
+              ("navigator", navigator, 60))  # fmt: skip
+    for name, proc, _ in raised:
         await up(bus, name, proc)
     before = threads(planner.pid)
     client = bus.action_client("compute_path_to_pose", ComputePathToPose)
@@ -74,7 +78,7 @@ async def test_the_event_loop_zenohs_threads_and_the_threads_it_starts_run_fifo(
             break
     assert result.error_code == 0, result.error_msg
 
-    for proc, level in ((robot, 90), (planner, 70), (controller, 80)):
+    for _, proc, level in raised:
         seen = threads(proc.pid)
         assert seen[proc.pid][1:] == (os.SCHED_FIFO, level), (proc.args, seen)  # the loop's
         zenoh = [t for t in seen.values() if t[0].startswith(ZENOH_THREADS)]

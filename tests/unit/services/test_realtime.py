@@ -10,6 +10,7 @@ from collections.abc import Callable
 
 import pytest
 
+from aiobt.navigator.main import add_arguments as navigator_arguments
 from aiobt_services._cli import run_service
 from aiobt_services.controller.main import add_arguments as controller_arguments
 from aiobt_services.planner.main import add_arguments as planner_arguments
@@ -20,6 +21,7 @@ SERVICES: list[tuple[Callable[[argparse.ArgumentParser], None], int]] = [
     (robot_arguments, 90),
     (controller_arguments, 90),  # Nav2's
     (planner_arguments, 70),  # below the control loop and the simulation
+    (navigator_arguments, 60),  # below the planner: it asks for the plans
 ]
 
 
