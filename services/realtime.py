@@ -27,7 +27,9 @@ below them at 70 (a search may take tens of milliseconds; it must not hold off a
 control cycle), the navigator at 60 below them all. The navigator asks for the plans
 and paths: on a machine with other busy processes, plans from a raised planner still
 waited for the ordinary process that asked for them (round trip p99 39-64 ms against
-24-36 ms with the asker raised, ``bench/RESULTS.md``). Without the right to use
+24-36 ms with the asker raised, ``bench/RESULTS.md``). ``aiobt router`` takes the
+option too (60): with the asker raised and the router not, the router's turn came
+later and the control rate fell; raised alone, the plans waited longer. Without the right to use
 ``SCHED_FIFO`` the service stops with an error naming the fix, as Nav2's does.
 """
 
@@ -42,6 +44,7 @@ ROBOT_PRIORITY = 90
 CONTROLLER_PRIORITY = 90  # Nav2's
 PLANNER_PRIORITY = 70
 NAVIGATOR_PRIORITY = 60
+ROUTER_PRIORITY = 60  # ``aiobt router``: the services' messages all pass through it
 
 
 class RealtimePriorityError(Exception):

@@ -24,9 +24,9 @@ navigator; processes as the end-to-end tests run them) and measures:
 
 Prints one table (markdown) with the load average before and after; ``--logs DIR``
 keeps each process's output there (``controller.log``, ``robot.log``, ...).
-``--realtime``: the robot, the controller, the planner and the navigator run with
-``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so root or
-CAP_SYS_NICE), and so does this client at the navigator's level: it asks for the
+``--realtime``: the robot, the controller, the planner, the navigator and the router
+run with ``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so
+root or CAP_SYS_NICE), and so does this client at the navigator's level: it asks for the
 plans and paths in the navigator's stead. ``--priority NAME=N`` (repeatable) gives
 one of the services level N instead of its default.
 
@@ -336,9 +336,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--realtime",
         action="store_true",
-        help="robot, controller, planner and navigator with --realtime-priority (SCHED_FIFO "
-        "at each one's default: 90, 90, 70, 60; see aiobt_services.realtime), and this "
-        "client at the navigator's level",
+        help="robot, controller, planner, navigator and router with --realtime-priority "
+        "(SCHED_FIFO at each one's default: 90, 90, 70, 60, 60; see aiobt_services.realtime), "
+        "and this client at the navigator's level",
     )
     parser.add_argument(
         "--busy",
@@ -369,9 +369,9 @@ def main(argv: list[str] | None = None) -> int:
     config = StackConfig(world="office", speed=args.speed, seed=args.seed, extra=extra)
     spinners = [spin() for _ in range(args.busy)]
     try:
-        router, endpoint = start_router(
-            extra_args=("--lease-ms", str(config.lease_ms)), timeout=60.0
-        )
+        router_args = ["--lease-ms", str(config.lease_ms)]
+        router_args += ["--realtime-priority"] if args.realtime else []
+        router, endpoint = start_router(extra_args=router_args, timeout=60.0)
         try:
             with NavStack.launch(endpoint, config) as stack:
                 figures = asyncio.run(measure(stack, router.pid, args))
@@ -382,7 +382,7 @@ def main(argv: list[str] | None = None) -> int:
             spinner.kill()
             spinner.wait(timeout=10.0)
     if args.realtime:
-        named = ", ".join(f"{n} {levels[n]}" if n in levels else n for n in REALTIME)
+        named = ", ".join(f"{n} {levels[n]}" if n in levels else n for n in (*REALTIME, "router"))
         print(f"real-time priority (SCHED_FIFO): {named}; this client {NAVIGATOR_PRIORITY}\n")
     if args.busy:
         print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")

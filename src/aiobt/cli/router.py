@@ -10,6 +10,10 @@ password) are logged with the peer's address, rate-limited.
 
 Security (user/password, access control, TLS) is Zenoh configuration: pass a
 config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
+
+``--realtime-priority [N]`` (default level 60) runs it under SCHED_FIFO, as the
+services' option does (``aiobt_services.realtime``): every message between them
+passes through it, so when they are raised on a loaded machine, it should be too.
 """
 
 from __future__ import annotations
@@ -32,6 +36,12 @@ from aiobt.transport.settings import (
     BusConfigError,
     BusSettings,
     listen_endpoints,
+)
+from aiobt_services.realtime import (
+    ROUTER_PRIORITY,
+    RealtimePriorityError,
+    add_realtime_argument,
+    realtime_if_asked,
 )
 
 log = logging.getLogger("aiobt.cli.router")
@@ -66,6 +76,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=1000,
         help="link lease: how fast a hung peer is noticed (default: %(default)s ms)",
     )
+    add_realtime_argument(parser, ROUTER_PRIORITY)
 
 
 def settings_from_args(args: argparse.Namespace) -> BusSettings:
@@ -90,6 +101,11 @@ def run(args: argparse.Namespace) -> int:
     where = ", ".join(listen_endpoints(config)) or "nowhere"
     watch_refusals(log)
     try:
+        realtime = realtime_if_asked(args.realtime_priority)  # before Zenoh's threads start
+    except RealtimePriorityError as exc:
+        log.error("router: %s", exc)
+        return 1
+    try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:
         log.error("cannot start the router (listen %s): %s", where, clean(str(exc)))
@@ -97,7 +113,7 @@ def run(args: argparse.Namespace) -> int:
     stop = threading.Event()
     previous = {sig: signal.signal(sig, _setter(stop)) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        log.info("router %s listening on %s", session.zid(), where)
+        log.info("router %s listening on %s%s", session.zid(), where, realtime)
         while not stop.wait(0.5):
             pass
         log.info("router stopping")
