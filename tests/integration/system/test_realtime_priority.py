@@ -4,6 +4,7 @@ does not permit it."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import subprocess
@@ -13,8 +14,8 @@ from collections.abc import Callable, Sequence
 import pytest
 
 from aiobt.msgs import ComputePathToPose, PoseStamped
-from aiobt.testing.bus import ServiceProcess
-from aiobt.transport import Bus, BusSettings
+from aiobt.testing.bus import ServiceProcess, running_router
+from aiobt.transport import Bus, BusSettings, open_bus
 
 from ..services import common, up
 
@@ -103,3 +104,38 @@ def test_without_the_right_the_service_stops_with_an_error_naming_the_fix(
     assert "planner: --realtime-priority 70: not permitted to use SCHED_FIFO" in done.stderr
     assert "CAP_SYS_NICE" in done.stderr
     assert "planner up" not in done.stderr
+
+
+@needs_fifo
+async def test_the_router_runs_fifo_with_its_zenoh_threads_and_carries_messages() -> None:
+    with running_router(extra_args=("--realtime-priority",)) as (router, endpoint):
+        settings = BusSettings(mode="client", connect=(endpoint,), namespace="rt",
+                               connect_timeout=10.0)  # fmt: skip
+        async with open_bus(settings) as one, open_bus(settings) as two:
+            heard = two.latest("probe", PoseStamped)
+            publisher = one.publisher("probe", PoseStamped)
+            for _ in range(100):  # until the subscription is matched (bounded)
+                publisher.put(PoseStamped.from_xy_yaw(1.0, 2.0, 0.0))
+                with contextlib.suppress(TimeoutError):
+                    await heard.wait_latest(0.1)
+                    break
+            got = heard.get()
+            assert got is not None, "nothing carried through the router"
+            assert got.x == 1.0
+        seen = threads(router.pid)
+        assert seen[router.pid][1:] == (os.SCHED_FIFO, 60), seen
+        zenoh = [t for t in seen.values() if t[0].startswith(ZENOH_THREADS)]
+        assert zenoh, seen
+        assert all(t[1:] == (os.SCHED_FIFO, 60) for t in zenoh), seen
+        assert router.wait_for_output("real-time priority 60 (SCHED_FIFO)", 10.0), router.output()
+
+
+@needs_fifo
+@pytest.mark.skipif(shutil.which("setpriv") is None, reason="needs setpriv (util-linux)")
+def test_a_router_without_the_right_stops_with_the_error() -> None:
+    command = ["setpriv", "--bounding-set", "-sys_nice", sys.executable, "-m", "aiobt.cli.router",
+               "--listen", "tcp/127.0.0.1:0", "--realtime-priority", "55"]  # fmt: skip
+    done = subprocess.run(command, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 1, done.stderr
+    assert "router: --realtime-priority 55: not permitted to use SCHED_FIFO" in done.stderr
+    assert "listening" not in done.stderr
