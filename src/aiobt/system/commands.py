@@ -27,7 +27,7 @@ def available(name: str) -> bool:
 
 
 def router_command(config: SystemConfig) -> list[str]:
-    return ["router", "--listen", config.router.listen]
+    return ["router", "--listen", config.router.listen, *config.router.args]
 
 
 def service_command(name: str, config: SystemConfig) -> list[str]:

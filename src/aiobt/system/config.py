@@ -7,6 +7,7 @@
     router:
       listen: tcp/127.0.0.1:7447   # where the router listens and services connect
       start: true             # false: use a router that is already running there
+      args: []                # extra flags of the router it starts
     restart:
       backoff: 0.5            # s before the first restart, doubled per crash ...
       max_backoff: 8.0        # ... up to this
@@ -46,6 +47,7 @@ class ConfigError(ValueError):
 class RouterConfig:
     listen: str = DEFAULT_LISTEN
     start: bool = True
+    args: tuple[str, ...] = ()
 
 
 @dataclass(slots=True, frozen=True)
@@ -131,7 +133,8 @@ def _router(data: Mapping[str, Any], where: str) -> RouterConfig:
     listen = _typed(data, "listen", str, DEFAULT_LISTEN, where, "router.")
     if not listen.startswith(("tcp/", "udp/", "tls/", "quic/", "ws/")):
         raise ConfigError(f"{where}: router.listen must be a Zenoh endpoint like {DEFAULT_LISTEN}")
-    return RouterConfig(listen, _typed(data, "start", bool, True, where, "router."))
+    start = _typed(data, "start", bool, True, where, "router.")
+    return RouterConfig(listen, start, _args(data, where, "router."))
 
 
 def _restart(data: Mapping[str, Any], where: str) -> RestartConfig:
@@ -158,12 +161,17 @@ def _services(data: Mapping[str, Any], where: str) -> dict[str, ServiceConfig]:
         prefix = f"services.{name}."
         section = _section(data, name, where, "services.")
         _check_keys(section, ServiceConfig, where, prefix)
-        args = section.get("args", [])
-        if not isinstance(args, list) or not all(isinstance(a, str | int | float) for a in args):
-            raise ConfigError(f"{where}: {prefix}args must be a list of strings")
         enabled = _typed(section, "enabled", bool, True, where, prefix)
-        services[name] = ServiceConfig(enabled, tuple(str(a) for a in args))
+        services[name] = ServiceConfig(enabled, _args(section, where, prefix))
     return services
+
+
+def _args(section: Mapping[str, Any], where: str, prefix: str) -> tuple[str, ...]:
+    """A section's ``args``: extra command-line flags, as strings."""
+    args = section.get("args", [])
+    if not isinstance(args, list) or not all(isinstance(a, str | int | float) for a in args):
+        raise ConfigError(f"{where}: {prefix}args must be a list of strings")
+    return tuple(str(a) for a in args)
 
 
 def _section(data: Mapping[str, Any], key: str, where: str, prefix: str = "") -> Mapping[str, Any]:

@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from aiobt.cli.main import _full_parser, main
-from aiobt.system.commands import service_command
+from aiobt.system.commands import router_command, service_command
 from aiobt.system.config import config_from_dict
 
 REPO = Path(__file__).resolve().parents[3]
@@ -70,10 +70,12 @@ def test_the_tour_config_is_a_valid_system_config() -> None:
 def test_the_realtime_config_gives_each_service_its_default_priority() -> None:
     _, config = _blocks("yaml")
     loaded = config_from_dict(yaml.safe_load(config), "README")
-    for name, level in (("robot", 90), ("controller", 90), ("planner", 70)):
+    for name, level in (("robot", 90), ("controller", 90), ("planner", 70), ("navigator", 60)):
         argv = service_command(name, loaded)
         args = _full_parser(argv).parse_args(argv)  # SystemExit on an unknown flag
         assert args.realtime_priority == level, name
+    argv = router_command(loaded)
+    assert _full_parser(argv).parse_args(argv).realtime_priority == 60
 
 
 def test_the_embedding_snippet_is_the_example_a_test_runs() -> None:

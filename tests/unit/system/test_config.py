@@ -6,8 +6,9 @@ from pathlib import Path
 
 import pytest
 
+from aiobt.cli.main import _full_parser
 from aiobt.system import ConfigError, load_config
-from aiobt.system.commands import service_command
+from aiobt.system.commands import router_command, service_command
 
 
 def _write(tmp_path: Path, text: str) -> Path:
@@ -58,6 +59,7 @@ def test_flags_override_the_file_and_keep_the_rest_of_a_section(tmp_path: Path) 
         ("sim_time: 1\n", "sim_time must be bool, got int"),
         ("services: {robot: {enabled: yes please}}\n", "services.robot.enabled must be bool"),
         ("services: {robot: {args: --gui}}\n", "services.robot.args must be a list"),
+        ("router: {args: [[1]]}\n", "router.args must be a list of strings"),
         ("restart: {max_restarts: 1.5}\n", "restart.max_restarts must be int"),
         ("router: {listen: 7447}\n", "router.listen must be str"),
         ("router: {listen: localhost}\n", "router.listen must be a Zenoh endpoint"),
@@ -79,3 +81,14 @@ def test_a_bad_setting_is_an_error_naming_the_file_and_key(
 def test_a_missing_file_is_named(tmp_path: Path) -> None:
     with pytest.raises(ConfigError, match=r"nope\.yaml: cannot read"):
         load_config(tmp_path / "nope.yaml")
+
+
+def test_the_router_it_starts_takes_extra_flags(tmp_path: Path) -> None:
+    path = _write(tmp_path, "router: {args: [--realtime-priority, 55]}\n")
+    config = load_config(path)
+    assert router_command(config) == [
+        "router", "--listen", "tcp/127.0.0.1:7447", "--realtime-priority", "55",
+    ]  # fmt: skip
+    argv = router_command(config)
+    assert _full_parser(argv).parse_args(argv).realtime_priority == 55  # a flag it knows
+    assert router_command(load_config(_write(tmp_path, "speed: 2\n")))[3:] == []
