@@ -3,8 +3,8 @@
 Nav2's controller server can run its control loop's thread under ``SCHED_FIFO`` at
 priority 90, "to better ensure resources to time sensitive portions of the codebase"
 (off by default; the user grants the right with an ``rtprio`` limit). Here the
-option is ``--realtime-priority [N]`` on the robot, the controller, the planner and
-the navigator.
+option is ``--realtime-priority [N]`` on the robot, the controller, the planner, the
+navigator and ``aiobt router``.
 
 On a loaded machine a ``SCHED_FIFO`` thread that wakes runs at once, ahead of every
 ordinary process, instead of waiting its turn: the control loop keeps its rate and
@@ -29,8 +29,9 @@ and paths: on a machine with other busy processes, plans from a raised planner s
 waited for the ordinary process that asked for them (round trip p99 39-64 ms against
 24-36 ms with the asker raised, ``bench/RESULTS.md``). ``aiobt router`` takes the
 option too (60): with the asker raised and the router not, the router's turn came
-later and the control rate fell; raised alone, the plans waited longer. Without the right to use
-``SCHED_FIFO`` the service stops with an error naming the fix, as Nav2's does.
+later and the control rate fell; raised alone, the plans waited longer. Without the
+right to use ``SCHED_FIFO`` the service stops with an error naming the fix, as Nav2's
+does.
 """
 
 from __future__ import annotations
