@@ -99,12 +99,12 @@ def run(args: argparse.Namespace) -> int:
         log.error("%s", exc)
         return 2
     where = ", ".join(listen_endpoints(config)) or "nowhere"
-    watch_refusals(log)
-    try:
-        realtime = realtime_if_asked(args.realtime_priority)  # before Zenoh's threads start
+    try:  # before any thread starts (Zenoh's, the refusals' reader): all of them inherit it
+        realtime = realtime_if_asked(args.realtime_priority)
     except RealtimePriorityError as exc:
         log.error("router: %s", exc)
         return 1
+    watch_refusals(log)
     try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:
