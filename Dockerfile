@@ -8,11 +8,11 @@ RUN apt-get update \
     && rm -rf /var/lib/apt/lists/*
 
 WORKDIR /app
-COPY pyproject.toml setup.py README.md ./
+COPY pyproject.toml README.md ./
 COPY src ./src
 COPY services ./services
 COPY trees ./trees
-# editable: the navigator finds Nav2's trees in /app/trees
+# editable: the package aiobt.trees is /app/trees (pyproject.toml's package-dir)
 RUN pip install -e . && useradd --create-home --uid 1000 aiobt
 USER aiobt
 

@@ -20,15 +20,15 @@ import time
 
 import numpy as np
 
+from aiobt.costmap.checker import CollisionChecker
+from aiobt.costmap.local import LocalCostmap
+from aiobt.geometry import PlanarPath, Pose2D, Velocity
 from aiobt.msgs import LaserScan
-from aiobt_services.controller.collision import CollisionChecker
-from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
-from aiobt_services.controller.local_costmap import LocalCostmap
+from aiobt.robot.state import RobotState
 from aiobt_services.controller.session import (
     ControllerConfig,
     FollowPathSession,
     FollowRequest,
-    RobotState,
 )
 from aiobt_services.controller.unicycle import Unicycle
 

@@ -37,16 +37,16 @@ from collections.abc import Callable
 
 import numpy as np
 
+from aiobt.geometry import PlanarPath, Pose2D, Velocity
 from aiobt.msgs import FollowPath, GoalState, OccupancyGrid, Path, PoseStamped
+from aiobt.robot.state import RobotState
 from aiobt.testing.bus import ServiceProcess, running_router
 from aiobt.transport import Bus, BusSettings, open_bus
-from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
 from aiobt_services.controller.observed import costmap_msg, path_msg
 from aiobt_services.controller.session import (
     ControllerConfig,
     FollowPathSession,
     FollowRequest,
-    RobotState,
 )
 from bench.controller.control_cycle import full_costmap, time_cycles
 

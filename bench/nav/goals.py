@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from aiobt_services.costmap import INSCRIBED, CostGrid
+from aiobt.costmap import INSCRIBED, CostGrid
 from aiobt_services.planner.reference import dijkstra
 from bench.planner.plan_time import office, reachable
 

@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from aiobt_services.costmap import CostGrid, Costmap, GridGeometry
+from aiobt.costmap import CostGrid, Costmap, GridGeometry
 from aiobt_services.planner.planning import plan
 from aiobt_services.planner.reference import dijkstra, step_weights
 from aiobt_services.planner.traversal import SearchParams, Traversal

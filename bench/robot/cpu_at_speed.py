@@ -165,9 +165,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--rounds", type=int, default=3)
     args = parser.parse_args(argv)
     base = args.base.resolve()
-    if not (base / "services" / "robot").is_dir():
-        raise SystemExit(f"--base {base}: no services/robot there (a git archive of a commit?)")
-    paths = {"base": f"{base / 'src'}:{base / 'typings'}:{base}", "this": None}
+    services = next(
+        (p for p in (base / "services", base / "typings") if (p / "aiobt_services").is_dir()), None
+    )
+    if services is None:  # the layout of today, or the one before services/aiobt_services
+        raise SystemExit(f"--base {base}: no aiobt_services there (a git archive of a commit?)")
+    paths = {"base": f"{base / 'src'}:{services}:{base}", "this": None}
     print(f"load average before: {loadavg()}", flush=True)
     runs: dict[str, list[dict[str, float]]] = {"base": [], "this": []}
     router, endpoint = start_router()

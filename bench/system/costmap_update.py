@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from aiobt_services.costmap import CostGrid, Costmap, GridGeometry, Scan
+from aiobt.costmap import CostGrid, Costmap, GridGeometry, Scan
 from aiobt_services.planner.traversal import SearchParams, Traversal
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.worlds import OFFICE

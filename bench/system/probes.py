@@ -12,8 +12,8 @@ from collections.abc import AsyncIterator, Callable, Sequence
 from typing import Generic, TypeVar
 
 from aiobt.msgs import Clock, ComputePathToPose, Msg, PoseStamped, Twist
+from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.transport import ActionError, Bus, Latest
-from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
 M = TypeVar("M", bound=Msg)
 

@@ -52,12 +52,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from aiobt.msgs import FollowPath, NavigateToPose, PoseStamped
+from aiobt.system.catalog import realtime_priority
 from aiobt.system.heap import settle
+from aiobt.system.realtime import raise_priority
 from aiobt.testing.bus import start_router
 from aiobt.testing.navwatch import NavClient, start_navigation
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import ActionError, Bus, ServiceError, open_bus
-from aiobt_services.realtime import NAVIGATOR_PRIORITY, raise_priority
 
 from ..nav.goals import pick_goals, static_grid
 from ..nav.run import START, loadavg
@@ -73,6 +74,8 @@ LAG = re.compile(r"fell more than [\d.]+ s behind (\d+) time\(s\), ([\d.]+) s of
 HOLDS = re.compile(r"waited (\d+) time\(s\), ([\d.]+) s in all, for a late cmd_vel")
 Goal = tuple[float, float, float]
 REALTIME = ("robot", "controller", "planner", "navigator")  # the services ``--realtime`` raises
+
+NAVIGATOR_PRIORITY = realtime_priority("navigator")
 
 
 @dataclass
@@ -337,7 +340,7 @@ def main(argv: list[str] | None = None) -> int:
         "--realtime",
         action="store_true",
         help="robot, controller, planner, navigator and router with --realtime-priority "
-        "(SCHED_FIFO at each one's default: 90, 90, 70, 60, 60; see aiobt_services.realtime), "
+        "(SCHED_FIFO at each one's default: 90, 90, 70, 60, 60; see aiobt.system.realtime), "
         "and this client at the navigator's level",
     )
     parser.add_argument(

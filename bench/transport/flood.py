@@ -35,10 +35,10 @@ import uuid
 from collections.abc import Iterator, Sequence
 
 from aiobt.msgs import Clock, Empty, Header, IsPathValid, Path, PoseStamped
+from aiobt.msgs.sim import ObstacleList
 from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
 from aiobt.testing.flood import MIB, Call, Figures, Flood, flood_and_measure
 from aiobt.transport import Bus, BusSettings, open_bus
-from aiobt_services.robot.messages import ObstacleList
 
 POSE = '{"x": 0.5, "y": 0.5, "yaw": 0.0}'
 SINK = Flood("flood_sink", "PoseStamped", POSE)

@@ -21,9 +21,9 @@ from aiobt.msgs import (
     GoalState,
     PoseStamped,
 )
+from aiobt.msgs.sim import BumperEvent
 from aiobt.testing.navwatch import Sample, ServerGoals, wait_until
 from aiobt.testing.treewatch import TreeWatch
-from aiobt_services.robot.messages import BumperEvent
 
 from .world import World
 

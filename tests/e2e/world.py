@@ -27,9 +27,7 @@ from aiobt.msgs import (
     Spin,
     Wait,
 )
-from aiobt.testing.navwatch import Navigation, RobotTrack, Running, navigate, start_navigation
-from aiobt.transport import ActionError, Bus, ServiceError
-from aiobt_services.robot.messages import (
+from aiobt.msgs.sim import (
     Ack,
     MoveObstacle,
     ObstacleList,
@@ -38,6 +36,8 @@ from aiobt_services.robot.messages import (
     RemoveObstacle,
     SpawnObstacle,
 )
+from aiobt.testing.navwatch import Navigation, RobotTrack, Running, navigate, start_navigation
+from aiobt.transport import ActionError, Bus, ServiceError
 
 START = (2.0, 9.75, 0.0)
 Request = SpawnObstacle | MoveObstacle | RemoveObstacle

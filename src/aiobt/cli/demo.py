@@ -24,8 +24,8 @@ from aiobt.demo.picture import render
 from aiobt.demo.record import Leg, Record
 from aiobt.embed import Feedback, connect
 from aiobt.system import ConfigError, Fatal, SystemConfig, load_config, run_system
-from aiobt.testing.bus import free_endpoint
 from aiobt.transport import BusSettings
+from aiobt.transport.endpoints import free_endpoint
 
 HEALTH_TIMEOUT = 60.0  # s of wall time for every service to come up
 

@@ -15,7 +15,9 @@ import os
 import sys
 from collections.abc import Sequence
 
-# name -> (module, one-line help). One place lists every sub-command.
+from aiobt.system.catalog import SERVICES
+
+# name -> (module, one-line help): every sub-command.
 COMMANDS: dict[str, tuple[str, str]] = {
     "run": ("aiobt.cli.run", "load an XML tree and tick it until it finishes"),
     "demo": ("aiobt.cli.demo", "the main job: run the example mission"),
@@ -29,11 +31,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "monitor": ("aiobt.cli.monitor", "the navigator's running tree, live, in the terminal"),
     "foxglove": ("aiobt.cli.foxglove", "the robot's topics in Foxglove (WebSocket, MCAP)"),
     "web": ("aiobt.cli.web", "the robot, its plans and its tree in a browser (a web view)"),
-    "robot": ("aiobt_services.robot.main", "the pybullet robot service"),
-    "planner": ("aiobt_services.planner.main", "the planner service"),
-    "controller": ("aiobt_services.controller.main", "the controller service"),
-    "behaviors": ("aiobt_services.behaviors.main", "the behavior service"),
-    "navigator": ("aiobt.navigator.main", "the navigator: Nav2's bt_navigator over Zenoh"),
+    # the services, by module path, from the one list (aiobt.system.catalog)
+    **{spec.name: (spec.module, spec.summary) for spec in SERVICES},
 }
 
 

@@ -12,7 +12,7 @@ Security (user/password, access control, TLS) is Zenoh configuration: pass a
 config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
 
 ``--realtime-priority [N]`` (default level 60) runs it under SCHED_FIFO, as the
-services' option does (``aiobt_services.realtime``): every message between them
+services' option does (``aiobt.system.realtime``): every message between them
 passes through it, so when they are raised on a loaded machine, it should be too.
 """
 
@@ -28,6 +28,12 @@ from types import FrameType
 
 import zenoh
 
+from aiobt.system.realtime import (
+    ROUTER_PRIORITY,
+    RealtimePriorityError,
+    add_realtime_argument,
+    realtime_if_asked,
+)
 from aiobt.transport import _z
 from aiobt.transport.diagnose import clean
 from aiobt.transport.refusals import watch_refusals
@@ -36,12 +42,6 @@ from aiobt.transport.settings import (
     BusConfigError,
     BusSettings,
     listen_endpoints,
-)
-from aiobt_services.realtime import (
-    ROUTER_PRIORITY,
-    RealtimePriorityError,
-    add_realtime_argument,
-    realtime_if_asked,
 )
 
 log = logging.getLogger("aiobt.cli.router")

@@ -18,11 +18,11 @@ import sys
 from typing import Any
 
 from aiobt.cli.navigate import CONNECT_TIMEOUT
+from aiobt.costmap.inflation import InflationParams
+from aiobt.system.service import non_negative, positive
 from aiobt.system.signals import stop_on_signals
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
 from aiobt.web import WebOptions, serve_web
-from aiobt_services._cli import non_negative, positive
-from aiobt_services.costmap.inflation import InflationParams
 
 log = logging.getLogger("aiobt.cli.web")
 DEFAULT_PORT = 8080

@@ -18,8 +18,8 @@ import logging
 
 from aiobt.core.clock import Clock
 from aiobt.msgs import GetCosts, PoseStamped
+from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.transport import Bus
-from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
 log = logging.getLogger("aiobt.demo.boxes")
 # x, y, size_x, size_y: one east of the nook from y 0.95 to the north edge, one from

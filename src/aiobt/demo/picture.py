@@ -8,9 +8,9 @@ import math
 import numpy as np
 from PIL import Image, ImageDraw
 
+from aiobt.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
+from aiobt.costmap.inflation import InflationParams, inflate
 from aiobt.demo.record import XY, Record
-from aiobt_services.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
-from aiobt_services.costmap.inflation import InflationParams, inflate
 
 SCALE = 6  # pixels per map cell
 _LEGEND_HEIGHT = 30  # px under the map

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from foxglove import messages as fm
 
+from aiobt.costmap import CostGrid
 from aiobt.msgs import (
     BtTransitions,
     BtTree,
@@ -26,7 +27,6 @@ from aiobt.msgs import (
     decode,
 )
 from aiobt.msgs import Pose as AiobtPose
-from aiobt_services.costmap import CostGrid
 
 _INT8 = fm.PackedElementFieldNumericType.Int8
 _UINT8 = fm.PackedElementFieldNumericType.Uint8

@@ -2,7 +2,7 @@
 
 The planner serves costs at poses (``get_cost_global_costmap``) but publishes no
 grid, so the bridge folds the same topics (``map``, ``pose``, ``scan``) into the
-planner's own world model (:class:`aiobt_services.planner.state.GlobalCostmap`,
+planner's own world model (:class:`aiobt.costmap.world.FedCostmap`,
 Nav2's default inflation: 0.22 m inscribed, 0.55 m inflation radius) and hands
 out its master grid every ``period`` seconds of robot time (scan stamps). A
 planner run with other inflation flags plans on a differently inflated grid.
@@ -12,9 +12,9 @@ from __future__ import annotations
 
 import math
 
+from aiobt.costmap import CostGrid
+from aiobt.costmap.world import FedCostmap
 from aiobt.msgs import LaserScan, OccupancyGrid, PoseStamped
-from aiobt_services.costmap import CostGrid
-from aiobt_services.planner.state import GlobalCostmap
 
 
 class CostmapMirror:
@@ -24,7 +24,7 @@ class CostmapMirror:
         if not (math.isfinite(period) and period > 0.0):
             raise ValueError(f"costmap period must be > 0 s, not {period!r}")
         self.period = period
-        self.world = GlobalCostmap()
+        self.world = FedCostmap()
         self._last: float | None = None
 
     def on_map(self, msg: OccupancyGrid) -> None:

@@ -11,18 +11,15 @@ from __future__ import annotations
 import importlib.util
 import sys
 
+from aiobt.system.catalog import service
 from aiobt.system.config import SystemConfig
 
 
 def available(name: str) -> bool:
-    """Whether ``aiobt`` has the sub-command ``name`` and its module is installed."""
-    from aiobt.cli.main import COMMANDS
-
-    if name not in COMMANDS:
-        return False
+    """Whether ``name`` is a service and its module is installed."""
     try:
-        return importlib.util.find_spec(COMMANDS[name][0]) is not None
-    except ModuleNotFoundError:
+        return importlib.util.find_spec(service(name).module) is not None
+    except (KeyError, ModuleNotFoundError):
         return False
 
 
@@ -33,9 +30,10 @@ def router_command(config: SystemConfig) -> list[str]:
 def service_command(name: str, config: SystemConfig) -> list[str]:
     """``name``'s sub-command and flags: the common bus flags, then its own, then the extras."""
     command = [name, "--connect", config.router.listen, "--namespace", config.namespace]
-    if name == "robot":
+    simulation = service(name).simulation
+    if simulation:
         command += ["--world", config.world, "--speed", f"{config.speed:g}"]
-    if config.uses_sim_time and name != "robot":
+    if config.uses_sim_time and not simulation:
         command.append("--sim-time")
     return command + list(config.services[name].args)
 

@@ -35,7 +35,10 @@ from typing import Any
 
 import yaml
 
-SERVICES = ("robot", "planner", "controller", "behaviors", "navigator")
+from aiobt.system.catalog import SERVICE_NAMES
+from aiobt.transport.keys import check_name
+
+SERVICES = SERVICE_NAMES  # aiobt.system.catalog: the one list
 DEFAULT_LISTEN = "tcp/127.0.0.1:7447"
 
 
@@ -223,8 +226,6 @@ def _number(
 
 
 def _check_namespace(namespace: str, where: str) -> None:
-    from aiobt.transport.keys import check_name
-
     try:
         check_name(namespace, "namespace")
     except ValueError as exc:

@@ -1,4 +1,4 @@
-"""Test helpers for real Zenoh on loopback: free ports, a router process, service processes.
+"""Test helpers for real Zenoh on loopback: a router process, service processes.
 
 Processes start with ``subprocess`` (fork+exec: a forked Zenoh process hangs)
 and are stopped by PID. Their output goes to a log file, shown on failure.
@@ -21,21 +21,12 @@ from collections.abc import AsyncIterator, Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from aiobt.transport.endpoints import LOOPBACK
+from aiobt.transport.endpoints import free_endpoint as free_endpoint  # for the tests
+from aiobt.transport.endpoints import free_port as free_port
+
 if TYPE_CHECKING:
     from aiobt.transport import Bus, BusSettings
-
-LOOPBACK = "127.0.0.1"
-
-
-def free_port() -> int:
-    """A TCP port free on loopback right now (bind to port 0)."""
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as sock:
-        sock.bind((LOOPBACK, 0))
-        return int(sock.getsockname()[1])
-
-
-def free_endpoint() -> str:
-    return f"tcp/{LOOPBACK}:{free_port()}"
 
 
 def port_of(endpoint: str) -> int:

@@ -13,10 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from aiobt.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
+from aiobt.costmap.inflation import InflationParams, inflate
 from aiobt.msgs import LaserScan, OccupancyGrid, Path, PoseStamped, Twist
 from aiobt.msgs.bt import BtSnapshot, BtTree
-from aiobt_services.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
-from aiobt_services.costmap.inflation import InflationParams, inflate
 
 Json = dict[str, Any]
 OCCUPIED = 65  # occupancy from which a cell is an obstacle (Nav2's occupied_thresh 0.65)

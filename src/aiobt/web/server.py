@@ -23,11 +23,11 @@ from importlib import resources
 
 from aiohttp import WSCloseCode, WSMsgType, web
 
+from aiobt.costmap.inflation import InflationParams
 from aiobt.hosts import is_loopback
 from aiobt.transport import Bus
 from aiobt.web.coalesce import Hub, Outbox
 from aiobt.web.sources import Sources
-from aiobt_services.costmap.inflation import InflationParams
 
 log = logging.getLogger("aiobt.web.server")
 STATIC = resources.files("aiobt.web") / "static"

@@ -32,6 +32,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+from aiobt.costmap.inflation import InflationParams
 from aiobt.msgs import (
     ActionDef,
     ComputePathThroughPoses,
@@ -51,7 +52,6 @@ from aiobt.transport.topics import declare_subscription
 from aiobt.web import convert
 from aiobt.web.coalesce import Hub, Latest
 from aiobt.web.tree import TreeStatus
-from aiobt_services.costmap.inflation import InflationParams
 
 log = logging.getLogger("aiobt.web.sources")
 GOAL_TIMEOUT = 2.0  # s for a navigator to subscribe to goal_pose before a click is refused

@@ -10,10 +10,10 @@ from typing import Any, TypeVar
 
 import pytest
 
+from aiobt.geometry import PlanarPath
 from aiobt.msgs import ActionResult, Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings, ClientGoal
-from aiobt_services.controller.geometry import PlanarPath
 
 R = TypeVar("R", bound=ActionResult)
 

@@ -107,7 +107,7 @@ async def test_follows_the_office_corridor_between_its_walls(
 async def test_obstacle_ahead_stops_before_contact_with_no_valid_control(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ):
-    from aiobt_services.robot.messages import Ack, SpawnObstacle
+    from aiobt.msgs.sim import Ack, SpawnObstacle
 
     pose = bus.subscribe("pose", PoseStamped)
     # --failure-tolerance 0 (Nav2's default): the refused command fails the goal at once

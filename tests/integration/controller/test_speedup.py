@@ -17,8 +17,8 @@ import pytest
 
 from aiobt.msgs import BackUp, Clock, FollowPath, Point, PoseStamped, Spin
 from aiobt.msgs import DriveOnHeading as DriveOnHeadingAction
+from aiobt.msgs.sim import Ack, BumperEvent, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.robot.messages import Ack, BumperEvent, SpawnObstacle
 
 from .helpers import Spawn, path_through, start, yaw_error
 

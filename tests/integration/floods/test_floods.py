@@ -16,6 +16,7 @@ import pytest
 
 from aiobt.msgs import Clock, Empty, Header, IsPathValid, PoseStamped
 from aiobt.msgs import Path as Path_
+from aiobt.msgs.sim import ObstacleList
 from aiobt.testing.bus import ServiceProcess
 from aiobt.testing.flood import (
     FLOOD_RATE,
@@ -27,7 +28,6 @@ from aiobt.testing.flood import (
 )
 from aiobt.testing.flood import flood_and_measure as _flood_and_measure
 from aiobt.transport import Bus, BusSettings, Subscription
-from aiobt_services.robot.messages import ObstacleList
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 

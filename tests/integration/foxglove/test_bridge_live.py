@@ -12,10 +12,10 @@ from typing import Any
 
 import pytest
 
+from aiobt.geometry import PlanarPath
 from aiobt.msgs import FollowPath, Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess, free_port, wait_port
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.controller.geometry import PlanarPath
 
 from .wsclient import FoxgloveClient
 

@@ -75,7 +75,7 @@ async def test_groot2_follows_each_navigation_on_one_port(
         trees[tree_id].write_text(TREE.format(id=tree_id))
     port = free_port_pair()
     common = ["--connect", bus_settings.connect[0], "--namespace", bus_settings.namespace]
-    navigator = spawn(["-m", "aiobt.navigator", "--groot2", str(port), *common])
+    navigator = spawn(["-m", "aiobt_services.navigator", "--groot2", str(port), *common])
     assert await bus.presence(bus.keys.topic("nodes/navigator")).wait(60.0), navigator.output()
     client = Groot2Client(port)
     actions = bus.action_client("navigate_to_pose", NavigateToPose)

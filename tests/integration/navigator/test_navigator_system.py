@@ -31,7 +31,7 @@ SERVICES = (
     ("planner", ["-m", "aiobt_services.planner"]),
     ("controller", ["-m", "aiobt_services.controller", "--sim-time"]),
     ("behaviors", ["-m", "aiobt_services.behaviors", "--sim-time"]),
-    ("navigator", ["-m", "aiobt.navigator", "--sim-time"]),
+    ("navigator", ["-m", "aiobt_services.navigator", "--sim-time"]),
 )
 
 

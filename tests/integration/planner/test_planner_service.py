@@ -27,9 +27,9 @@ from aiobt.msgs import (
     PoseStamped,
     SmoothPath,
 )
+from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 
 from ..services import common, up
 

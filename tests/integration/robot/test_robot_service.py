@@ -19,9 +19,7 @@ from aiobt.msgs import (
     Twist,
     Vector3,
 )
-from aiobt.testing.bus import ServiceProcess
-from aiobt.transport import Bus, BusSettings, ServiceError
-from aiobt_services.robot.messages import (
+from aiobt.msgs.sim import (
     Ack,
     BumperEvent,
     RemoveObstacle,
@@ -31,6 +29,8 @@ from aiobt_services.robot.messages import (
     StepReply,
     StepRequest,
 )
+from aiobt.testing.bus import ServiceProcess
+from aiobt.transport import Bus, BusSettings, ServiceError
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 

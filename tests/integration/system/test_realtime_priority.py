@@ -61,7 +61,7 @@ async def test_the_event_loop_zenohs_threads_and_the_threads_it_starts_run_fifo(
     planner = spawn(["-m", "aiobt_services.planner", "--realtime-priority", *common(bus_settings)])
     controller = spawn(["-m", "aiobt_services.controller", "--sim-time", "--realtime-priority",
                         "80", *common(bus_settings)])  # fmt: skip
-    navigator = spawn(["-m", "aiobt.navigator", "--sim-time", "--realtime-priority",
+    navigator = spawn(["-m", "aiobt_services.navigator", "--sim-time", "--realtime-priority",
                        *common(bus_settings)])  # fmt: skip
     raised = (("robot", robot, 90), ("planner", planner, 70), ("controller", controller, 80),
               ("navigator", navigator, 60))  # fmt: skip

@@ -7,6 +7,10 @@ from collections.abc import Callable
 
 import pytest
 
+from aiobt.costmap import LETHAL
+from aiobt.costmap.checker import CollisionChecker, GridCostmap
+from aiobt.geometry import Pose2D, Velocity, wrap_angle
+from aiobt.robot.freshness import FRESH, PoseAge
 from aiobt_services.behaviors import (
     AssistedTeleop,
     BehaviorInputError,
@@ -19,9 +23,6 @@ from aiobt_services.behaviors import (
     back_up,
 )
 from aiobt_services.behaviors.base import TimedBehavior
-from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
-from aiobt_services.controller.freshness import FRESH, PoseAge
-from aiobt_services.controller.geometry import Pose2D, Velocity, wrap_angle
 from aiobt_services.controller.unicycle import Unicycle
 
 DT = 0.05

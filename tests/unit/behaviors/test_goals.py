@@ -6,6 +6,7 @@ import math
 
 import pytest
 
+from aiobt.costmap.checker import CollisionChecker, GridCostmap
 from aiobt.msgs import (
     AssistedTeleopError,
     BackUp,
@@ -19,7 +20,6 @@ from aiobt.msgs import (
     WaitError,
 )
 from aiobt_services.behaviors import BehaviorInputError, Outcome, Safety, goals
-from aiobt_services.controller.collision import CollisionChecker, GridCostmap
 
 CHECKER = CollisionChecker(GridCostmap.empty(2.0, 2.0, 0.05, (-1.0, -1.0)))
 

@@ -8,13 +8,13 @@ import math
 import pytest
 
 from aiobt.core.clock import ManualClock
+from aiobt.geometry import STOP, Pose2D, Velocity, wrap_angle
 from aiobt.msgs import Header, Odometry, Pose, Twist
+from aiobt.robot.freshness import FRESH
+from aiobt.robot.latency import command_lead
+from aiobt.robot.tracker import RobotTracker
 from aiobt_services.behaviors import DriveOnHeading, Inputs, SpinBehavior
 from aiobt_services.behaviors.base import TimedBehavior
-from aiobt_services.controller.freshness import FRESH
-from aiobt_services.controller.geometry import STOP, Pose2D, Velocity, wrap_angle
-from aiobt_services.controller.latency import command_lead
-from aiobt_services.controller.robot_io import RobotTracker
 from aiobt_services.controller.unicycle import Unicycle
 
 DT = 0.05  # robot s per cycle (the service's 20 Hz, the robot's odometry alike)

@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from aiobt_services.costmap import CostGrid
+from aiobt.costmap import CostGrid
 from bench.nav.goals import GOAL_CLEARANCE_COST, MIN_LEG, Optimum, pick_goals, static_grid
 
 START = (2.0, 9.75)

@@ -7,13 +7,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from aiobt_services.controller.collision import CollisionChecker
-from aiobt_services.controller.geometry import PlanarPath, Pose2D
+from aiobt.costmap.checker import CollisionChecker
+from aiobt.geometry import PlanarPath, Pose2D
+from aiobt.robot.state import RobotState
 from aiobt_services.controller.session import (
     ControllerConfig,
     FollowPathSession,
     FollowRequest,
-    RobotState,
     StepResult,
 )
 from aiobt_services.controller.unicycle import Unicycle

@@ -6,12 +6,12 @@ import math
 
 import pytest
 
+from aiobt.geometry import Pose2D, Velocity
 from aiobt_services.controller.checkers import (
     SimpleGoalChecker,
     SimpleProgressChecker,
     default_checkers,
 )
-from aiobt_services.controller.geometry import Pose2D, Velocity
 
 GOAL = Pose2D(1.0, 1.0, 0.0)
 STILL = Velocity(0.0, 0.0)

@@ -7,16 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from aiobt.costmap import INSCRIBED, LETHAL, NO_INFORMATION
+from aiobt.costmap.checker import CollisionChecker, CostQuery, GridCostmap
+from aiobt.geometry import Pose2D, Velocity
 from aiobt_services.controller.base import ControlContext
-from aiobt_services.controller.collision import (
-    INSCRIBED,
-    LETHAL,
-    NO_INFORMATION,
-    CollisionChecker,
-    CostQuery,
-    GridCostmap,
-)
-from aiobt_services.controller.geometry import Pose2D, Velocity
 from aiobt_services.controller.rpp import RegulatedPurePursuit
 
 from .courses import straight

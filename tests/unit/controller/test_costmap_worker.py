@@ -10,11 +10,10 @@ import threading
 import numpy as np
 import pytest
 
-from aiobt_services.controller.collision import INSCRIBED, LETHAL
-from aiobt_services.controller.costmap_worker import CostmapWorker
-from aiobt_services.controller.geometry import Pose2D
-from aiobt_services.controller.local_costmap import CostmapUpdate, LocalCostmap, clearing
-from aiobt_services.costmap import CostGrid, RollingCostmap
+from aiobt.costmap import INSCRIBED, LETHAL, CostGrid, RollingCostmap
+from aiobt.costmap.local import CostmapUpdate, LocalCostmap, clearing
+from aiobt.costmap.worker import CostmapWorker
+from aiobt.geometry import Pose2D
 
 from .test_local_costmap import _scan_with_wall_ahead
 
@@ -49,7 +48,7 @@ def test_an_update_without_a_scan_moves_the_window_only():
 def test_a_scan_it_cannot_take_is_dropped_with_a_warning(caplog: pytest.LogCaptureFixture):
     costmap = LocalCostmap()
     bad_sensor = Pose2D(math.nan, 0.0, 0.0)
-    with caplog.at_level(logging.WARNING, "aiobt_services.controller.local_costmap"):
+    with caplog.at_level(logging.WARNING, "aiobt.costmap.local"):
         view = CostmapUpdate(_scan_with_wall_ahead(1.0), bad_sensor, ROBOT).apply(costmap)
     assert "scan dropped" in caplog.text
     assert not np.any(view.costs[view.costs != 0])
@@ -106,7 +105,7 @@ async def test_a_failing_update_is_logged_and_the_view_kept(caplog: pytest.LogCa
         raise RuntimeError("broken update")
 
     try:
-        with caplog.at_level(logging.ERROR, "aiobt_services.controller.costmap_worker"):
+        with caplog.at_level(logging.ERROR, "aiobt.costmap.worker"):
             worker.start(broken)
             await worker.run(lambda: costmap.grid())  # after the broken one, in order
             for _ in range(10):  # its callback runs on the loop soon after

@@ -1,4 +1,4 @@
-"""The stale-pose rule (services/controller/freshness.py) on a fake wall clock."""
+"""The stale-pose rule (aiobt.robot.freshness) on a fake wall clock."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import pytest
 
 from aiobt.core.clock import ManualClock
 from aiobt.msgs import Odometry, PoseStamped
-from aiobt_services.controller.freshness import Freshness
-from aiobt_services.controller.robot_io import RobotTracker
+from aiobt.robot.freshness import Freshness
+from aiobt.robot.tracker import RobotTracker
 
 TIMEOUT = 0.5
 SPEED = 10.0  # robot seconds per wall second

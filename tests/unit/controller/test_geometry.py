@@ -8,9 +8,7 @@ import numpy as np
 from hypothesis import given
 from hypothesis import strategies as st
 
-from aiobt_services.behaviors import Inputs, SpinBehavior
-from aiobt_services.controller.freshness import FRESH
-from aiobt_services.controller.geometry import (
+from aiobt.geometry import (
     PlanarPath,
     Pose2D,
     Velocity,
@@ -18,6 +16,8 @@ from aiobt_services.controller.geometry import (
     turn_rate,
     wrap_angle,
 )
+from aiobt.robot.freshness import FRESH
+from aiobt_services.behaviors import Inputs, SpinBehavior
 from aiobt_services.controller.unicycle import Unicycle
 
 finite = st.floats(-50.0, 50.0, allow_nan=False)

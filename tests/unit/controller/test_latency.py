@@ -6,12 +6,12 @@ import numpy as np
 import pytest
 
 from aiobt.core.clock import ManualClock
+from aiobt.costmap import INSCRIBED
+from aiobt.costmap.local import LocalCostmap, LocalCostmapParams
+from aiobt.geometry import STOP, Velocity
 from aiobt.msgs import Odometry, PoseStamped
-from aiobt_services.controller.collision import INSCRIBED
-from aiobt_services.controller.geometry import STOP, Velocity
-from aiobt_services.controller.latency import LoopDelay
-from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
-from aiobt_services.controller.robot_io import RobotTracker
+from aiobt.robot.latency import LoopDelay
+from aiobt.robot.tracker import RobotTracker
 
 from .test_local_costmap import _scan_with_wall_ahead
 

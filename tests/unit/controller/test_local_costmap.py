@@ -7,11 +7,12 @@ import math
 import numpy as np
 import pytest
 
+from aiobt.costmap import INSCRIBED, LETHAL, NO_INFORMATION
+from aiobt.costmap.checker import CostQuery
+from aiobt.costmap.local import FrameShift, LocalCostmap, frame_transform
+from aiobt.geometry import Pose2D
 from aiobt.msgs import FollowPath, FollowPathError, LaserScan, Path, PoseStamped
-from aiobt_services.controller.collision import INSCRIBED, LETHAL, NO_INFORMATION, CostQuery
 from aiobt_services.controller.errors import ControllerError
-from aiobt_services.controller.geometry import Pose2D
-from aiobt_services.controller.local_costmap import FrameShift, LocalCostmap, frame_transform
 from aiobt_services.controller.service import path_of, request_of, result_of
 
 

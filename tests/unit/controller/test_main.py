@@ -8,8 +8,8 @@ import logging
 
 import pytest
 
+from aiobt.system.service import module_main, run_service, unless_stopped
 from aiobt.transport import BusUnavailable
-from aiobt_services._cli import module_main, run_service, unless_stopped
 from aiobt_services.behaviors.main import add_arguments as add_behavior_arguments
 from aiobt_services.controller.main import add_arguments, config_from, costmap_from
 

@@ -9,15 +9,17 @@ from typing import Any
 import numpy as np
 import pytest
 
+from aiobt.costmap import CostGrid, GridGeometry
+from aiobt.costmap.local import LocalCostmap, LocalCostmapParams
+from aiobt.geometry import Pose2D, Velocity
 from aiobt.msgs import OccupancyGrid
+from aiobt.robot.freshness import PoseAge
+from aiobt.robot.rate import RateGate
+from aiobt.robot.state import RobotState
 from aiobt_services.controller.base import NO_TRAJECTORY
-from aiobt_services.controller.freshness import PoseAge
-from aiobt_services.controller.geometry import Pose2D, Velocity
-from aiobt_services.controller.local_costmap import LocalCostmap, LocalCostmapParams
 from aiobt_services.controller.observed import (
     OCCUPANCY_OF_COST,
     LocalView,
-    RateGate,
     costmap_msg,
     path_msg,
 )
@@ -25,9 +27,7 @@ from aiobt_services.controller.session import (
     ControllerConfig,
     FollowPathSession,
     FollowRequest,
-    RobotState,
 )
-from aiobt_services.costmap import CostGrid, GridGeometry
 
 from .courses import curve, straight
 

@@ -7,19 +7,20 @@ import math
 import numpy as np
 import pytest
 
+from aiobt.costmap import LETHAL
+from aiobt.costmap.checker import CollisionChecker, GridCostmap
+from aiobt.geometry import PlanarPath, Pose2D, Velocity
 from aiobt.msgs import FollowPathError
+from aiobt.robot.freshness import FRESH, PoseAge
+from aiobt.robot.state import RobotState
 from aiobt_services.controller.base import ControlContext
-from aiobt_services.controller.collision import LETHAL, CollisionChecker, GridCostmap
 from aiobt_services.controller.dwb import DWBController
 from aiobt_services.controller.errors import ControllerError
-from aiobt_services.controller.freshness import FRESH, PoseAge
-from aiobt_services.controller.geometry import PlanarPath, Pose2D, Velocity
 from aiobt_services.controller.rpp import RegulatedPurePursuit
 from aiobt_services.controller.session import (
     ControllerConfig,
     FollowPathSession,
     FollowRequest,
-    RobotState,
 )
 from aiobt_services.controller.unicycle import Unicycle
 

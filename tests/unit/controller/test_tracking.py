@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from aiobt_services.controller.geometry import Pose2D, wrap_angle
+from aiobt.geometry import Pose2D, wrap_angle
 from aiobt_services.controller.session import ControllerConfig
 
 from .courses import curve, drive, straight, u_turn

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import GridGeometry, distance_transform
+from aiobt.costmap import GridGeometry, distance_transform
 
 
 def test_world_cell_round_trip() -> None:

@@ -8,7 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import (
+from aiobt.costmap import (
     FREE,
     LETHAL,
     NO_INFORMATION,
@@ -21,7 +21,7 @@ from aiobt_services.costmap import (
     inflate,
     inflate_window,
 )
-from aiobt_services.costmap.inflation import bounding_window, grown
+from aiobt.costmap.inflation import bounding_window, grown
 
 VALUES = (FREE, 40, 200, LETHAL, NO_INFORMATION)
 Cell = tuple[int, int, int]  # row, col, value

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from aiobt_services.costmap import (
+from aiobt.costmap import (
     FREE,
     INSCRIBED,
     LETHAL,

@@ -8,7 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import (
+from aiobt.costmap import (
     FREE,
     LETHAL,
     NO_INFORMATION,
@@ -18,7 +18,7 @@ from aiobt_services.costmap import (
     Scan,
     clear_and_mark,
 )
-from aiobt_services.costmap.obstacle_layer import HIT_DEPTH, _rays
+from aiobt.costmap.obstacle_layer import HIT_DEPTH, _rays
 
 
 def reference(grid: np.ndarray, g: GridGeometry, scan: Scan, params: ObstacleParams) -> np.ndarray:

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from aiobt_services.costmap import (
+from aiobt.costmap import (
     FREE,
     LETHAL,
     NO_INFORMATION,

@@ -12,7 +12,7 @@ from aiobt.core.leaves import AsyncActionNode
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import BtSnapshot, BtTransitions, BtTree, Msg, PoseStamped
-from aiobt.navigator import (
+from aiobt_services.navigator import (
     NAVIGATE_THROUGH_POSES,
     NAVIGATE_TO_POSE,
     NavigatorOptions,
@@ -20,7 +20,7 @@ from aiobt.navigator import (
     TreeLibrary,
     TreeStatusStream,
 )
-from aiobt.navigator.navigator import Navigator
+from aiobt_services.navigator.navigator import Navigator
 
 WAIT = 10.0  # s, bound of every wait on an event
 

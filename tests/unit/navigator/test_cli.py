@@ -8,9 +8,9 @@ from pathlib import Path
 import pytest
 
 from aiobt.core.clock import ManualClock
-from aiobt.navigator.main import add_arguments, build_navigator
-from aiobt.navigator.trees import TreeLoadFailure
 from aiobt.transport import Bus
+from aiobt_services.navigator.main import add_arguments, build_navigator
+from aiobt_services.navigator.trees import TreeLoadFailure
 
 
 def parse(*argv: str) -> argparse.Namespace:

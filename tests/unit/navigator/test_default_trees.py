@@ -8,7 +8,7 @@ from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import ManualClock
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.nav import register_nav2_nodes
-from aiobt.navigator.trees import (
+from aiobt_services.navigator.trees import (
     DEFAULT_THROUGH_POSES_TREE,
     DEFAULT_TO_POSE_TREE,
     TREES_DIR,

@@ -12,7 +12,7 @@ import pytest
 from aiobt.core.clock import ManualClock
 from aiobt.core.status import Status
 from aiobt.msgs import ActionResult, OccupancyGrid, Point, Pose, PoseStamped
-from aiobt.navigator import NAVIGATE_TO_POSE, MapBounds, NavRequest
+from aiobt_services.navigator import NAVIGATE_TO_POSE, MapBounds, NavRequest
 
 from .harness import WAIT, FakeChannel, Rig, make_rig, through, to_pose
 
@@ -296,7 +296,7 @@ async def test_a_stalled_clock_does_not_stall_the_loop(
     navigation = rig.navigator.current
     assert navigation is not None
     channel.newer.append(to_pose("second", 4.0, 4.0))  # no wake-up: seen on the next loop
-    with caplog.at_level(logging.WARNING, "aiobt.navigator.navigation"):
+    with caplog.at_level(logging.WARNING, "aiobt_services.navigator.navigation"):
         await channel.next_feedback()
         await channel.next_feedback()
     assert navigation.request.goal_id == "second"

@@ -1,4 +1,4 @@
-"""The default trees ship in the package, identical to the documented trees/nav2 copy."""
+"""The default trees are the repository's trees/nav2, shipped as package data (no copy)."""
 
 from __future__ import annotations
 
@@ -10,29 +10,29 @@ from pathlib import Path
 
 import pytest
 
-import aiobt
-from aiobt.navigator.trees import DEFAULT_TO_POSE_TREE, TREES_DIR, packaged_trees_dir
+from aiobt_services.navigator.trees import DEFAULT_TO_POSE_TREE, TREES_DIR, packaged_trees_dir
 
 REPO = Path(__file__).resolve().parents[3]
 DOCUMENTED = REPO / "trees" / "nav2"
 
 
-def test_the_packaged_trees_are_the_documented_ones() -> None:
-    packaged = {f.name: f.read_bytes() for f in packaged_trees_dir().glob("*.xml")}
-    documented = {f.name: f.read_bytes() for f in DOCUMENTED.glob("*.xml")}
-    assert sorted(packaged) == sorted(documented)
-    different = [name for name in documented if packaged[name] != documented[name]]
-    assert different == [], f"copy trees/nav2/{different} to src/aiobt/navigator/default_trees/"
-
-
-def test_the_defaults_are_read_from_inside_the_package() -> None:
-    package = Path(aiobt.__file__).parent
-    assert TREES_DIR.is_relative_to(package)
+def test_an_editable_install_reads_the_trees_of_the_checkout_itself() -> None:
+    assert packaged_trees_dir() == DOCUMENTED
+    assert TREES_DIR == DOCUMENTED
     assert DEFAULT_TO_POSE_TREE.is_file()
 
 
+def test_no_copy_of_the_trees_is_kept_in_the_sources() -> None:
+    copies = [
+        path
+        for folder in ("src", "services")
+        for path in (REPO / folder).rglob("navigate_to_pose_w_replanning_and_recovery.xml")
+    ]
+    assert copies == []
+
+
 LOOKUP = (
-    "from aiobt.navigator.trees import DEFAULT_TO_POSE_TREE as t, TREES_DIR as d;"
+    "from aiobt_services.navigator.trees import DEFAULT_TO_POSE_TREE as t, TREES_DIR as d;"
     "print(d); print(t.is_file())"
 )
 
@@ -44,15 +44,15 @@ def test_a_non_editable_install_finds_its_trees(tmp_path: Path) -> None:
     no editable hooks on its path), resolves the default trees inside that folder."""
     source = tmp_path / "source"  # setuptools builds in the source folder: a copy
     skip = shutil.ignore_patterns("__pycache__", "*.egg-info")
-    for folder in ("src", "services"):
+    for folder in ("src", "services", "trees"):
         shutil.copytree(REPO / folder, source / folder, ignore=skip)
-    for file in ("pyproject.toml", "setup.py", "README.md"):
+    for file in ("pyproject.toml", "README.md"):
         shutil.copy(REPO / file, source / file)
     build = [sys.executable, "-m", "pip", "wheel", "--no-deps", "--no-build-isolation"]
     subprocess.run([*build, "-q", "-w", str(tmp_path), str(source)], check=True, timeout=240)
     [wheel] = tmp_path.glob("aiobt_runtime-*.whl")
     names = zipfile.ZipFile(wheel).namelist()
-    assert "aiobt/navigator/default_trees/navigate_to_pose_w_replanning_and_recovery.xml" in names
+    assert "aiobt/trees/nav2/navigate_to_pose_w_replanning_and_recovery.xml" in names
     target = tmp_path / "site"
     install = [sys.executable, "-m", "pip", "install", "-q", "--no-deps", "--target"]
     subprocess.run([*install, str(target), str(wheel)], check=True, timeout=120)
@@ -69,4 +69,4 @@ def test_a_non_editable_install_finds_its_trees(tmp_path: Path) -> None:
         check=True,
         timeout=60,
     ).stdout.split()
-    assert found == [str(target / "aiobt/navigator/default_trees"), "True"]
+    assert found == [str(target / "aiobt/trees/nav2"), "True"]

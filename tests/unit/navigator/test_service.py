@@ -21,9 +21,9 @@ from aiobt.msgs import (
 )
 from aiobt.nav import register_nav2_nodes
 from aiobt.nav.shared_topics import shared_topics
-from aiobt.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 from aiobt.transport import Bus
 from aiobt.transport.on_demand import LINGER
+from aiobt_services.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 
 from .harness import WAIT, Rig, make_rig, pose
 

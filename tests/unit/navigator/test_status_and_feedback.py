@@ -10,7 +10,7 @@ import pytest
 from aiobt.core.clock import ManualClock
 from aiobt.msgs import NavigateThroughPoses, NavigateToPose
 from aiobt.msgs import Path as PathMsg
-from aiobt.navigator.progress import PathProgress, time_remaining
+from aiobt_services.navigator.progress import PathProgress, time_remaining
 
 from .harness import WAIT, FakeChannel, make_rig, pose, through, to_pose
 
@@ -103,7 +103,7 @@ async def test_feedback_goes_out_at_most_once_per_loop_period_of_wall_time(
     """The loop turns on the robot's clock (ten times a wall period at a sim speed-up of
     10); feedback goes out once per period of wall time, and at once for a newer goal."""
     wall = WallClock()
-    monkeypatch.setattr("aiobt.navigator.navigation.time", wall)
+    monkeypatch.setattr("aiobt_services.navigator.navigation.time", wall)
     clock = ManualClock()
     rig = make_rig(tmp_path, TREES, clock=clock)
     channel = FakeChannel()

@@ -10,7 +10,7 @@ import pytest
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import ManualClock
 from aiobt.factory import BehaviorTreeFactory
-from aiobt.navigator import TreeLibrary, TreeLoadFailure
+from aiobt_services.navigator import TreeLibrary, TreeLoadFailure
 
 from .harness import tree_xml, write_trees
 
@@ -32,7 +32,7 @@ def test_a_file_whose_id_is_taken_is_skipped(
     (tmp_path / "b").mkdir()
     (tmp_path / "b" / "again.xml").write_text(tree_xml("Alpha", "<AlwaysFailure/>"))
     (tmp_path / "b" / "broken.xml").write_text("<root")
-    with caplog.at_level(logging.WARNING, "aiobt.navigator.trees"):
+    with caplog.at_level(logging.WARNING, "aiobt_services.navigator.trees"):
         library = TreeLibrary(BehaviorTreeFactory(), [tmp_path / "a", tmp_path / "b"])
     assert "again.xml: ID(s) Alpha already registered" in caplog.text
     assert "broken.xml" in caplog.text

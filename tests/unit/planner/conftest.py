@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from aiobt_services.costmap import LETHAL, CostGrid, Costmap, GridGeometry, InflationParams
+from aiobt.costmap import LETHAL, CostGrid, Costmap, GridGeometry, InflationParams
 
 
 def grid_from(costs: np.ndarray, resolution: float = 0.1) -> CostGrid:

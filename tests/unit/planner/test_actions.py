@@ -12,6 +12,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from aiobt.costmap import LETHAL, NO_INFORMATION
+from aiobt.geometry import XYYaw
 from aiobt.msgs import (
     ComputeCoveragePath,
     ComputePathThroughPoses,
@@ -25,9 +27,7 @@ from aiobt.msgs import (
     PoseStamped,
     SmoothPath,
 )
-from aiobt_services.costmap import LETHAL, NO_INFORMATION
 from aiobt_services.planner.actions import TALLY_EVERY, ActionOptions, PlannerActions, to_path
-from aiobt_services.planner.planning import Pose2D
 from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
 from aiobt_services.planner.traversal import SearchParams
 
@@ -208,7 +208,7 @@ async def test_coverage_codes() -> None:
     st.floats(0.0, 1e6),
 )
 @settings(max_examples=60, deadline=None)
-def test_to_path_is_the_message_built_pose_by_pose(poses: list[Pose2D], stamp: float) -> None:
+def test_to_path_is_the_message_built_pose_by_pose(poses: list[XYYaw], stamp: float) -> None:
     built = Path(
         header=Header(stamp=stamp, frame_id="map"),
         poses=[PoseStamped.from_xy_yaw(x, y, yaw, "map", stamp) for x, y, yaw in poses],

@@ -12,7 +12,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION
+from aiobt.costmap import INSCRIBED, LETHAL, NO_INFORMATION
 from aiobt_services.planner.astar import astar
 from aiobt_services.planner.dijkstra import compiled_dijkstra
 from aiobt_services.planner.errors import PlanningCancelled, PlanningError

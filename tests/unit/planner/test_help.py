@@ -22,4 +22,4 @@ def test_help_names_actions_and_planner_ids(capsys: pytest.CaptureFixture[str]) 
     assert "Planner ids (goal.planner_id): GridBased (default), ThetaStar." in text
     assert "'simple_smoother'" in text
     assert "srv/is_path_valid" in text
-    assert "services/planner/README.md" in text
+    assert "services/aiobt_services/planner/README.md" in text

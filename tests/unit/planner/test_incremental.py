@@ -6,9 +6,9 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from aiobt.costmap import INSCRIBED, LETHAL, NO_INFORMATION, CostGrid, GridGeometry
+from aiobt.costmap.inflation import bounding_window
 from aiobt.msgs import Header, LaserScan, OccupancyGrid, PoseStamped
-from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION, CostGrid, GridGeometry
-from aiobt_services.costmap.inflation import bounding_window
 from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
 from aiobt_services.planner.traversal import SearchParams, Traversal
 

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import LETHAL, CostGrid
-from aiobt_services.costmap.inflation import bounding_window
+from aiobt.costmap import LETHAL, CostGrid
+from aiobt.costmap.inflation import bounding_window
 from aiobt_services.planner.dijkstra import compiled_dijkstra
 from aiobt_services.planner.errors import PlanningError
 from aiobt_services.planner.traversal import KEPT_GOALS, Budget, SearchParams, Traversal

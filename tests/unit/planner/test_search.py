@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION, segment_max_cost
+from aiobt.costmap import INSCRIBED, LETHAL, NO_INFORMATION, segment_max_cost
 from aiobt_services.planner.errors import PlanningCancelled, PlanningError
 from aiobt_services.planner.planning import path_length, plan, plan_through
 from aiobt_services.planner.reference import dijkstra, path_cost, step_weights

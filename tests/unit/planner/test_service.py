@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import cast
 
+from aiobt.costmap import LETHAL
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapExceptRegion,
@@ -15,7 +16,6 @@ from aiobt.msgs import (
     PoseStamped,
 )
 from aiobt.transport import Bus
-from aiobt_services.costmap import LETHAL
 from aiobt_services.planner.actions import PlannerActions
 from aiobt_services.planner.service import PlannerService
 from aiobt_services.planner.state import GlobalCostmap

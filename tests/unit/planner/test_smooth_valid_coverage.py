@@ -9,7 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import INSCRIBED, LETHAL, NO_INFORMATION, points_cost
+from aiobt.costmap import INSCRIBED, LETHAL, NO_INFORMATION, points_cost
 from aiobt_services.planner.coverage import CoverageError, CoverageParams, plan_coverage
 from aiobt_services.planner.planning import path_length
 from aiobt_services.planner.smoother import in_collision, smooth

@@ -12,11 +12,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, Costmap, GridGeometry
-from aiobt_services.costmap.inflation import InflationParams
+from aiobt.costmap import INSCRIBED, NO_INFORMATION, CostGrid, Costmap, GridGeometry
+from aiobt.costmap.inflation import InflationParams
+from aiobt.geometry import XYYaw
 from aiobt_services.planner.errors import PlanningError
 from aiobt_services.planner.legs import LONGEST_STEP
-from aiobt_services.planner.planning import Pose2D, plan
+from aiobt_services.planner.planning import plan
 from aiobt_services.planner.traversal import SearchParams, Traversal
 from aiobt_services.planner.validity import invalid_poses
 
@@ -49,7 +50,7 @@ def free_point(grid: CostGrid, rng: np.random.Generator) -> tuple[float, float] 
 
 
 def refused_crossings(
-    grid: CostGrid, poses: list[Pose2D], downsample: int, ends: tuple[Pose2D, Pose2D]
+    grid: CostGrid, poses: list[XYYaw], downsample: int, ends: tuple[XYYaw, XYYaw]
 ) -> list[tuple[float, float]]:
     """Points along the legs whose fine cell IsPathValid would refuse.
 

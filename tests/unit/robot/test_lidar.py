@@ -10,7 +10,7 @@ import numpy.typing as npt
 import pybullet
 import pytest
 
-from aiobt_services.robot.geometry import Pose2D
+from aiobt.geometry import Pose2D
 from aiobt_services.robot.lidar import Disc, Rectangles, cast, disc_distances, rectangle_distances
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.obstacles import ObstacleSpec

@@ -10,8 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from aiobt.geometry import Pose2D, wrap_angle
+from aiobt_services.robot.boxes import merge_boxes
 from aiobt_services.robot.drive import DriveController, DriveLimits
-from aiobt_services.robot.geometry import Pose2D, merge_boxes, wrap_angle
 from aiobt_services.robot.mapfile import Dock, MapInfo
 from aiobt_services.robot.obstacles import Motion, ObstacleError, ObstacleSpec, validate
 from aiobt_services.robot.sensors import Battery, NoiseConfig, WheelOdometry
@@ -42,8 +43,8 @@ def test_pose_compose_and_inverse() -> None:
     assert a.compose(b) == pytest.approx(Pose2D(1.0, 3.0, math.pi / 2))
     ident = a.compose(a.inverse())
     assert (ident.x, ident.y, ident.yaw) == pytest.approx((0.0, 0.0, 0.0))
-    assert wrap_angle(3 * math.pi) == pytest.approx(math.pi)
-    assert wrap_angle(-math.pi) == pytest.approx(math.pi)
+    assert wrap_angle(3 * math.pi) == pytest.approx(-math.pi)  # the range is [-pi, pi)
+    assert wrap_angle(math.pi) == pytest.approx(-math.pi)
 
 
 def test_drive_clamps_rejects_nonfinite_and_limits_acceleration() -> None:

@@ -1,4 +1,4 @@
-"""The in-process example of services/robot/README.md runs as written."""
+"""The in-process example of services/aiobt_services/robot/README.md runs as written."""
 
 from __future__ import annotations
 

@@ -14,15 +14,15 @@ from PIL import Image
 from aiobt.core.clock import ManualClock
 from aiobt.msgs import Clock as ClockMsg
 from aiobt.msgs import Empty, LaserScan, Msg, OccupancyGrid, PoseStamped, Twist, Vector3
-from aiobt_services.robot import convert
-from aiobt_services.robot.mapfile import load_map
-from aiobt_services.robot.messages import (
+from aiobt.msgs.sim import (
     BumperEvent,
     MoveObstacle,
     RemoveObstacle,
     SnapshotRequest,
     SpawnObstacle,
 )
+from aiobt_services.robot import convert
+from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.runner import Rates, SimRunner
 from aiobt_services.robot.service import RobotService
 from aiobt_services.robot.sim import Simulation

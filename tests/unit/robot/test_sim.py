@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
+from aiobt.geometry import Pose2D
 from aiobt_services.robot.drive import DriveLimits
-from aiobt_services.robot.geometry import Pose2D
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.obstacles import Motion, ObstacleError, ObstacleSpec
 from aiobt_services.robot.sensors import BatteryConfig, LidarConfig, NoiseConfig

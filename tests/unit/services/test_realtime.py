@@ -10,11 +10,11 @@ from collections.abc import Callable
 
 import pytest
 
-from aiobt.navigator.main import add_arguments as navigator_arguments
-from aiobt_services._cli import run_service
+from aiobt.system.realtime import RealtimePriorityError, raise_priority, realtime_if_asked
+from aiobt.system.service import run_service
 from aiobt_services.controller.main import add_arguments as controller_arguments
+from aiobt_services.navigator.main import add_arguments as navigator_arguments
 from aiobt_services.planner.main import add_arguments as planner_arguments
-from aiobt_services.realtime import RealtimePriorityError, raise_priority, realtime_if_asked
 from aiobt_services.robot.main import add_arguments as robot_arguments
 
 SERVICES: list[tuple[Callable[[argparse.ArgumentParser], None], int]] = [

@@ -9,12 +9,12 @@ from typing import Any
 import numpy as np
 import pytest
 
+from aiobt.costmap.grid import INSCRIBED, LETHAL
+from aiobt.costmap.inflation import InflationParams
 from aiobt.msgs import LaserScan, OccupancyGrid, Path, Pose, PoseStamped, Twist
 from aiobt.msgs.bt import BtNode, BtNodeStatus, BtSnapshot, BtTransition, BtTransitions, BtTree
 from aiobt.web import convert
 from aiobt.web.tree import TreeStatus
-from aiobt_services.costmap.grid import INSCRIBED, LETHAL
-from aiobt_services.costmap.inflation import InflationParams
 
 
 def _cells(payload: dict[str, Any]) -> np.ndarray:

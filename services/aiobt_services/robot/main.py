@@ -1,0 +1,169 @@
+"""``aiobt robot``: the pybullet robot service on Zenoh.
+
+Publishes ``{ns}/odom``, ``{ns}/pose``, ``{ns}/scan``, ``{ns}/battery``,
+``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
+``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
+move,remove,list}``, ``{ns}/srv/reset_pose``,
+``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
+``--stepped``, ``{ns}/srv/step``; holds the liveliness token ``{ns}/nodes/robot``.
+See README.md next to this file for the message shapes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+import math
+import os
+from pathlib import Path
+
+from aiobt.msgs import (
+    BatteryState,
+    Empty,
+    LaserScan,
+    Msg,
+    OccupancyGrid,
+    Odometry,
+    PoseStamped,
+    Twist,
+)
+from aiobt.msgs import Clock as ClockMsg
+from aiobt.msgs import sim as messages
+from aiobt.system.announce import announce
+from aiobt.system.heap import settle
+from aiobt.system.realtime import realtime_if_asked
+from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
+from aiobt.transport import Bus, BusSettings, add_bus_arguments
+
+from . import convert
+from .mapfile import MapError, load_map
+from .options import add_robot_arguments, sim_config
+from .pacing import speed_label
+from .runner import Rates, SimRunner
+from .service import RobotService
+from .sim import Simulation
+from .snapshot import render_png
+from .worlds import world_path
+
+log = logging.getLogger("aiobt_services.robot.main")
+
+PUBLISHED: dict[str, type[Msg]] = {
+    "odom": Odometry,
+    "pose": PoseStamped,
+    "scan": LaserScan,
+    "battery": BatteryState,
+    "clock": ClockMsg,
+    "bumper": messages.BumperEvent,
+}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_bus_arguments(parser)
+    parser.add_argument(
+        "--sim-time",
+        action="store_true",
+        help="accepted as every service takes it: the robot is the simulation, it always "
+        "publishes {ns}/clock",
+    )
+    add_robot_arguments(parser)
+
+
+class BusOutputs:
+    """The runner's sink: one publisher per topic."""
+
+    def __init__(self, bus: Bus) -> None:
+        self._pubs = {name: bus.publisher(name, model) for name, model in PUBLISHED.items()}
+
+    def publish(self, topic: str, msg: Msg) -> None:
+        self._pubs[topic].put(msg)
+
+
+def _wire(bus: Bus, service: RobotService) -> None:
+    # commands: only the newest counts, so a burst is applied once, not message by message
+    bus.subscribe("cmd_vel", Twist, callback=service.on_cmd_vel, queue_size=1)
+    bus.subscribe("initialpose", PoseStamped, callback=service.on_initialpose, queue_size=1)
+    m = messages
+    bus.serve("obstacles/spawn", m.SpawnObstacle, m.Ack, service.spawn)
+    bus.serve("obstacles/move", m.MoveObstacle, m.Ack, service.move)
+    bus.serve("obstacles/remove", m.RemoveObstacle, m.Ack, service.remove)
+    bus.serve("obstacles/list", Empty, m.ObstacleList, service.list_obstacles)
+    bus.serve("reset_pose", PoseStamped, m.Ack, service.reset_pose)
+    bus.serve("reinitialize_global_localization", Empty, m.Ack, service.reinitialize_localization)
+    bus.serve("snapshot", m.SnapshotRequest, m.Snapshot, service.snapshot)
+
+
+def _serve_steps(bus: Bus, runner: SimRunner) -> None:
+    """``--stepped``: sim time moves only when ``srv/step`` asks (one request at a time)."""
+    lock = asyncio.Lock()
+
+    async def step(req: messages.StepRequest) -> messages.StepReply:
+        async with lock:
+            steps = await runner.advance(req.seconds)
+        return messages.StepReply(time=runner.sim.time, steps=steps)
+
+    bus.serve("step", messages.StepRequest, messages.StepReply, step)
+
+
+async def serve(args: argparse.Namespace, sim: Simulation) -> None:
+    realtime = realtime_if_asked(args.realtime_priority)  # before the bus: its threads too
+    stop = stop_on_signals()
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
+        service = RobotService(sim, initialpose=args.initialpose)
+        bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
+        runner = SimRunner(
+            sim,
+            BusOutputs(bus),
+            speed=args.speed,
+            rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
+            command_wait=args.command_wait,
+            max_lag=args.max_lag,
+        )
+        _wire(bus, service)
+        settle()  # start-up's objects (the world's too) out of the collector's full passes
+        announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
+        log.info(
+            "robot up on namespace '%s': world %s, %s, dt %g s%s",
+            bus.namespace,
+            sim.world.source,
+            "stepped by srv/step" if args.stepped else f"speed {speed_label(args.speed)}",
+            sim.config.dt,
+            realtime,
+        )
+        if args.stepped:
+            _serve_steps(bus, runner)
+            await stop.wait()
+        else:
+            await runner.run(stop)
+    log.info("robot stopped at sim time %.2f s after %d steps", sim.time, sim.steps)
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.gui and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+        log.error("robot: --gui needs a display (DISPLAY is not set); run headless without it")
+        return 2
+    if args.realtime_priority is not None and math.isinf(args.speed):
+        log.error(
+            "robot: --realtime-priority with --speed max: at max the sim never sleeps, and "
+            "under SCHED_FIFO it would hold a core from every other process; give a speed"
+        )
+        return 2
+    try:
+        world = load_map(world_path(args.world))
+        config = sim_config(args)
+        if args.start is not None:
+            x, y, yaw = args.start
+            world.start = (x, y, yaw)
+        sim = Simulation(world, config)
+    except (MapError, ValueError) as exc:
+        log.error("robot: %s", exc)
+        return 2
+    with sim:
+        if run_service(serve(args, sim), log, "robot") != 0:
+            return 1
+        if args.snapshot_on_exit:
+            Path(args.snapshot_on_exit).write_bytes(render_png(sim))
+            log.info("snapshot written to %s", args.snapshot_on_exit)
+    return 0

@@ -1,0 +1,58 @@
+"""The one list of services: every other list is made from it.
+
+The ``aiobt`` command's service sub-commands, the keys of ``aiobt up``'s
+``services:`` section and the order it starts them in, the ``--realtime-priority``
+default of each, and the services of ``docker-compose.yml`` (checked by a test)
+all come from :data:`SERVICES`. A service is named by its module path only: the
+library never imports ``aiobt_services``; the launcher imports a service's module
+when its command runs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class ServiceSpec:
+    """One service program: ``aiobt NAME`` runs ``aiobt_services.NAME.main``."""
+
+    name: str
+    summary: str
+    realtime_priority: int | None = None  # --realtime-priority given alone; None: no option
+    simulation: bool = False  # it is the clock's source (takes --world and --speed, not --sim-time)
+
+    @property
+    def module(self) -> str:
+        return f"aiobt_services.{self.name}.main"
+
+
+SERVICES: tuple[ServiceSpec, ...] = (
+    # the robot (the hardware's stand-in: its clock is everyone's) and the controller at
+    # Nav2's 90; the planner below (a search may take tens of ms); the navigator, which
+    # asks for the plans, below them all (aiobt.system.realtime says why)
+    ServiceSpec("robot", "the pybullet robot service", realtime_priority=90, simulation=True),
+    ServiceSpec("planner", "the planner service", realtime_priority=70),
+    ServiceSpec("controller", "the controller service", realtime_priority=90),
+    ServiceSpec("behaviors", "the behavior service"),
+    ServiceSpec("navigator", "the navigator: Nav2's bt_navigator over Zenoh", realtime_priority=60),
+)
+"""In start order: the robot first (the map and the clock), the navigator last."""
+
+SERVICE_NAMES: tuple[str, ...] = tuple(spec.name for spec in SERVICES)
+
+
+def service(name: str) -> ServiceSpec:
+    """The service called ``name``; KeyError naming the known ones otherwise."""
+    for spec in SERVICES:
+        if spec.name == name:
+            return spec
+    raise KeyError(f"no service '{name}' (known: {', '.join(SERVICE_NAMES)})")
+
+
+def realtime_priority(name: str) -> int:
+    """The ``--realtime-priority`` default of service ``name``."""
+    level = service(name).realtime_priority
+    if level is None:
+        raise KeyError(f"service '{name}' has no --realtime-priority option")
+    return level

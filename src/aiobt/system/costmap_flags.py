@@ -1,0 +1,40 @@
+"""The local costmap's flags, shared by the controller and the behaviors."""
+
+from __future__ import annotations
+
+import argparse
+
+from aiobt.costmap.local import LocalCostmap, LocalCostmapParams
+from aiobt.system.service import positive
+
+
+def add_local_costmap_arguments(group: argparse._ArgumentGroup) -> None:
+    """The local costmap's options (controller and behaviors)."""
+    add = group.add_argument
+    add("--robot-radius", type=positive, default=0.22, help="m (default: %(default)s)")
+    add("--inflation-radius", type=positive, default=0.55, help="m (default: %(default)s)")
+    add(
+        "--costmap-size",
+        type=positive,
+        default=5.0,
+        help="local window side, m (default: %(default)s)",
+    )
+    add(
+        "--costmap-update-frequency",
+        type=positive,
+        default=5.0,
+        metavar="HZ",
+        help="local costmap updates from the lidar per robot second, as Nav2's "
+        "update_frequency (default: %(default)s)",
+    )
+
+
+def local_costmap_from(args: argparse.Namespace) -> LocalCostmap:
+    return LocalCostmap(
+        LocalCostmapParams(
+            size=args.costmap_size,
+            robot_radius=args.robot_radius,
+            inflation_radius=max(args.inflation_radius, args.robot_radius),
+            update_frequency=args.costmap_update_frequency,
+        )
+    )

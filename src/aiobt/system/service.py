@@ -1,0 +1,165 @@
+"""What the service programs share: argument types, the clock flags, the ``python -m``
+entry, opening the bus, the run loop.
+
+Each service's ``main`` module keeps its own options and wiring; this module
+holds the parts that are the same in all of them (see docs/architecture.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import logging
+import math
+from collections.abc import AsyncIterator, Callable, Coroutine
+from typing import Any, TypeVar
+
+from aiobt.core.clock import Clock, SystemClock
+from aiobt.system.announce import announce
+from aiobt.system.heap import settle
+from aiobt.system.realtime import RealtimePriorityError, realtime_if_asked
+from aiobt.system.signals import stop_on_signals as stop_on_signals  # for the services
+from aiobt.transport import (
+    Bus,
+    BusConfigError,
+    BusSettings,
+    BusUnavailable,
+    SimClockFollower,
+    open_bus,
+)
+
+T = TypeVar("T")
+log = logging.getLogger("aiobt.system.service")
+
+
+def positive(text: str) -> float:
+    """argparse type: a finite float > 0."""
+    value = float(text)
+    if not (math.isfinite(value) and value > 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0, got {text}")
+    return value
+
+
+def non_negative(text: str) -> float:
+    """argparse type: a finite float >= 0."""
+    value = float(text)
+    if not (math.isfinite(value) and value >= 0.0):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0, got {text}")
+    return value
+
+
+def module_main(
+    prog: str,
+    description: str | None,
+    add_arguments: Callable[[argparse.ArgumentParser], None],
+    run: Callable[[argparse.Namespace], int],
+    argv: list[str] | None = None,
+) -> int:
+    """``python -m aiobt_services.<name>``: the service's options plus ``-v``, logging set up."""
+    parser = argparse.ArgumentParser(prog=prog, description=description)
+    parser.add_argument("-v", "--verbose", action="count", default=0, help="more logging")
+    add_arguments(parser)
+    args = parser.parse_args(argv)
+    logging.basicConfig(
+        level=logging.DEBUG if args.verbose > 1 else logging.INFO,
+        format="%(asctime)s %(levelname).1s %(name)s: %(message)s",
+    )
+    return run(args)
+
+
+async def unless_stopped(work: Coroutine[Any, Any, T], stopper: asyncio.Task[Any]) -> T | None:
+    """``work``'s result, or None (``work`` cancelled) if ``stopper`` finishes first."""
+    task = asyncio.create_task(work)
+    await asyncio.wait({task, stopper}, return_when=asyncio.FIRST_COMPLETED)
+    if not task.done():
+        task.cancel()
+        return None
+    return task.result()
+
+
+@contextlib.asynccontextmanager
+async def open_bus_unless_stopped(
+    settings: BusSettings, stop: asyncio.Event
+) -> AsyncIterator[Bus | None]:
+    """The service's bus, or None if ``stop`` (SIGINT/SIGTERM) comes while it is still
+    opening: a service waiting for its router stops when asked to."""
+    async with contextlib.AsyncExitStack() as stack:
+        stopper = asyncio.ensure_future(stop.wait())
+        try:
+            bus = await unless_stopped(stack.enter_async_context(open_bus(settings)), stopper)
+        finally:
+            stopper.cancel()
+        yield bus
+
+
+def run_service(main: Coroutine[Any, Any, None], log: logging.Logger, name: str) -> int:
+    """Run ``main`` to its end: 0, or 1 (logged on ``log``) when the bus cannot be opened
+    or the real-time priority asked for cannot be had."""
+    try:
+        asyncio.run(main)
+    except KeyboardInterrupt:
+        pass
+    except (BusUnavailable, BusConfigError, RealtimePriorityError) as exc:
+        log.error("%s: %s", name, exc)
+        return 1
+    return 0
+
+
+def add_clock_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--sim-time",
+        action="store_true",
+        help="run on the simulation's time from {ns}/clock instead of the wall clock",
+    )
+    parser.add_argument(
+        "--clock-timeout",
+        type=float,
+        default=2.0,
+        metavar="SECONDS",
+        help="wall seconds without clock progress before a goal fails (default: %(default)s)",
+    )
+
+
+async def serve_on_clock(
+    args: argparse.Namespace,
+    name: str,
+    start: Callable[[Bus, Clock], None],
+    detail: str = "",
+    logger: logging.Logger = log,
+    realtime: int | None = None,
+) -> None:
+    """Raise the process to ``realtime`` priority if given (before the bus: Zenoh's
+    threads too, see :mod:`aiobt.system.realtime`), open the bus, wait for the clock
+    (``--sim-time``), ``start(bus, clock)``, announce ``nodes/{name}``, then run until
+    SIGINT/SIGTERM; "``name`` up" goes to ``logger``."""
+    detail += realtime_if_asked(realtime)
+    stop = stop_on_signals()
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
+        stopper = asyncio.create_task(stop.wait())
+        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
+        if made is None:
+            return
+        start(bus, made[0])
+        settle()  # start-up's objects out of the collector's full passes (a cycle's tail)
+        announce(bus, name, sim_time=args.sim_time)
+        time = "sim" if args.sim_time else "wall"
+        logger.info("%s up on namespace '%s'%s (%s time)", name, bus.namespace, detail, time)
+        await stopper
+
+
+async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower | None]:
+    """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp),
+    listened to only while held: by a sleeper, a goal, a clearing call (see
+    :mod:`aiobt.transport.simtime`); an idle service receives no clock."""
+    if not sim_time:
+        return SystemClock(), None
+    follower = SimClockFollower(bus, on_demand=True)
+    while True:
+        try:
+            await follower.wait_started(timeout=5.0)
+            return follower.clock, follower
+        except TimeoutError:
+            log.info("waiting for sim time on %s/clock", bus.namespace)
