@@ -11,6 +11,7 @@ from aiobt.core.manifest import NodeBuilder, NodeManifest, ports_dict
 from aiobt.core.node import TreeNode
 from aiobt.nav.actions import ACTION_NODES
 from aiobt.nav.cancel import CANCEL_NODES
+from aiobt.nav.conditions import CONDITION_NODES
 from aiobt.nav.context import NavContext, NavNode
 from aiobt.nav.control import CONTROL_NODES
 from aiobt.nav.decorators import DECORATOR_NODES
@@ -35,6 +36,7 @@ NAV2_NODES: tuple[type[TreeNode], ...] = (
     *PATH_NODES,
     *DECORATOR_NODES,
     *CONTROL_NODES,
+    *CONDITION_NODES,
 )
 
 # Registered under an ID other than the class name (e.g. Nav2 aliases).

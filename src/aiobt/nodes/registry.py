@@ -11,27 +11,13 @@ from aiobt.nodes.actions.set_blackboard import SetBlackboard
 from aiobt.nodes.actions.sleep import Sleep
 from aiobt.nodes.actions.unset_blackboard import UnsetBlackboard
 from aiobt.nodes.actions.was_entry_updated import WasEntryUpdated
-from aiobt.nodes.conditions.error_codes import (
-    AreErrorCodesPresent,
-    WouldAControllerRecoveryHelp,
-    WouldAPlannerRecoveryHelp,
-    WouldARouteRecoveryHelp,
-    WouldASmootherRecoveryHelp,
-)
-from aiobt.nodes.conditions.goal_updated import GlobalUpdatedGoal, GoalUpdated
 from aiobt.nodes.conditions.script_condition import ScriptCondition
-from aiobt.nodes.conditions.time_expired import PathExpiringTimer, TimeExpired
 from aiobt.nodes.control.fallback import AsyncFallback, Fallback
 from aiobt.nodes.control.if_then_else import IfThenElse
-from aiobt.nodes.control.nonblocking_sequence import NonblockingSequence
 from aiobt.nodes.control.parallel import Parallel
 from aiobt.nodes.control.parallel_all import ParallelAll
-from aiobt.nodes.control.persistent_sequence import PersistentSequence
-from aiobt.nodes.control.pipeline_sequence import PipelineSequence
 from aiobt.nodes.control.reactive_fallback import ReactiveFallback
 from aiobt.nodes.control.reactive_sequence import ReactiveSequence
-from aiobt.nodes.control.recovery_node import RecoveryNode
-from aiobt.nodes.control.round_robin import RoundRobin
 from aiobt.nodes.control.sequence import AsyncSequence, Sequence
 from aiobt.nodes.control.sequence_with_memory import SequenceWithMemory
 from aiobt.nodes.control.switch import Switch2, Switch3, Switch4, Switch5, Switch6
@@ -40,16 +26,13 @@ from aiobt.nodes.control.while_do_else import WhileDoElse
 from aiobt.nodes.decorators.delay import Delay
 from aiobt.nodes.decorators.entry_updated import SkipUnlessUpdated, WaitValueUpdate
 from aiobt.nodes.decorators.force import ForceFailure, ForceSuccess
-from aiobt.nodes.decorators.goal_updated_controller import GoalUpdatedController
 from aiobt.nodes.decorators.inverter import Inverter
 from aiobt.nodes.decorators.keep_running_until_failure import KeepRunningUntilFailure
 from aiobt.nodes.decorators.loop import LoopBool, LoopDouble, LoopInt, LoopString
 from aiobt.nodes.decorators.precondition import Precondition
-from aiobt.nodes.decorators.rate_controller import RateController
 from aiobt.nodes.decorators.repeat import Repeat
 from aiobt.nodes.decorators.retry import RetryUntilSuccessful
 from aiobt.nodes.decorators.run_once import RunOnce
-from aiobt.nodes.decorators.single_trigger import SingleTrigger
 from aiobt.nodes.decorators.timeout import Timeout
 
 if TYPE_CHECKING:
@@ -66,14 +49,9 @@ BUILTINS: tuple[type[TreeNode], ...] = (
     RetryUntilSuccessful, Repeat, Timeout, Delay, RunOnce,
     # leaves
     AlwaysSuccess, AlwaysFailure, SetBlackboard, UnsetBlackboard, Sleep,
-    # -- scripting and BT.CPP language nodes (issue 3) --
+    # scripting and the language's own nodes
     Script, ScriptCondition, Precondition, SkipUnlessUpdated, WaitValueUpdate,
     WasEntryUpdated, LoopInt, LoopDouble, LoopString, LoopBool, TryCatch,
-    # -- Nav2 generic control flow and conditions (issue 3) --
-    PipelineSequence, RecoveryNode, RoundRobin, NonblockingSequence, PersistentSequence,
-    RateController, SingleTrigger, GoalUpdatedController, GoalUpdated, GlobalUpdatedGoal,
-    AreErrorCodesPresent, WouldAControllerRecoveryHelp, WouldAPlannerRecoveryHelp,
-    WouldASmootherRecoveryHelp, WouldARouteRecoveryHelp, TimeExpired, PathExpiringTimer,
 )  # fmt: skip
 
 # Built-ins registered under an ID other than their class name.

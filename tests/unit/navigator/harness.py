@@ -12,6 +12,7 @@ from aiobt.core.leaves import AsyncActionNode
 from aiobt.core.status import Status
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs import BtSnapshot, BtTransitions, BtTree, Msg, PoseStamped
+from aiobt.nav import register_nav2_nodes
 from aiobt_services.navigator import (
     NAVIGATE_THROUGH_POSES,
     NAVIGATE_TO_POSE,
@@ -63,6 +64,7 @@ def gate_factory(gates: Gates) -> BehaviorTreeFactory:
                 raise
 
     factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory)  # the trees use Nav2's conditions; no bus needed
     factory.register_node_type(Gate, "Gate")
     return factory
 

@@ -7,8 +7,8 @@ from typing import Any
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.ports import input_port
 from aiobt.core.status import IDLE, RUNNING, Status
+from aiobt.nav.conditions.goal_updated import GOAL_PORTS
 from aiobt.nav.robot_state import ODOM, RobotStateNode
-from aiobt.nodes.conditions.goal_updated import GOAL_PORTS
 
 
 class SpeedController(RobotStateNode, DecoratorNode):

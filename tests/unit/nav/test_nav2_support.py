@@ -15,6 +15,7 @@ from aiobt.core.node import TreeNode
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.nav import register_nav2_nodes
 from aiobt.testing.stubs import parse_status, tree_xml
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
@@ -59,8 +60,15 @@ class Leaf(TreeNode):
             self.SCRIPT.log.append(f"{self.name}:halt")
 
 
-def make_factory(script: Script) -> BehaviorTreeFactory:
+def nav2_factory() -> BehaviorTreeFactory:
+    """A factory with Nav2's node set registered (no bus: the nodes here need none)."""
     factory = BehaviorTreeFactory()
+    register_nav2_nodes(factory)
+    return factory
+
+
+def make_factory(script: Script) -> BehaviorTreeFactory:
+    factory = nav2_factory()
     bound = type("Leaf", (Leaf,), {"__slots__": (), "SCRIPT": script})
     factory.register_node_type(bound, "Leaf")
     return factory

@@ -7,7 +7,7 @@ import pytest
 from aiobt.core.clock import ManualClock
 from aiobt.core.errors import NodeError
 from aiobt.core.status import Status
-from tests.unit.nodes.test_nav2_support import Script, build
+from tests.unit.nav.test_nav2_support import Script, build
 
 S, F, R, IDLE = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.IDLE
 

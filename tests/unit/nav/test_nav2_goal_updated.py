@@ -8,7 +8,7 @@ from aiobt.core.errors import BlackboardError, NodeError
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
 from aiobt.msgs import Goals, PoseStamped
-from tests.unit.nodes.test_nav2_support import Script, build
+from tests.unit.nav.test_nav2_support import Script, build
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
 

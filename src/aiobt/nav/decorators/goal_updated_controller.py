@@ -6,7 +6,7 @@ from typing import Any
 
 from aiobt.core.composite import DecoratorNode
 from aiobt.core.status import IDLE, RUNNING, Status
-from aiobt.nodes.conditions.goal_updated import GOAL_PORTS
+from aiobt.nav.conditions.goal_updated import GOAL_PORTS
 
 _NOTHING: Any = None
 

@@ -8,11 +8,10 @@ from aiobt.core.clock import ManualClock
 from aiobt.core.convert import convert, type_name
 from aiobt.core.errors import NodeError, PortError
 from aiobt.core.status import Status
-from aiobt.factory import BehaviorTreeFactory
 from aiobt.msgs.nav import Path
 from aiobt.testing.stubs import tree_xml
 from aiobt.xml.model import read_tree_nodes_model
-from tests.unit.nodes.test_nav2_support import Script, build
+from tests.unit.nav.test_nav2_support import Script, build, nav2_factory
 
 S, F = Status.SUCCESS, Status.FAILURE
 NAV2_IDS = [
@@ -35,7 +34,7 @@ NAV2_IDS = [
 
 
 def test_ports_match_the_nav2_manifest() -> None:
-    ours = BehaviorTreeFactory().manifests
+    ours = nav2_factory().manifests
     nav2 = {m.id: m for m in read_tree_nodes_model("trees/nav2/nav2_tree_nodes.xml")}
     for node_id in NAV2_IDS:
         mine, theirs = ours[node_id], nav2[node_id]
@@ -151,7 +150,7 @@ async def test_path_expiring_timer_restarts_on_a_new_path() -> None:
 
 
 def test_nav2_nodes_export_in_the_tree_nodes_model() -> None:
-    xml = BehaviorTreeFactory().tree_nodes_model_xml(include_builtins=True)
+    xml = nav2_factory().tree_nodes_model_xml(include_builtins=True)
     assert '<Control ID="RecoveryNode">' in xml
     assert 'name="number_of_retries" type="int" default="1"' in xml
     assert tree_xml("<x/>")  # helper still importable
