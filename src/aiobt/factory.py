@@ -8,7 +8,7 @@ import enum
 import inspect
 from collections.abc import Callable, Iterable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.clock import Clock
@@ -25,12 +25,14 @@ from aiobt.core.node import NodeConfig, NodeKind, TreeContext, TreeNode
 from aiobt.core.ports import PortInfo
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
+from aiobt.nodes.actions.simple import StatefulCallbacks, simple_node_class
+from aiobt.nodes.actions.test_node import test_node_builder
+from aiobt.nodes.decorators.pass_through import pass_through_builder
+from aiobt.nodes.registry import register_builtins
 from aiobt.script import compile_condition
 from aiobt.xml.builder import ScriptCompiler, TreeBuilder
 from aiobt.xml.document import ParsedDocument, TreeDefinition, parse_file, parse_text
-
-if TYPE_CHECKING:
-    from aiobt.nodes.actions.simple import StatefulCallbacks
+from aiobt.xml.model import is_unimplemented, read_tree_nodes_model, write_tree_nodes_model
 
 SimpleFunction = Callable[[TreeNode], Any]
 
@@ -46,8 +48,6 @@ class BehaviorTreeFactory:
         self.scripting_enums: dict[str, int] = {}
         self.main_tree_id: str | None = None
         if builtins:
-            from aiobt.nodes.registry import register_builtins
-
             register_builtins(self)
 
     # -- nodes ----------------------------------------------------------------------
@@ -96,7 +96,6 @@ class BehaviorTreeFactory:
         ports: Iterable[PortInfo] = (),
     ) -> None:
         """BT.CPP's StatefulActionNode from callbacks that each receive the node."""
-        from aiobt.nodes.actions.simple import StatefulCallbacks
 
         callbacks = StatefulCallbacks(on_start, on_running, on_halted)
         self._register_simple(node_id, callbacks, tuple(ports), NodeKind.ACTION)
@@ -108,7 +107,6 @@ class BehaviorTreeFactory:
         ports: tuple[PortInfo, ...],
         kind: str,
     ) -> None:
-        from aiobt.nodes.actions.simple import simple_node_class
 
         node_class = simple_node_class(node_id, fn, ports, kind)
         self.register_node_type(node_class, node_id)
@@ -274,7 +272,6 @@ class BehaviorTreeFactory:
     # -- Groot2 -----------------------------------------------------------------------
     def tree_nodes_model_xml(self, *, include_builtins: bool = False) -> str:
         """A ``<TreeNodesModel>`` of the registered nodes, for Groot2."""
-        from aiobt.xml.model import write_tree_nodes_model
 
         manifests = [m for m in self.manifests.values() if include_builtins or not m.builtin]
         return write_tree_nodes_model(manifests)
@@ -287,7 +284,6 @@ class BehaviorTreeFactory:
         Their ports validate XML attributes; they are built with ``builder``
         (default: a node that fails when ticked, asking for a substitution).
         """
-        from aiobt.xml.model import read_tree_nodes_model
 
         added = []
         for manifest in read_tree_nodes_model(source, builder):
@@ -300,16 +296,10 @@ class BehaviorTreeFactory:
 def _stub_builder(manifest: NodeManifest, spec: TestNodeConfig) -> NodeBuilder | None:
     """The stub for ``manifest``: a test leaf (a condition answers at once, it never
     runs), a pass-through for a decorator without an implementation, else None (kept)."""
-    from aiobt.xml.model import is_unimplemented
-
     if manifest.kind == NodeKind.DECORATOR and is_unimplemented(manifest):
-        from aiobt.nodes.decorators.pass_through import pass_through_builder
-
         return pass_through_builder()
     if manifest.kind not in (NodeKind.ACTION, NodeKind.CONDITION):
         return None  # control nodes and implemented decorators keep their children
-    from aiobt.nodes.actions.test_node import test_node_builder
-
     if manifest.kind == NodeKind.CONDITION and spec.delay > 0:
         spec = dataclasses.replace(spec, delay=0.0)
     return test_node_builder(spec)

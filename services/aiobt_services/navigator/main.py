@@ -21,7 +21,6 @@ from aiobt.core.clock import Clock
 from aiobt.factory import BehaviorTreeFactory
 from aiobt.loggers.groot2 import DEFAULT_PORT, Groot2Publisher, port_argument
 from aiobt.nav import register_nav2_nodes
-from aiobt.system.announce import announce
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.heap import settle
 from aiobt.system.realtime import add_realtime_argument, realtime_if_asked
@@ -35,6 +34,7 @@ from aiobt.system.service import (
     unless_stopped,
 )
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
+from aiobt.transport.announce import announce
 from aiobt_services.navigator.navigator import Navigator, NavigatorOptions
 from aiobt_services.navigator.service import BusStatusSink, NavigatorService, NavRobotState
 from aiobt_services.navigator.status import TreeStatusStream
@@ -151,7 +151,8 @@ def build_navigator(args: argparse.Namespace, bus: Bus, clock: Clock) -> Navigat
     robot = NavRobotState(nav, clock, args.pose_timeout)
     navigator = Navigator(library, robot, clock, stream, options)
     if args.mcap_dir is not None:
-        from aiobt.foxglove.recording import McapRecording  # foxglove only when asked
+        # inside, for start-up time: the foxglove SDK is imported only when a recording is asked
+        from aiobt.foxglove.recording import McapRecording
 
         navigator.recorder = partial(McapRecording, bus)
     return navigator

@@ -19,8 +19,8 @@ from aiobt.msgs import (
     OccupancyGrid,
     SmoothPath,
 )
-from aiobt.system.announce import announce
 from aiobt.transport import Bus
+from aiobt.transport.announce import announce
 
 from .actions import PlannerActions
 from .feed import RobotFeed

@@ -30,11 +30,11 @@ from aiobt.msgs import (
 )
 from aiobt.msgs import Clock as ClockMsg
 from aiobt.msgs import sim as messages
-from aiobt.system.announce import announce
 from aiobt.system.heap import settle
 from aiobt.system.realtime import realtime_if_asked
 from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
+from aiobt.transport.announce import announce
 
 from . import convert
 from .mapfile import MapError, load_map

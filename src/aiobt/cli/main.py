@@ -43,7 +43,8 @@ def _load(module_name: str) -> object:
 def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if "AIOBT_SUPERVISOR_PID" in os.environ:  # a child of aiobt up/demo: dies with it
-        from aiobt.system.lifeline import die_with_supervisor  # only then: a heavy import
+        # inside, for start-up time: a heavy import, only in a child of aiobt up/demo
+        from aiobt.system.lifeline import die_with_supervisor
 
         die_with_supervisor()
     args = _full_parser(argv).parse_args(argv)

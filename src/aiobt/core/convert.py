@@ -1,7 +1,9 @@
 """Converting XML attribute text to port types, as BT.CPP's convertFromString.
 
 Numbers, bools, strings, ``;``-separated vectors, ``json:`` literals, any type
-with a ``from_bt_string`` classmethod, and converters registered at run time.
+with a ``from_bt_string`` classmethod (and ``to_bt_string`` method), and converters
+registered at run time (:func:`register_converter`; the message types' string forms
+are registered by :mod:`aiobt.msgs.strings`).
 Each type also has a BT.CPP type name for the ``<TreeNodesModel>`` export.
 """
 
@@ -14,8 +16,10 @@ from collections.abc import Callable
 from typing import Any
 
 Converter = Callable[[str], Any]
+Formatter = Callable[[Any], str]
 
 _converters: dict[Any, Converter] = {}
+_formatters: dict[type, Formatter] = {}
 _type_names: dict[Any, str] = {}
 
 
@@ -23,9 +27,14 @@ class Milliseconds(int):
     """A duration port in milliseconds (BT.CPP ``chrono::milliseconds``)."""
 
 
-def register_converter(tp: Any, converter: Converter, bt_name: str | None = None) -> None:
-    """Teach ports of type ``tp`` to read XML text with ``converter``."""
+def register_converter(
+    tp: Any, converter: Converter, bt_name: str | None = None, formatter: Formatter | None = None
+) -> None:
+    """Teach ports of type ``tp`` to read XML text with ``converter`` (and write a value
+    back with ``formatter``, for :func:`to_text`)."""
     _converters[tp] = converter
+    if formatter is not None:
+        _formatters[tp] = formatter
     if bt_name is not None:
         _type_names[tp] = bt_name
 
@@ -148,6 +157,9 @@ def to_text(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, list | tuple):
         return ";".join(to_text(v) for v in value)
+    formatter = _formatters.get(type(value))
+    if formatter is not None:
+        return formatter(value)
     to_bt = getattr(value, "to_bt_string", None)
     if callable(to_bt):
         return str(to_bt())

@@ -27,8 +27,8 @@ from foxglove.websocket import (
 from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
 from aiobt.foxglove.channels import GOAL_TOPIC
 from aiobt.foxglove.recording import open_mcap
-from aiobt.system.announce import announce
 from aiobt.transport import Bus
+from aiobt.transport.announce import announce
 
 log = logging.getLogger("aiobt.foxglove.server")
 

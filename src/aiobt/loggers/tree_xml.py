@@ -17,6 +17,7 @@ from aiobt.core.convert import to_text
 from aiobt.core.node import TreeNode
 from aiobt.core.ports import CONDITION_ATTRIBUTES, PortInfo
 from aiobt.core.tree import Tree
+from aiobt.factory import BehaviorTreeFactory
 from aiobt.nodes.subtree import SubTreeNode
 from aiobt.xml.model import add_node_model
 
@@ -106,8 +107,6 @@ def _add_node(parent: etree._Element, node: TreeNode, metadata: bool, fullpath: 
 
 
 def _builtin_models() -> dict[str, tuple[str, dict[str, PortInfo]]]:
-    from aiobt.factory import BehaviorTreeFactory  # the factory imports the loggers' users
-
     factory = BehaviorTreeFactory()
     return {
         node_id: (manifest.kind, manifest.ports)

@@ -5,7 +5,7 @@ given short, ``{"x": 1.0, "y": 2.0, "yaw": 0.5}`` (frame ``map`` unless a
 ``frame_id`` is given), as a user types it on the zenoh command line.
 
 Point, Quaternion and PoseStamped read and write Nav2's ``;``-separated port
-strings (``from_bt_string``/``to_bt_string``, see :mod:`aiobt.msgs.strings`),
+strings (registered with the port converters by :mod:`aiobt.msgs.strings`),
 so they work as typed BT ports with XML literals.
 """
 
@@ -64,18 +64,6 @@ class Point(Msg):
     y: float = 0.0
     z: float = 0.0
 
-    @classmethod
-    def from_bt_string(cls, text: str) -> Point:
-        """Nav2's ``x;y;z``; :class:`~aiobt.msgs.MessageError` names a bad field."""
-        from aiobt.msgs.strings import point_from_string  # strings imports this module
-
-        return point_from_string(text)
-
-    def to_bt_string(self) -> str:
-        from aiobt.msgs.strings import point_to_string
-
-        return point_to_string(self)
-
 
 class Vector3(Msg):
     x: float = 0.0
@@ -111,18 +99,6 @@ class Quaternion(Msg):
     @property
     def yaw(self) -> float:
         return quaternion_to_yaw(self.x, self.y, self.z, self.w)
-
-    @classmethod
-    def from_bt_string(cls, text: str) -> Quaternion:
-        """Nav2's ``x;y;z;w``; :class:`~aiobt.msgs.MessageError` names a bad field."""
-        from aiobt.msgs.strings import quaternion_from_string
-
-        return quaternion_from_string(text)
-
-    def to_bt_string(self) -> str:
-        from aiobt.msgs.strings import quaternion_to_string
-
-        return quaternion_to_string(self)
 
 
 class Pose(Msg):
@@ -195,20 +171,6 @@ class PoseStamped(Msg):
     @property
     def yaw(self) -> float:
         return self.pose.orientation.yaw
-
-    @classmethod
-    def from_bt_string(cls, text: str) -> PoseStamped:
-        """Nav2's ``stamp_ns;frame_id;x;y;z;qx;qy;qz;qw`` (also ``x;y;z;qx;qy;qz;qw`` and
-        ``x;y;yaw`` in ``map``); :class:`~aiobt.msgs.MessageError` names a bad field."""
-        from aiobt.msgs.strings import pose_stamped_from_string
-
-        return pose_stamped_from_string(text)
-
-    def to_bt_string(self) -> str:
-        """Nav2's 9 fields; a ``frame_id`` the string cannot carry is a ValueError."""
-        from aiobt.msgs.strings import pose_stamped_to_string
-
-        return pose_stamped_to_string(self)
 
 
 class Twist(Msg):

@@ -1,7 +1,7 @@
 """Navigation messages: odometry, scans, maps, paths, goals, battery.
 
 Path and Goals read and write Nav2's ``;``-separated port strings
-(``from_bt_string``/``to_bt_string``, see :mod:`aiobt.msgs.strings`).
+(registered with the port converters by :mod:`aiobt.msgs.strings`).
 """
 
 from __future__ import annotations
@@ -216,19 +216,6 @@ class Path(Msg):
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
     poses: list[PoseStamped] = Field(default_factory=list)
 
-    @classmethod
-    def from_bt_string(cls, text: str) -> Path:
-        """Nav2's ``stamp_ns;frame_id`` then 9 fields per pose; a
-        :class:`~aiobt.msgs.MessageError` names a bad field."""
-        from aiobt.msgs.strings import path_from_string  # strings imports this module
-
-        return path_from_string(text)
-
-    def to_bt_string(self) -> str:
-        from aiobt.msgs.strings import path_to_string
-
-        return path_to_string(self)
-
     def xy_array(self) -> npt.NDArray[np.float64]:
         """``(n, 2)`` array of the positions."""
         if not self.poses:
@@ -243,19 +230,6 @@ class Goals(Msg):
 
     header: Header = Field(default_factory=lambda: Header(frame_id="map"))
     goals: list[PoseStamped] = Field(default_factory=list)
-
-    @classmethod
-    def from_bt_string(cls, text: str) -> Goals:
-        """Nav2's ``stamp_ns;frame_id`` then 9 fields per pose (or the poses alone); a
-        :class:`~aiobt.msgs.MessageError` names a bad field."""
-        from aiobt.msgs.strings import goals_from_string
-
-        return goals_from_string(text)
-
-    def to_bt_string(self) -> str:
-        from aiobt.msgs.strings import goals_to_string
-
-        return goals_to_string(self)
 
     @model_validator(mode="before")
     @classmethod

@@ -25,6 +25,7 @@ from fractions import Fraction
 
 from pydantic import ValidationError
 
+from aiobt.core.convert import register_converter
 from aiobt.msgs._base import MessageError
 from aiobt.msgs.geometry import Header, Point, PoseStamped, Quaternion
 from aiobt.msgs.nav import Goals, Path
@@ -197,3 +198,11 @@ def path_to_string(path: Path) -> str:
 def _poses_text(header: Header, poses: Sequence[PoseStamped], what: str, field: str) -> str:
     texts = (_pose_text(p, what, f"{field}.{i}.header") for i, p in enumerate(poses))
     return ";".join([_header_text(header, what), *texts])
+
+
+# the string forms as port literals: convert(text, PoseStamped) and to_text(pose)
+register_converter(Point, point_from_string, formatter=point_to_string)
+register_converter(Quaternion, quaternion_from_string, formatter=quaternion_to_string)
+register_converter(PoseStamped, pose_stamped_from_string, formatter=pose_stamped_to_string)
+register_converter(Goals, goals_from_string, formatter=goals_to_string)
+register_converter(Path, path_from_string, formatter=path_to_string)

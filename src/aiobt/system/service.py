@@ -16,7 +16,6 @@ from collections.abc import AsyncIterator, Callable, Coroutine
 from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock, SystemClock
-from aiobt.system.announce import announce
 from aiobt.system.heap import settle
 from aiobt.system.realtime import RealtimePriorityError, realtime_if_asked
 from aiobt.system.signals import stop_on_signals as stop_on_signals  # for the services
@@ -28,6 +27,7 @@ from aiobt.transport import (
     SimClockFollower,
     open_bus,
 )
+from aiobt.transport.announce import announce
 
 T = TypeVar("T")
 log = logging.getLogger("aiobt.system.service")

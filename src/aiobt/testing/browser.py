@@ -33,7 +33,7 @@ def missing_browser() -> str | None:
             "apt-get install -y chromium chromium-driver"
         )
     try:
-        import selenium  # noqa: F401
+        import selenium  # noqa: F401  (inside: an optional dependency, asked for here)
     except ImportError:
         return "needs selenium (pip install -e '.[dev]')"
     return None
@@ -42,7 +42,7 @@ def missing_browser() -> str | None:
 @contextlib.contextmanager
 def headless_chromium() -> Iterator[Any]:
     """A Selenium driver of headless Chromium; quit (browser and chromedriver ended) on exit."""
-    from selenium import webdriver
+    from selenium import webdriver  # inside: an optional dependency (the dev extras)
 
     options = webdriver.ChromeOptions()
     options.binary_location = chromium_path() or "chromium"

@@ -17,16 +17,14 @@ import subprocess
 import sys
 import tempfile
 import time
+import uuid
 from collections.abc import AsyncIterator, Callable, Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
 
+from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
 from aiobt.transport.endpoints import LOOPBACK
 from aiobt.transport.endpoints import free_endpoint as free_endpoint  # for the tests
 from aiobt.transport.endpoints import free_port as free_port
-
-if TYPE_CHECKING:
-    from aiobt.transport import Bus, BusSettings
 
 
 def port_of(endpoint: str) -> int:
@@ -141,8 +139,6 @@ def service_main(declare: Callable[[Bus], object]) -> int:
     """``main`` of a test or benchmark service process (bus options from the command line):
     opens the bus, ``declare(bus)``, prints ``ready``, serves until SIGINT or SIGTERM.
     What ``declare`` returns is kept referenced until then (e.g. raw Zenoh entities)."""
-    from aiobt.transport import BusSettings, add_bus_arguments
-
     parser = argparse.ArgumentParser()
     add_bus_arguments(parser)
     asyncio.run(_serve(BusSettings.from_args(parser.parse_args()), declare))
@@ -150,8 +146,6 @@ def service_main(declare: Callable[[Bus], object]) -> int:
 
 
 async def _serve(settings: BusSettings, declare: Callable[[Bus], object]) -> None:
-    from aiobt.transport import open_bus
-
     stop = asyncio.Event()
     loop = asyncio.get_running_loop()
     for sig in (signal.SIGINT, signal.SIGTERM):  # before opening: a stop is never missed
@@ -172,10 +166,6 @@ async def open_local_bus(namespace: str | None = None) -> AsyncIterator[Bus]:
     can be tested together without a router process. ``namespace`` defaults to a
     fresh one, so tests never hear each other.
     """
-    import uuid
-
-    from aiobt.transport import BusSettings, open_bus
-
     settings = BusSettings(
         mode="peer",
         listen=(f"tcp/{LOOPBACK}:0",),

@@ -20,14 +20,12 @@ import contextlib
 import uuid
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
+from aiobt.system.catalog import SERVICE_NAMES
 from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
+from aiobt.transport import Bus, BusSettings
 
-if TYPE_CHECKING:
-    from aiobt.transport import Bus, BusSettings
-
-SERVICES = ("robot", "planner", "controller", "behaviors", "navigator")
+SERVICES = SERVICE_NAMES
 SIM_TIME = ("controller", "behaviors", "navigator")  # the planner needs no clock
 
 
@@ -86,8 +84,6 @@ class NavStack:
 
     def settings(self, **overrides: object) -> BusSettings:
         """Client settings for this stack's router and namespace."""
-        from aiobt.transport import BusSettings
-
         values: dict[str, object] = {
             "mode": "client",
             "connect": (self.endpoint,),

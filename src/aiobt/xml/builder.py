@@ -19,6 +19,7 @@ from aiobt.core.errors import TreeLoadError
 from aiobt.core.manifest import NodeManifest
 from aiobt.core.node import NodeConfig, NodeKind, PortBinding, TreeContext, TreeNode
 from aiobt.core.ports import CONDITION_ATTRIBUTES, RESERVED_ATTRIBUTES, PortInfo, blackboard_key
+from aiobt.nodes.subtree import SubTreeNode
 from aiobt.xml.document import Element, TreeDefinition, line_of
 
 EXPLICIT_TAGS = frozenset({"Action", "Condition", "Control", "Decorator"})
@@ -184,8 +185,6 @@ class TreeBuilder:
         uid: int,
         stack: tuple[str, ...],
     ) -> TreeNode:
-        from aiobt.nodes.subtree import SubTreeNode
-
         tree_id = str(element.get("ID"))
         if tree_id in stack:
             chain = " -> ".join((*stack, tree_id))

@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import aiobt.msgs as msgs
+from aiobt.core.convert import convert, to_text
 from aiobt.msgs import MessageError, PoseStamped
 
 
@@ -176,7 +177,7 @@ def test_any_pose_reads_back_equal(
     )
     text = msgs.pose_stamped_to_string(pose)
     assert msgs.pose_stamped_from_string(text) == pose
-    assert PoseStamped.from_bt_string(pose.to_bt_string()) == pose
+    assert convert(to_text(pose), PoseStamped) == pose  # as a port reads and writes it
 
 
 def test_a_stamp_too_large_for_a_float_is_a_message_error() -> None:
@@ -198,10 +199,10 @@ def test_a_stamp_too_large_for_a_float_is_a_message_error() -> None:
         (msgs.Goals, "5;map;1;map;1.0;2.0;0.0;0.0;0.0;0.0;1.0"),
     ],
 )
-def test_the_models_read_and_write_their_bt_strings(model: type[msgs.Msg], text: str) -> None:
-    value = model.from_bt_string(text)  # type: ignore[attr-defined]
+def test_ports_read_and_write_the_models_bt_strings(model: type[msgs.Msg], text: str) -> None:
+    value = convert(text, model)
     assert isinstance(value, model)
-    assert value.to_bt_string() == text  # type: ignore[attr-defined]
+    assert to_text(value) == text
     with pytest.raises(MessageError) as caught:
-        model.from_bt_string("1;nan;" + text)  # type: ignore[attr-defined]
+        convert("1;nan;" + text, model)
     assert caught.value.model == model.__name__

@@ -7,7 +7,7 @@ import pytest
 from aiobt.core.errors import BlackboardError, NodeError
 from aiobt.core.status import Status
 from aiobt.core.tree import Tree
-from aiobt.msgs import Goals, PoseStamped
+from aiobt.msgs import Goals, PoseStamped, pose_stamped_from_string
 from tests.unit.nav.test_nav2_support import Script, build
 
 S, F, R = Status.SUCCESS, Status.FAILURE, Status.RUNNING
@@ -108,7 +108,7 @@ async def test_goal_text_on_the_blackboard_fallback_is_compared_as_a_pose() -> N
     assert await tree.tick_exactly_once() is F  # first tick: remembers
     bb.set("goal", "1.0;2.0;0.5")  # other text, the same pose
     assert await tree.tick_exactly_once() is F
-    bb.set("goal", PoseStamped.from_bt_string("1;2;0.5"))  # the pose itself
+    bb.set("goal", pose_stamped_from_string("1;2;0.5"))  # the pose itself
     assert await tree.tick_exactly_once() is F
     bb.set("goal", "1.5;2.0;0.5")
     assert await tree.tick_exactly_once() is S

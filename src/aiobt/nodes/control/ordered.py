@@ -187,7 +187,7 @@ class WalkedComposite(ControlNode):
 
     def on_tree_built(self) -> None:
         """Switch to a tick unrolled for these children (:mod:`unrolled`)."""
-        unroll(self)
+        unroll(self, reactive=isinstance(self, ReactiveComposite))
 
     def add_child(self, child: TreeNode) -> None:
         reroll(self)  # a child added to a built tree: back to the shared tick

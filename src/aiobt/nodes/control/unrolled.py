@@ -95,20 +95,18 @@ def _code(reactive: bool, count: int) -> types.CodeType:
     return code
 
 
-def unroll(node: Any) -> bool:
-    """Give ``node`` its unrolled tick; False (and unchanged) if it does not apply.
+def unroll(node: Any, reactive: bool) -> bool:
+    """Give ``node`` (a ``WalkedComposite`` of :mod:`.ordered`, ``reactive`` or not) its
+    unrolled tick; False (and unchanged) if it does not apply.
 
-    It applies to a :class:`WalkedComposite` whose class's tick is the short
-    path built for it (not a subclass's own ``tick_sync``, not the yielding
-    variants) with 1 to :data:`MAX_CHILDREN` children, once.
+    It applies when the node's class's tick is the short path built for it (not a
+    subclass's own ``tick_sync``, not the yielding variants) with 1 to
+    :data:`MAX_CHILDREN` children, once.
     """
-    from aiobt.nodes.control.ordered import ReactiveComposite, WalkedComposite  # (a cycle)
-
     cls = type(node)
     children = node.children
     if (
-        not isinstance(node, WalkedComposite)
-        or cls.__dict__.get("_UNROLLED", False)
+        cls.__dict__.get("_UNROLLED", False)
         or getattr(cls.tick_sync, "walk", None) is not cls._walk
         or not 0 < len(children) <= MAX_CHILDREN
     ):
@@ -126,7 +124,7 @@ def unroll(node: Any) -> bool:
         __builtins__={},
     )
     # a copy of the code per node: its own inline caches, each site seeing one type
-    code = _code(isinstance(node, ReactiveComposite), len(children)).replace()
+    code = _code(reactive, len(children)).replace()
     namespace: dict[str, Any] = {
         "__slots__": (),
         "__module__": cls.__module__,
