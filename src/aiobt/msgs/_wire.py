@@ -9,7 +9,7 @@ Two kinds of Python validator sit on the path of every common message:
 
 At subscription message rates on a shared machine every message meets cold
 caches, and these Python calls are a large part of decoding a PoseStamped
-(measured in bench/RESULTS.md, "## transport"). :func:`wire_validator`
+(measured in bench/history/transport.md, "third pass"). :func:`wire_validator`
 validates the canonical form with a validator built from the model's core
 schema without them, into the same model classes, then runs the checks on the
 instances they apply to. Whatever that refuses is validated again by the model itself, which
