@@ -12,29 +12,23 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from enum import IntEnum
-from typing import Any, Protocol
+from typing import Any
 
 from aiobt.core.clock import Clock
 from aiobt.costmap.checker import CollisionChecker
 from aiobt.costmap.local import FrameShift, LocalCostmap, frame_transform
 from aiobt.geometry import STOP, Velocity
-from aiobt.msgs import AssistedTeleop as AssistedTeleopAction
-from aiobt.msgs import BackUp, DriveOnHeading, Empty, Msg, Spin, Twist, Wait
+from aiobt.msgs import Empty, Twist
 from aiobt.robot.freshness import FRESH
 from aiobt.robot.tracker import RobotTracker, sleep_bounded, twist_of
 from aiobt.transport import Bus, GoalHandle, Publisher
 from aiobt.transport.on_demand import OnDemand
 
-from . import goals
 from .assisted_teleop import AssistedTeleop
-from .base import BehaviorInputError, BehaviorStep, Inputs, Outcome, Safety
+from .base import BehaviorInputError, Inputs, Outcome, Safety
+from .plugins import BEHAVIORS, Behavior, BehaviorPlugin
 
 log = logging.getLogger("aiobt_services.behaviors.service")
-
-
-class Steppable(Protocol):
-    def step(self, inputs: Inputs) -> BehaviorStep: ...
 
 
 @dataclass(slots=True)
@@ -43,45 +37,6 @@ class BehaviorOptions:
     clock_timeout: float = 2.0
     safety: Safety | None = None
     robot_time: bool = False  # the clock follows the robot's (--sim-time): leads by stamps
-
-
-@dataclass(slots=True, frozen=True)
-class ActionSpec:
-    """How one action server turns its goal into a behavior and its figures into messages."""
-
-    name: str
-    table: type[IntEnum]
-    result: type[Any]
-    feedback: Callable[[float], Msg]
-    owns_cmd_vel: bool = True
-
-
-SPECS = {
-    "spin": ActionSpec(
-        "spin",
-        Spin.ErrorCode,
-        Spin.Result,
-        lambda f: Spin.Feedback(angular_distance_traveled=f),
-    ),
-    "backup": ActionSpec(
-        "backup", BackUp.ErrorCode, BackUp.Result, lambda f: BackUp.Feedback(distance_traveled=f)
-    ),
-    "drive_on_heading": ActionSpec(
-        "drive_on_heading",
-        DriveOnHeading.ErrorCode,
-        DriveOnHeading.Result,
-        lambda f: DriveOnHeading.Feedback(distance_traveled=f),
-    ),
-    "wait": ActionSpec(
-        "wait", Wait.ErrorCode, Wait.Result, lambda f: Wait.Feedback(time_left=f), False
-    ),
-    "assisted_teleop": ActionSpec(
-        "assisted_teleop",
-        AssistedTeleopAction.ErrorCode,
-        AssistedTeleopAction.Result,
-        lambda f: AssistedTeleopAction.Feedback(current_teleop_duration=f),
-    ),
-}
 
 
 class _Run:
@@ -122,20 +77,17 @@ class BehaviorService:
         self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
         self.bus.subscribe("cmd_vel_teleop", Twist, self._on_teleop)
         self.bus.subscribe("preempt_teleop", Empty, self._on_preempt_teleop)
-        s, c = self.safety, self.checker
-        self._serve(Spin, lambda g: goals.spin_of(g, c, s))
-        self._serve(BackUp, lambda g: goals.backup_of(g, c, s))
-        self._serve(DriveOnHeading, lambda g: goals.drive_of(g, c, s))
-        self._serve(Wait, goals.wait_of)
-        self._serve(AssistedTeleopAction, lambda g: goals.teleop_of(g, c, s))
+        for plugin in BEHAVIORS.values():
+            self._serve(plugin)
 
-    def _serve(self, action: Any, make: Callable[[Any], Steppable]) -> None:
-        spec = SPECS[action.name]
+    def _serve(self, plugin: BehaviorPlugin) -> None:
+        def make(goal: Any) -> Behavior:
+            return plugin.create(goal, self.checker, self.safety)
 
         async def execute(goal: Any, handle: GoalHandle[Any, Any, Any]) -> Any:
-            return await self.execute(spec, make, goal, handle)
+            return await self.execute(plugin, make, goal, handle)
 
-        self.bus.action_server(action.name, action, execute, clock=self.clock)
+        self.bus.action_server(plugin.name, plugin.action, execute, clock=self.clock)
 
     def _on_teleop(self, twist: Twist) -> None:
         # idle on --sim-time the clock is not listened to: a command received then is
@@ -150,29 +102,29 @@ class BehaviorService:
     # -- execution --------------------------------------------------------------------------
     async def execute(
         self,
-        spec: ActionSpec,
-        make: Callable[[Any], Steppable],
+        plugin: BehaviorPlugin,
+        make: Callable[[Any], Behavior],
         goal: Any,
         handle: GoalHandle[Any, Any, Any],
     ) -> Any:
         try:
             behavior = make(goal)
         except BehaviorInputError as exc:
-            log.warning("%s goal refused: %s", spec.name, exc.message)
-            return self._result(spec, Outcome.INVALID_INPUT, exc.message, self.clock.now())
-        run = self._claim(spec)
+            log.warning("%s goal refused: %s", plugin.name, exc.message)
+            return self._result(plugin, Outcome.INVALID_INPUT, exc.message, self.clock.now())
+        run = self._claim(plugin)
         if isinstance(behavior, AssistedTeleop):
             self._teleop_run = behavior
-        log.info("%s: goal %s started", spec.name, handle.goal_id)
+        log.info("%s: goal %s started", plugin.name, handle.goal_id)
         try:
             async with self.feed.active(self.options.clock_timeout):  # pose, odom, scan
                 # timed from here: on --sim-time an idle service's clock is the last stamp
                 # it heard, stale until the goal holds it fresh (total_elapsed_time)
                 started = self.clock.now()
-                result = await self._loop(spec, behavior, run, handle, started)
+                result = await self._loop(plugin, behavior, run, handle, started)
             log.info(
                 "%s: goal %s ended %d %s (command-to-odometry delay %.3f s)",
-                spec.name,
+                plugin.name,
                 handle.goal_id,
                 result.error_code,
                 result.error_msg,
@@ -186,18 +138,18 @@ class BehaviorService:
             if self._teleop_run is behavior:
                 self._teleop_run = None
 
-    def _claim(self, spec: ActionSpec) -> _Run:
-        run = _Run(spec.name)
-        if spec.owns_cmd_vel:
+    def _claim(self, plugin: BehaviorPlugin) -> _Run:
+        run = _Run(plugin.name)
+        if plugin.owns_cmd_vel:
             if self._owner is not None:
-                self._owner.preempted_by = spec.name
+                self._owner.preempted_by = plugin.name
             self._owner = run
         return run
 
     async def _loop(
         self,
-        spec: ActionSpec,
-        behavior: Steppable,
+        plugin: BehaviorPlugin,
+        behavior: Behavior,
         run: _Run,
         handle: GoalHandle[Any, Any, Any],
         started: float,
@@ -205,18 +157,18 @@ class BehaviorService:
         while True:
             if run.preempted_by is not None:
                 message = f"preempted by a {run.preempted_by} goal"
-                return self._result(spec, Outcome.UNKNOWN, message, started)
+                return self._result(plugin, Outcome.UNKNOWN, message, started)
             step = behavior.step(self._inputs())
             if step.cmd is not None and self._owner is run:
                 self._publish(step.cmd)
-            handle.publish_feedback(spec.feedback(max(0.0, step.feedback)))
+            handle.publish_feedback(plugin.feedback(max(0.0, step.feedback)))
             if step.done:
-                return self._result(spec, step.outcome, step.message, started)
+                return self._result(plugin, step.outcome, step.message, started)
             if not await sleep_bounded(
                 self.clock, self.options.cycle_period, self.options.clock_timeout
             ):
                 message = "robot clock stopped (simulation gone?); stopping"
-                return self._result(spec, Outcome.TF_ERROR, message, started)
+                return self._result(plugin, Outcome.TF_ERROR, message, started)
 
     def _inputs(self) -> Inputs:
         self.tracker.refresh_costmap()
@@ -234,10 +186,11 @@ class BehaviorService:
             lead=self.tracker.lead("odom"),
         )
 
-    def _result(self, spec: ActionSpec, outcome: Outcome, message: str, started: float) -> Any:
+    def _result(
+        self, plugin: BehaviorPlugin, outcome: Outcome, message: str, started: float
+    ) -> Any:
         elapsed = max(0.0, self.clock.now() - started)
-        code = goals.error_code(spec.table, outcome)
-        return spec.result(error_code=code, error_msg=message, total_elapsed_time=elapsed)
+        return plugin.result(outcome, message, elapsed)
 
     def _publish(self, cmd: Velocity) -> None:
         if self._cmd is not None:

@@ -31,15 +31,18 @@ from aiobt.msgs import (
     pose_fields,
 )
 
+from .base import Smoother
 from .coverage import CoverageError, CoverageParams, plan_coverage
 from .errors import PlanningCancelled, PlanningError
 from .planning import plan_through
-from .smoother import in_collision, smooth
+from .smoother import SimpleSmoother, in_collision
 from .state import MAP_FRAMES, GlobalCostmap
 from .traversal import Budget
 
 log = logging.getLogger("aiobt_services.planner.actions")
-SMOOTHERS = ("", "simple_smoother", "SmoothPath")
+_SIMPLE = SimpleSmoother()
+SMOOTHERS: dict[str, Smoother] = {"": _SIMPLE, "simple_smoother": _SIMPLE, "SmoothPath": _SIMPLE}
+"""Smoother plugins by Nav2's ids ("" the default; ``SmoothPath`` is the id Nav2's trees use)."""
 T = TypeVar("T")
 TALLY_EVERY = 50  # plans between two log lines of searches run and reused
 
@@ -158,7 +161,8 @@ class PlannerActions:
 
     async def smooth_path(self, goal: SmoothPath.Goal, _handle: object) -> SmoothPath.Result:
         codes, result = SmoothPath.ErrorCode, SmoothPath.Result
-        if goal.smoother_id not in SMOOTHERS:
+        smoother = SMOOTHERS.get(goal.smoother_id)
+        if smoother is None:
             known = ", ".join(s for s in SMOOTHERS if s)
             msg = f"unknown smoother id '{goal.smoother_id}' (known: {known})"
             return result(error_code=codes.INVALID_SMOOTHER, error_msg=msg)
@@ -174,7 +178,7 @@ class PlannerActions:
         began = time.monotonic()
         budget = Budget(goal.max_smoothing_duration)
         done = await run_cancellable(
-            lambda _b: smooth(grid, poses, goal.max_smoothing_duration), budget
+            lambda _b: smoother.smooth(grid, poses, goal.max_smoothing_duration), budget
         )
         elapsed = time.monotonic() - began
         path = to_path(done.poses, goal.path.header.stamp)

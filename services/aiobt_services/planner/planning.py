@@ -4,31 +4,42 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 
 from aiobt.costmap import CostGrid
 from aiobt.geometry import XYYaw
 
 from .astar import astar
+from .base import GlobalPlanner
 from .dijkstra import compiled_dijkstra
 from .errors import PlanningError
 from .legs import path_points
 from .theta import theta_star
 from .traversal import Budget, SearchParams, Traversal
 
-Search = Callable[[Traversal, int, int, Budget | None], list[int]]
+
+class GridBased:
+    """Nav2's NavFn-class ``GridBased``: a cheapest cost-aware 8-connected path, by the
+    compiled Dijkstra, or the CPython A* (same metric and optimum) when the traversal's
+    ``params.use_astar`` is set."""
+
+    def create_plan(
+        self, traversal: Traversal, start: int, goal: int, budget: Budget | None = None
+    ) -> list[int]:
+        search = astar if traversal.params.use_astar else compiled_dijkstra
+        return search(traversal, start, goal, budget)
 
 
-def grid_based(
-    traversal: Traversal, start: int, goal: int, budget: Budget | None = None
-) -> list[int]:
-    """A cheapest cost-aware 8-connected path: the compiled Dijkstra, or the CPython
-    A* (same metric and optimum) when the traversal's ``params.use_astar`` is set."""
-    search = astar if traversal.params.use_astar else compiled_dijkstra
-    return search(traversal, start, goal, budget)
+class ThetaStar:
+    """Nav2's ``ThetaStar``: an any-angle path (:mod:`.theta`)."""
+
+    def create_plan(
+        self, traversal: Traversal, start: int, goal: int, budget: Budget | None = None
+    ) -> list[int]:
+        return theta_star(traversal, start, goal, budget)
 
 
-PLANNERS: dict[str, Search] = {"GridBased": grid_based, "ThetaStar": theta_star}
+PLANNERS: dict[str, GlobalPlanner] = {"GridBased": GridBased(), "ThetaStar": ThetaStar()}
 DEFAULT_PLANNER = "GridBased"
 
 
@@ -39,7 +50,7 @@ def check_pose(pose: XYYaw, which: str) -> None:
         raise PlanningError(reason, f"{which} pose {pose} is not finite")
 
 
-def search_for(planner_id: str) -> Search:
+def planner_for(planner_id: str) -> GlobalPlanner:
     planner = PLANNERS.get(planner_id or DEFAULT_PLANNER)
     if planner is None:
         known = ", ".join(sorted(PLANNERS))
@@ -74,7 +85,7 @@ def plan_through(
     params: SearchParams | None = None,
 ) -> list[XYYaw]:
     """One path through every goal in order (ComputePathThroughPoses)."""
-    search = search_for(planner_id)
+    planner = planner_for(planner_id)
     if not goals:
         raise PlanningError("NO_VIAPOINTS_GIVEN", "no goals given to plan through")
     check_pose(start, "start")
@@ -87,7 +98,7 @@ def plan_through(
     for goal in goals:
         there = traversal.locate(goal[0], goal[1], "goal")
         leg = traversal.opened(origin[0], origin[1]).opened(goal[0], goal[1])
-        cells = search(leg, here, there, budget)
+        cells = planner.create_plan(leg, here, there, budget)
         points.extend(path_points(leg, cells, (origin[0], origin[1]), (goal[0], goal[1]))[1:])
         here, origin = there, goal
     return _with_headings(_dedupe(points), goals[-1][2])

@@ -79,3 +79,15 @@ def in_collision(grid: CostGrid, poses: Sequence[XYYaw]) -> list[int]:
     """Indices of poses on lethal or inscribed (known) cells."""
     xy = np.array([(p[0], p[1]) for p in poses], dtype=np.float64).reshape(-1, 2)
     return np.flatnonzero(_blocked(grid, xy)).tolist() if len(xy) else []
+
+
+class SimpleSmoother:
+    """Nav2's ``nav2_smoother::SimpleSmoother`` as a :class:`~.base.Smoother` plugin."""
+
+    __slots__ = ("params",)
+
+    def __init__(self, params: SmootherParams | None = None) -> None:
+        self.params = params or SmootherParams()
+
+    def smooth(self, grid: CostGrid, poses: Sequence[XYYaw], max_duration: float) -> SmoothResult:
+        return smooth(grid, poses, max_duration, self.params)
