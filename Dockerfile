@@ -12,7 +12,7 @@ COPY pyproject.toml README.md ./
 COPY src ./src
 COPY services ./services
 COPY trees ./trees
-# editable: the package aiobt.trees is /app/trees (pyproject.toml's package-dir)
+# editable: src/aiobt/trees links to /app/trees (Nav2's trees, shipped as aiobt.trees)
 RUN pip install -e . && useradd --create-home --uid 1000 aiobt
 USER aiobt
 

@@ -1,4 +1,5 @@
-"""Wire messages: pydantic v2 models, JSON on the wire (see DESIGN.md §4).
+"""Wire messages: pydantic v2 models, JSON on the wire (docs/architecture.md, the wire
+contract).
 
 Decode untrusted payloads with :func:`decode` (or ``Model.from_json``): it raises
 :class:`MessageError`, whose ``field`` names the first bad field. Per-message

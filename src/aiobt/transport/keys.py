@@ -1,4 +1,4 @@
-"""The key layout of DESIGN.md §4, in one place.
+"""The key layout of the wire contract (docs/architecture.md), in one place.
 
 ``{ns}/{topic}`` for topics, ``{ns}/srv/{service}`` for services and
 ``{ns}/action/{server}/...`` for actions. A server's liveliness token sits on

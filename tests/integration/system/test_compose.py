@@ -19,6 +19,7 @@ import pytest
 import yaml
 
 from aiobt.embed import connect
+from aiobt.system.catalog import SERVICE_NAMES
 from aiobt.system.commands import service_command
 from aiobt.system.config import config_from_dict
 from aiobt.testing.bus import ServiceProcess, free_endpoint, port_of, spawn_service, wait_port
@@ -47,9 +48,8 @@ def _services(profile: str | None) -> dict[str, list[str]]:
 @pytest.mark.parametrize("profile", [None, "two-robots"])
 def test_every_service_runs_the_command_aiobt_up_runs(profile: str | None) -> None:
     services = _services(profile)
-    assert sorted(command[0] for command in services.values()) == sorted(
-        ["robot", "planner", "controller", "behaviors", "navigator"]
-    )
+    # every service of the one list (aiobt.system.catalog), once per robot
+    assert sorted(command[0] for command in services.values()) == sorted(SERVICE_NAMES)
     for command in services.values():
         namespace = command[command.index("--namespace") + 1]
         config = config_from_dict(

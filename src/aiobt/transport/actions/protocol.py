@@ -1,4 +1,5 @@
-"""The action wire protocol (DESIGN.md §4), shared by server and client.
+"""The action wire protocol (docs/architecture.md, the wire contract), shared by server
+and client.
 
 The client makes the goal id and sends the goal as the payload of a query on
 ``goal?id={id}``. The server's replies to that one query form the goal's stream,
