@@ -12,7 +12,11 @@ import argparse
 import logging
 
 from aiobt.core.clock import Clock
-from aiobt.system.costmap_flags import add_local_costmap_arguments, local_costmap_from
+from aiobt.system.robot_flags import (
+    add_local_costmap_arguments,
+    add_pose_timeout_argument,
+    local_costmap_from,
+)
 from aiobt.system.service import add_clock_arguments, positive, run_service, serve_on_clock
 from aiobt.transport import Bus, add_bus_arguments
 
@@ -34,13 +38,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=2.0,
         help="collision look-ahead, s (default: %(default)s)",
     )
-    add(
-        "--pose-timeout",
-        type=positive,
-        default=0.5,
-        help="a pose not renewed for this long (wall s) while the robot's own time "
-        "moved on as long, or the robot sent nothing, is stale, s (default: %(default)s)",
-    )
+    add_pose_timeout_argument(group)
     add_local_costmap_arguments(group)
 
 

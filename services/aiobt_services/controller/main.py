@@ -17,8 +17,12 @@ from dataclasses import replace
 
 from aiobt.core.clock import Clock
 from aiobt.system.catalog import realtime_priority
-from aiobt.system.costmap_flags import add_local_costmap_arguments, local_costmap_from
 from aiobt.system.realtime import add_realtime_argument
+from aiobt.system.robot_flags import (
+    add_local_costmap_arguments,
+    add_pose_timeout_argument,
+    local_costmap_from,
+)
 from aiobt.system.service import (
     add_clock_arguments,
     non_negative,
@@ -49,13 +53,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=0.5,
         help="top speed (RPP desired, DWB max), m/s (default: %(default)s)",
     )
-    add(
-        "--pose-timeout",
-        type=positive,
-        default=0.5,
-        help="a pose not renewed for this long (wall s) while the robot's own time "
-        "moved on as long, or the robot sent nothing, is stale, s (default: %(default)s)",
-    )
+    add_pose_timeout_argument(group)
     add(
         "--failure-tolerance",
         type=non_negative,

@@ -166,7 +166,9 @@ def parse_stub(spec: str, flag: str = "--stub") -> tuple[str, TestNodeConfig]:
     return pattern, TestNodeConfig(status=status, delay=delay)
 
 
-def make_clock(speed: float) -> Clock:
+def speed_clock(speed: float) -> Clock:
+    """``aiobt run``'s clock: the wall's, or scaled by ``--speed`` (not a service's clock,
+    :func:`aiobt.system.service.make_clock`)."""
     if speed <= 0:
         raise TreeLoadError(f"--speed must be > 0, got {speed}")
     return SystemClock() if speed == 1.0 else ScaledClock(speed)
@@ -292,7 +294,7 @@ def run(args: argparse.Namespace) -> int:
         factory = build_factory(args)
         tree_id = register_file(factory, args.file, args.tree)
         tree = factory.create_tree(
-            tree_id, blackboard=root_blackboard(args.entries), clock=make_clock(args.speed)
+            tree_id, blackboard=root_blackboard(args.entries), clock=speed_clock(args.speed)
         )
     except (TreeLoadError, BlackboardError, ImportError, OSError) as exc:
         print(f"aiobt run: {explain(exc)}", file=sys.stderr)

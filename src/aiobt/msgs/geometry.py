@@ -47,11 +47,6 @@ def quaternion_to_yaw(x: float, y: float, z: float, w: float) -> float:
     return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
 
 
-def normalize_angle(angle: float) -> float:
-    """``angle`` wrapped into [-pi, pi)."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
-
-
 class Header(Msg):
     stamp: float = Field(default=0.0, ge=0.0, description="seconds on the robot clock")
     frame_id: str = ""

@@ -26,7 +26,7 @@ def test_the_patrol_example_charges_when_the_battery_runs_low_and_succeeds(
     factory = run_cli.build_factory(args)
     factory.register_behavior_tree_from_text(patrol.PATROL_XML, file=patrol.__file__)
     bb = run_cli.root_blackboard([], patrol.INITIAL_STATE)
-    tree = factory.create_tree(blackboard=bb, clock=run_cli.make_clock(args.speed))
+    tree = factory.create_tree(blackboard=bb, clock=run_cli.speed_clock(args.speed))
     assert run_cli.finish(tree, args) == 0
     out = capsys.readouterr().out
     lines = [

@@ -11,6 +11,7 @@ import pytest
 
 import aiobt.msgs as msgs
 import aiobt.msgs.nav as nav
+from aiobt.geometry import wrap_angle
 from aiobt.msgs import MessageError, Msg, PoseStamped, decode
 
 SAMPLES: list[Msg] = [
@@ -170,7 +171,7 @@ def test_near_unit_quaternion_is_normalised() -> None:
 @pytest.mark.parametrize("yaw", [-3.0, -1.0, 0.0, 0.5, 2.0, 3.1])
 def test_yaw_helpers_invert_each_other(yaw: float) -> None:
     assert msgs.quaternion_to_yaw(*msgs.yaw_to_quaternion(yaw)) == pytest.approx(yaw)
-    assert msgs.normalize_angle(yaw + 4 * math.pi) == pytest.approx(yaw)
+    assert wrap_angle(yaw + 4 * math.pi) == pytest.approx(yaw)  # the one wrap, aiobt.geometry
 
 
 def test_occupancy_grid_is_compact_and_numpy_inside() -> None:

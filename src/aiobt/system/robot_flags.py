@@ -1,4 +1,5 @@
-"""The local costmap's flags, shared by the controller and the behaviors."""
+"""The flags of the services that read the robot (the controller and the behaviors):
+when a pose is stale, and the local costmap."""
 
 from __future__ import annotations
 
@@ -37,4 +38,15 @@ def local_costmap_from(args: argparse.Namespace) -> LocalCostmap:
             inflation_radius=max(args.inflation_radius, args.robot_radius),
             update_frequency=args.costmap_update_frequency,
         )
+    )
+
+
+def add_pose_timeout_argument(group: argparse._ArgumentGroup) -> None:
+    """``--pose-timeout``: :mod:`aiobt.robot.freshness`'s rule."""
+    group.add_argument(
+        "--pose-timeout",
+        type=positive,
+        default=0.5,
+        help="a pose not renewed for this long (wall s) while the robot's own time "
+        "moved on as long, or the robot sent nothing, is stale, s (default: %(default)s)",
     )
