@@ -145,7 +145,9 @@ class Amcl:
         weights = self.weights * self.laser.likelihood(self.particles, beams)
         total = float(weights.sum())
         if total > 0.0 and np.isfinite(total):
-            self.recovery.update(total / len(weights))
+            # the prior weights sum to 1, so ``total`` is the measurement's mean likelihood
+            # (see :mod:`.recovery` for why not AMCL's ``total / N``)
+            self.recovery.update(total)
             self.weights = weights / total
         else:
             self.weights = np.full(len(weights), 1.0 / len(weights))

@@ -52,7 +52,8 @@ PUBLISHED: dict[str, type[Msg]] = {
 }
 MAP_WAIT_LOG = 5.0  # wall s between "waiting for the map" lines
 ODOM_WAIT = 0.05  # wall s a scan waits for the odometry of its own stamp
-SCAN_QUEUE = 2  # scans that wait while the filter is busy; older ones are dropped
+SCAN_QUEUE = 10  # scans that wait while the filter is busy (a preempted process); then
+# the oldest are dropped and counted (AMCL's scan filter queues 100)
 
 
 class Outputs:

@@ -13,6 +13,8 @@ from aiobt.transport import add_bus_arguments
 
 from .params import AmclParams, ParamError
 
+CONFIG_DIR = Path(__file__).parent / "config"  # shipped params files, by name (sim_robot)
+
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
@@ -24,10 +26,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--params-file",
-        type=Path,
+        type=_params_path,
         metavar="YAML",
         help="a Nav2 params file: its amcl.ros__parameters (or a flat mapping of AMCL's "
-        "parameter names)",
+        "parameter names); or a shipped one by name: "
+        + ", ".join(sorted(p.stem for p in CONFIG_DIR.glob("*.yaml"))),
     )
     parser.add_argument(
         "--set",
@@ -50,6 +53,11 @@ def params_from_args(args: argparse.Namespace) -> AmclParams:
             raise ParamError(f"--set {item!r}: expected NAME=VALUE")
         values[name.strip()] = yaml.safe_load(text)
     return AmclParams.from_mapping(values)
+
+
+def _params_path(text: str) -> Path:
+    shipped = CONFIG_DIR / f"{text}.yaml"
+    return shipped if "/" not in text and shipped.is_file() else Path(text)
 
 
 def _from_file(path: Path) -> dict[str, Any]:
