@@ -18,6 +18,14 @@ def bin_keys(particles: FloatArray) -> IntArray:
     return keys
 
 
+def bin_codes(particles: FloatArray) -> IntArray:
+    """One integer per histogram bin (the three indices packed, 21 bits each: bins
+    of a map up to 500 km a side), so bins are told apart by a 1-D sort."""
+    keys = bin_keys(particles) + (1 << 20)
+    codes: IntArray = (keys[:, 0] << 42) | (keys[:, 1] << 21) | keys[:, 2]
+    return codes
+
+
 def resample_limit(
     k: IntArray, *, min_particles: int, max_particles: int, pf_err: float, pf_z: float
 ) -> IntArray:
@@ -42,7 +50,7 @@ def kld_count(
     n = len(candidates)
     if n == 0:
         return 0
-    _, first = np.unique(bin_keys(candidates), axis=0, return_index=True)
+    _, first = np.unique(bin_codes(candidates), return_index=True)
     new_bin = np.zeros(n, dtype=np.int64)
     new_bin[first] = 1
     occupied = np.cumsum(new_bin)

@@ -10,6 +10,7 @@ unknown (neither). Row 0 of the grid is at the map origin (the bottom).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -35,6 +36,7 @@ class LikelihoodField:
     off_map_term: float  # the same term at the capped distance (AMCL: off-map = max)
     cells: npt.NDArray[np.int8]
     free_xy: FloatArray  # (M, 2) centres of free cells
+    padded: npt.NDArray[np.float32]  # hit_term framed by one cell of off_map_term, flat
 
     @classmethod
     def build(
@@ -70,14 +72,18 @@ class LikelihoodField:
             ],
             axis=1,
         )
+        hit_term = z_hit * np.exp(-(dist * dist) / denom)
+        off_map = float(z_hit * np.exp(-(max_dist * max_dist) / denom))
+        padded = np.pad(hit_term, 1, constant_values=off_map).astype(np.float32)
         return cls(
             resolution=float(resolution),
             origin_x=float(origin[0]),
             origin_y=float(origin[1]),
-            hit_term=z_hit * np.exp(-(dist * dist) / denom),
-            off_map_term=float(z_hit * np.exp(-(max_dist * max_dist) / denom)),
+            hit_term=hit_term,
+            off_map_term=off_map,
             cells=cells,
             free_xy=free_xy.astype(np.float64),
+            padded=padded.ravel(),
         )
 
     @property
@@ -95,12 +101,16 @@ class LikelihoodField:
         inside = (row >= 0) & (row < rows) & (col >= 0) & (col < cols)
         return row, col, inside
 
-    def hit_terms(self, x: FloatArray, y: FloatArray) -> FloatArray:
-        """The ``z_hit`` term at beam end points (any shape); off the map the capped one."""
-        row, col, inside = self.cell_index(x, y)
+    def hit_terms(
+        self, x: npt.NDArray[np.floating[Any]], y: npt.NDArray[np.floating[Any]]
+    ) -> npt.NDArray[np.float32]:
+        """The ``z_hit`` term at beam end points (any shape); off the map the capped one:
+        indices clipped into the frame of off-map cells, one flat lookup."""
         rows, cols = self.shape
-        terms = self.hit_term[np.clip(row, 0, rows - 1), np.clip(col, 0, cols - 1)]
-        return np.where(inside, terms, self.off_map_term)
+        inv = 1.0 / self.resolution
+        col = np.clip(np.floor((x - self.origin_x) * inv), -1, cols).astype(np.intp) + 1
+        row = np.clip(np.floor((y - self.origin_y) * inv), -1, rows).astype(np.intp) + 1
+        return self.padded[row * (cols + 2) + col]
 
     def where(self, x: float, y: float) -> str:
         """Why a robot cannot be at (x, y): '' if it can (on the map, not in a wall)."""
