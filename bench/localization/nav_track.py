@@ -29,11 +29,13 @@ from .tracking import Tracking
 SERVICES = ("robot", "localization", "planner", "controller", "behaviors", "navigator")
 
 
-def config(speed: float, seed: int, params: str) -> StackConfig:
+def config(speed: float, seed: int, params: str, sets: list[str]) -> StackConfig:
     pose = f"initial_pose={{x: {START[0]}, y: {START[1]}, yaw: 0.0}}"
     localization = ["--set", "set_initial_pose=true", "--set", pose]
     if params != "nav2":
         localization += ["--params-file", params]
+    for item in sets:
+        localization += ["--set", item]
     return StackConfig(
         world="office", speed=speed, seed=seed, services=SERVICES,
         extra={"robot": ["--pose-source", "none"], "localization": localization},
@@ -88,10 +90,14 @@ def main() -> None:
     parser.add_argument("--speed", type=float, default=4.0)
     parser.add_argument("--params", default="sim_robot", help="sim_robot, nav2, or a YAML path")
     parser.add_argument("--timeout", type=float, default=240.0, help="wall s per goal")
+    parser.add_argument(
+        "--set", action="append", default=[], metavar="NAME=VALUE",
+        help="an AMCL parameter for the service, e.g. min_particles=2000 (repeatable)",
+    )  # fmt: skip
     args = parser.parse_args()
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     print(f"load average at start: {loadavg()}")
-    with running_stack(config(args.speed, args.seed, args.params)) as stack:
+    with running_stack(config(args.speed, args.seed, args.params, args.set)) as stack:
         asyncio.run(run(stack, goals, args.timeout))
 
 

@@ -110,7 +110,8 @@ class LikelihoodField:
         inv = 1.0 / self.resolution
         col = np.clip(np.floor((x - self.origin_x) * inv), -1, cols).astype(np.intp) + 1
         row = np.clip(np.floor((y - self.origin_y) * inv), -1, rows).astype(np.intp) + 1
-        return self.padded[row * (cols + 2) + col]
+        terms: npt.NDArray[np.float32] = self.padded[row * (cols + 2) + col]
+        return terms
 
     def where(self, x: float, y: float) -> str:
         """Why a robot cannot be at (x, y): '' if it can (on the map, not in a wall)."""
