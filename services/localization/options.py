@@ -46,7 +46,7 @@ def params_from_args(args: argparse.Namespace) -> AmclParams:
     """The parameters the flags give (:class:`ParamError` names a bad one)."""
     values: dict[str, Any] = {}
     if args.params_file is not None:
-        values.update(_from_file(args.params_file))
+        values.update(read_params_file(args.params_file))
     for item in args.set:
         name, sep, text = item.partition("=")
         if not sep or not name:
@@ -60,7 +60,9 @@ def _params_path(text: str) -> Path:
     return shipped if "/" not in text and shipped.is_file() else Path(text)
 
 
-def _from_file(path: Path) -> dict[str, Any]:
+def read_params_file(path: Path) -> dict[str, Any]:
+    """AMCL's parameters from a Nav2 params file (``amcl.ros__parameters``) or a flat
+    mapping (:class:`ParamError` says what is wrong with it)."""
     try:
         data = yaml.safe_load(path.read_text())
     except (OSError, yaml.YAMLError) as exc:

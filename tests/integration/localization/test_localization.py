@@ -87,9 +87,9 @@ async def test_global_localization_spreads_the_particles_and_finds_the_robot(
     ys = [p.pose.position.y for p in spread.particles]
     assert max(xs) - min(xs) > 10.0  # over the whole map
     assert max(ys) - min(ys) > 10.0
-    # AMCL finds the robot about one time in two from one reinitialization in this
-    # world (bench/localization); six tries fail one run in 64 at that rate
-    await _relocalize(bus, tracking, attempts=6)
+    # with the sim_robot params (20,000 particles) the bench found 10 of 10 seeded poses
+    # from one reinitialization; retried as a recovery tree would
+    await _relocalize(bus, tracking, attempts=3)
 
 
 async def test_a_kidnapped_robot_is_lost_then_found_by_reinitialization(
@@ -108,4 +108,4 @@ async def test_a_kidnapped_robot_is_lost_then_found_by_reinitialization(
     assert dist[-1] > 1.0, "the estimate followed a teleport it was not told of"
     # out through the doors to the open plan: the estimate is still wrong
     await drive(bus, [(3.3, 7.5), (3.4, 9.75), (3.9, 9.9), (3.9, 12.5)], within=60.0)
-    await _relocalize(bus, tracking, attempts=6)
+    await _relocalize(bus, tracking, attempts=3)
