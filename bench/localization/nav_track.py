@@ -17,29 +17,22 @@ import asyncio
 
 from aiobt.msgs import Empty, NavigateToPose
 from aiobt.testing.navwatch import RobotTrack
-from aiobt.testing.stack import NavStack, StackConfig, running_stack
+from aiobt.testing.stack import NavStack, running_stack
 from aiobt.transport import open_bus
 from aiobt_services.localization.messages import LocalizationStats
 from bench.nav.goals import Optimum, pick_goals, static_grid
 from bench.nav.run import HEADER, START, Leg, loadavg, row, run_leg, summary
 from bench.system.procstat import percent_of_core, sample
 
+from .stack import LocalizedStackConfig
 from .tracking import Tracking
 
-SERVICES = ("robot", "localization", "planner", "controller", "behaviors", "navigator")
 
-
-def config(speed: float, seed: int, params: str, sets: list[str]) -> StackConfig:
-    pose = f"initial_pose={{x: {START[0]}, y: {START[1]}, yaw: 0.0}}"
-    localization = ["--set", "set_initial_pose=true", "--set", pose]
-    if params != "nav2":
-        localization += ["--params-file", params]
+def config(speed: float, seed: int, params: str, sets: list[str]) -> LocalizedStackConfig:
+    flags = [] if params == "nav2" else ["--params-file", params]
     for item in sets:
-        localization += ["--set", item]
-    return StackConfig(
-        world="office", speed=speed, seed=seed, services=SERVICES,
-        extra={"robot": ["--pose-source", "none"], "localization": localization},
-    )  # fmt: skip
+        flags += ["--set", item]
+    return LocalizedStackConfig(world="office", speed=speed, seed=seed, localization=flags)
 
 
 async def run(stack: NavStack, goals: list[tuple[float, float, float]], limit: float) -> None:

@@ -26,13 +26,13 @@ from dataclasses import dataclass
 import numpy as np
 import yaml
 
+from aiobt.geometry import Pose2D
 from aiobt_services.localization import se2
 from aiobt_services.localization.amcl import Amcl
 from aiobt_services.localization.laser_model import select_beams
 from aiobt_services.localization.likelihood_field import LikelihoodField
 from aiobt_services.localization.options import CONFIG_DIR, read_params_file
 from aiobt_services.localization.params import AmclParams
-from aiobt_services.robot.geometry import Pose2D
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.options import add_robot_arguments, sim_config
 from aiobt_services.robot.sim import PoseError, Simulation

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from aiobt.msgs import Empty, ParticleCloud, PoseStamped, ReinitializeGlobalLocalization
+from aiobt.msgs.sim import Ack
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.robot.messages import Ack
 
 from .stack import (
     START,

@@ -8,22 +8,16 @@ from __future__ import annotations
 import pytest
 
 from aiobt.msgs import PoseStamped
-from aiobt.testing.stack import NavStack, StackConfig
+from aiobt.testing.stack import NavStack
 from aiobt.transport import open_bus
 from aiobt.transport.keys import SIM_POSE
+from bench.localization.stack import LocalizedStackConfig
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e, pytest.mark.timeout(300)]
 
-NAVIGATION = ("localization", "planner", "controller", "behaviors", "navigator")
-
 
 async def test_no_navigation_service_subscribes_to_the_truth(router_endpoint: str) -> None:
-    config = StackConfig(
-        world="office", speed=1.0, services=("robot", *NAVIGATION),
-        extra={"robot": ["--pose-source", "none"],
-               "localization": ["--set", "set_initial_pose=true",
-                                "--set", "initial_pose={x: 2.0, y: 9.75, yaw: 0.0}"]},
-    )  # fmt: skip
+    config = LocalizedStackConfig(world="office", speed=1.0)
     with NavStack.launch(router_endpoint, config) as stack:
         async with open_bus(stack.settings()) as bus:
             await stack.wait_ready(bus, timeout=120.0)

@@ -1,4 +1,4 @@
-"""``aiobt localization``: Nav2's AMCL as a service on Zenoh.
+"""``python -m aiobt_services.localization``: Nav2's AMCL as a service on Zenoh.
 
 Reads the latched ``{ns}/map``, ``{ns}/odom`` and ``{ns}/scan``; takes
 ``{ns}/initialpose`` (a PoseWithCovarianceStamped, or a PoseStamped / its short
@@ -32,8 +32,8 @@ from aiobt.msgs import (
     TFMessage,
 )
 from aiobt.system.announce import announce
+from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
 from aiobt.transport import Bus, BusSettings, Subscription
-from aiobt_services._cli import open_bus_unless_stopped, run_service, stop_on_signals
 
 from .laser_model import ScanError
 from .messages import LocalizationStats

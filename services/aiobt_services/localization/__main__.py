@@ -1,10 +1,10 @@
-"""``python -m aiobt_services.localization``: the same as ``aiobt localization``."""
+"""``python -m aiobt_services.localization``: Nav2's AMCL on Zenoh (see main.py)."""
 
 from __future__ import annotations
 
 import sys
 
-from aiobt_services._cli import module_main
+from aiobt.system.service import module_main
 
 from .main import add_arguments, run
 
