@@ -27,6 +27,7 @@ from aiobt.msgs import (
     OccupancyGrid,
     Odometry,
     PoseStamped,
+    PoseWithCovarianceStamped,
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
@@ -87,7 +88,9 @@ def _wire(bus: Bus, service: RobotService, *, localization_stand_in: bool) -> No
     bus.subscribe("cmd_vel", Twist, callback=service.on_cmd_vel, queue_size=1)
     m = messages
     if localization_stand_in:  # --pose-source truth: else the localization service's
-        bus.subscribe("initialpose", PoseStamped, callback=service.on_initialpose, queue_size=1)
+        # one model per key: initialpose carries a pose with covariance (or a PoseStamped)
+        bus.subscribe("initialpose", PoseWithCovarianceStamped, queue_size=1,
+                      callback=lambda m: service.on_initialpose(m.as_pose_stamped()))  # fmt: skip
         bus.serve(
             "reinitialize_global_localization", Empty, m.Ack, service.reinitialize_localization
         )

@@ -67,6 +67,10 @@ class PoseWithCovarianceStamped(Msg):
             pose=PoseWithCovariance(pose=Pose.from_xy_yaw(x, y, yaw), covariance=cov),
         )
 
+    def as_pose_stamped(self) -> PoseStamped:
+        """The pose without its covariance."""
+        return PoseStamped(header=self.header, pose=self.pose.pose)
+
     @property
     def x(self) -> float:
         return self.pose.pose.position.x
