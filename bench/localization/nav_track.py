@@ -73,7 +73,9 @@ def report(
           f"({s.scans / max(sim_s, 1e-9):.1f} per sim s), {s.dropped} dropped unread, "
           f"{s.skipped_no_odom} without odometry; {s.updates} updates, CPU per update "
           f"p50 {s.update_ms_p50:.2f} ms, p99 {s.update_ms_p99:.2f} ms, max "
-          f"{s.update_ms_max:.2f} ms; {s.particles} particles at the end")  # fmt: skip
+          f"{s.update_ms_max:.2f} ms; update latency (scan read -> outputs sent, wall) p50 "
+          f"{s.latency_ms_p50:.2f} ms, p99 {s.latency_ms_p99:.2f} ms; {s.particles} particles "
+          "at the end")  # fmt: skip
 
 
 def main() -> None:

@@ -16,6 +16,7 @@ import argparse
 import asyncio
 import contextlib
 import logging
+import time
 
 import numpy as np
 
@@ -102,12 +103,16 @@ class ScanWorker:
         self.odom_arrived.set()
 
     async def run(self, scans: Subscription[LaserScan]) -> None:
+        stats = self.node.stats
         async for scan in scans:
+            began, updates = time.perf_counter(), stats.updates  # wall time: a measurement
             await self._odom_up_to(scan.header.stamp)
             try:
                 self.outputs.send(self.node.on_scan(scan))
             except ScanError as exc:
                 log.warning("scan at %.3f refused: %s", scan.header.stamp, exc)
+            if stats.updates > updates:
+                stats.record_latency(time.perf_counter() - began)
 
     async def _odom_up_to(self, stamp: float) -> None:
         newest = self.node.odom.newest

@@ -15,4 +15,6 @@ class LocalizationStats(Msg):
     update_ms_p50: float = 0.0  # CPU time of one update, ms
     update_ms_p99: float = 0.0
     update_ms_max: float = 0.0
+    latency_ms_p50: float = 0.0  # wall time from reading a scan to its outputs sent, ms
+    latency_ms_p99: float = 0.0
     particles: int = 0

@@ -46,11 +46,16 @@ class UpdateStats:
     updates: int = 0
     skipped_no_odom: int = 0
     update_cpu: list[float] = field(default_factory=list)
+    update_wall: list[float] = field(default_factory=list)  # scan read -> outputs sent
 
     def record(self, seconds: float) -> None:
         self.updates += 1
         if len(self.update_cpu) < 100_000:
             self.update_cpu.append(seconds)
+
+    def record_latency(self, seconds: float) -> None:
+        if len(self.update_wall) < 100_000:
+            self.update_wall.append(seconds)
 
 
 class LocalizationNode:

@@ -51,6 +51,7 @@ async def test_the_estimate_tracks_the_truth_while_driving(
     s = await stats(bus)
     assert s.updates > 50
     assert s.dropped == 0
+    assert 0.0 < s.update_ms_p50 <= s.latency_ms_p99
 
 
 async def _relocalize(bus: Bus, tracking: Tracking, attempts: int) -> int:
