@@ -127,10 +127,13 @@ class ScanWorker:
 def _stats(node: LocalizationNode, scans: Subscription[LaserScan]) -> LocalizationStats:
     cpu = np.asarray(node.stats.update_cpu) * 1000.0
     p50, p99, top = np.percentile(cpu, [50, 99, 100]) if cpu.size else (0.0, 0.0, 0.0)
+    wall = np.asarray(node.stats.update_wall) * 1000.0
+    w50, w99 = np.percentile(wall, [50, 99]) if wall.size else (0.0, 0.0)
     return LocalizationStats(
         scans=node.stats.scans, dropped=scans.dropped_overflow,
         skipped_no_odom=node.stats.skipped_no_odom, updates=node.stats.updates,
         update_ms_p50=float(p50), update_ms_p99=float(p99), update_ms_max=float(top),
+        latency_ms_p50=float(w50), latency_ms_p99=float(w99),
         particles=len(node.amcl.particles),
     )  # fmt: skip
 
