@@ -50,6 +50,15 @@ def map_pose(sim: Simulation) -> PoseStamped:
     )
 
 
+def true_pose(sim: Simulation) -> PoseStamped:
+    """The simulation's truth (``{ns}/sim/pose``): for evaluation, never navigation."""
+    pose = sim.true_pose
+    header = {"stamp": sim.time, "frame_id": "map"}
+    return PoseStamped.model_validate(
+        {"header": header, "pose": pose_fields(pose.x, pose.y, pose.yaw)}
+    )
+
+
 def laser_scan(scan: Scan) -> LaserScan:
     cfg = scan.config
     ranges = np.where(np.isfinite(scan.ranges), scan.ranges, cfg.range_max + NO_RETURN_MARGIN)

@@ -1,6 +1,7 @@
 """``aiobt robot``: the pybullet robot service on Zenoh.
 
-Publishes ``{ns}/odom``, ``{ns}/pose``, ``{ns}/scan``, ``{ns}/battery``,
+Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), the truth on
+``{ns}/sim/pose``, ``{ns}/scan``, ``{ns}/battery``,
 ``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
 move,remove,list}``, ``{ns}/srv/reset_pose``,
@@ -26,6 +27,7 @@ from aiobt.msgs import (
     OccupancyGrid,
     Odometry,
     PoseStamped,
+    PoseWithCovarianceStamped,
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
@@ -35,6 +37,7 @@ from aiobt.system.realtime import realtime_if_asked
 from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt.transport.announce import announce
+from aiobt.transport.keys import SIM_POSE
 
 from . import convert
 from .mapfile import MapError, load_map
@@ -51,6 +54,7 @@ log = logging.getLogger("aiobt_services.robot.main")
 PUBLISHED: dict[str, type[Msg]] = {
     "odom": Odometry,
     "pose": PoseStamped,
+    SIM_POSE: PoseStamped,
     "scan": LaserScan,
     "battery": BatteryState,
     "clock": ClockMsg,
@@ -79,17 +83,22 @@ class BusOutputs:
         self._pubs[topic].put(msg)
 
 
-def _wire(bus: Bus, service: RobotService) -> None:
+def _wire(bus: Bus, service: RobotService, *, localization_stand_in: bool) -> None:
     # commands: only the newest counts, so a burst is applied once, not message by message
     bus.subscribe("cmd_vel", Twist, callback=service.on_cmd_vel, queue_size=1)
-    bus.subscribe("initialpose", PoseStamped, callback=service.on_initialpose, queue_size=1)
     m = messages
+    if localization_stand_in:  # --pose-source truth: else the localization service's
+        # one model per key: initialpose carries a pose with covariance (or a PoseStamped)
+        bus.subscribe("initialpose", PoseWithCovarianceStamped, queue_size=1,
+                      callback=lambda m: service.on_initialpose(m.as_pose_stamped()))  # fmt: skip
+        bus.serve(
+            "reinitialize_global_localization", Empty, m.Ack, service.reinitialize_localization
+        )
     bus.serve("obstacles/spawn", m.SpawnObstacle, m.Ack, service.spawn)
     bus.serve("obstacles/move", m.MoveObstacle, m.Ack, service.move)
     bus.serve("obstacles/remove", m.RemoveObstacle, m.Ack, service.remove)
     bus.serve("obstacles/list", Empty, m.ObstacleList, service.list_obstacles)
     bus.serve("reset_pose", PoseStamped, m.Ack, service.reset_pose)
-    bus.serve("reinitialize_global_localization", Empty, m.Ack, service.reinitialize_localization)
     bus.serve("snapshot", m.SnapshotRequest, m.Snapshot, service.snapshot)
 
 
@@ -120,8 +129,9 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
             command_wait=args.command_wait,
             max_lag=args.max_lag,
+            publish_pose=args.pose_source == "truth",
         )
-        _wire(bus, service)
+        _wire(bus, service, localization_stand_in=args.pose_source == "truth")
         settle()  # start-up's objects (the world's too) out of the collector's full passes
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(

@@ -82,8 +82,47 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     add("--odom-hz", type=positive, default=50.0, help="odom and pose rate (default: %(default)s)")
     add("--lidar-rays", type=int, default=360, help="beams per scan (default: %(default)s)")
     add("--lidar-range", type=positive, default=12.0, help="m (default: %(default)s)")
-    add("--odom-noise", type=float, default=0.0, help="relative std of wheel speed error")
-    add("--slip", type=float, default=0.0, help="fraction of wheel motion lost to slip")
+    add(
+        "--odom-noise",
+        type=float,
+        default=0.05,
+        help="relative std of the wheel speed error, each step (default: %(default)s)",
+    )
+    add(
+        "--slip",
+        type=float,
+        default=0.02,
+        help="fraction of wheel motion lost to slip: odometry overstates distance "
+        "(default: %(default)s)",
+    )
+    add(
+        "--odom-turn-scale",
+        type=float,
+        default=0.02,
+        help="relative error of the odometry's turn rate, as from a wrong wheel base "
+        "(default: %(default)s)",
+    )
+    add(
+        "--lidar-noise",
+        type=float,
+        default=0.01,
+        help="std of range noise, m (default: %(default)s)",
+    )
+    add(
+        "--lidar-dropout",
+        type=float,
+        default=0.01,
+        help="share of beams that return nothing (default: %(default)s)",
+    )
+    add(
+        "--pose-source",
+        choices=("truth", "none"),
+        default="truth",
+        help="truth: publish {ns}/pose from the simulation's truth (the stand-in for a "
+        "localization) and take initialpose and reinitialize_global_localization; none: "
+        "publish no pose in map, as a real base, and leave those to the localization "
+        "service (default: %(default)s)",
+    )
     add("--pose-noise", type=float, default=0.0, help="std of localization error, m")
     add("--pose-noise-yaw", type=float, default=0.0, help="std of localization error, rad")
     add("--seed", type=int, default=0, help="noise seed (default: %(default)s)")
@@ -101,12 +140,17 @@ def sim_config(args: argparse.Namespace) -> SimConfig:
             odom_linear=args.odom_noise,
             odom_angular=args.odom_noise,
             slip=args.slip,
+            odom_angular_scale=args.odom_turn_scale,
             pose_xy=args.pose_noise,
             pose_yaw=args.pose_noise_yaw,
             seed=args.seed,
         ),
         lidar=LidarConfig(
-            rays=args.lidar_rays, range_max=args.lidar_range, angle_max=_angle_max(args.lidar_rays)
+            rays=args.lidar_rays,
+            range_max=args.lidar_range,
+            angle_max=_angle_max(args.lidar_rays),
+            noise=args.lidar_noise,
+            dropout=args.lidar_dropout,
         ),
         gui=args.gui,
     )

@@ -19,6 +19,7 @@ from typing import Protocol
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import Clock as ClockMsg
 from aiobt.msgs import Msg
+from aiobt.transport.keys import SIM_POSE
 
 from . import convert
 from .pacing import Pacer
@@ -82,8 +83,10 @@ class SimRunner:
         max_lag: float = MAX_LAG,
         report_every: float = 5.0,
         command_wait: float = 0.5,
+        publish_pose: bool = True,
     ) -> None:
         self.sim = sim
+        self._publish_pose = publish_pose  # {ns}/pose from the truth (no localization)
         self.speed = speed
         self._pacer = Pacer(speed, sim.config.dt, max_lag=max_lag, report_every=report_every)
         self._command_wait = command_wait
@@ -117,7 +120,9 @@ class SimRunner:
         if "odom" in due:
             self._outputs.publish("odom", convert.odometry(sim))
         if "pose" in due:
-            self._outputs.publish("pose", convert.map_pose(sim))
+            self._outputs.publish(SIM_POSE, convert.true_pose(sim))
+            if self._publish_pose:
+                self._outputs.publish("pose", convert.map_pose(sim))
         if "scan" in due:
             self._outputs.publish("scan", convert.laser_scan(sim.scan()))
         if "battery" in due:

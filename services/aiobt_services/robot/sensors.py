@@ -68,6 +68,7 @@ class NoiseConfig:
     odom_linear: float = 0.0  # std of the relative error on wheel speed
     odom_angular: float = 0.0  # std of the relative error on turn rate
     slip: float = 0.0  # fraction of wheel motion the body loses to slip
+    odom_angular_scale: float = 0.0  # relative error of the odometry's turn rate (wheel base)
     pose_xy: float = 0.0  # std of the localization error, metres
     pose_yaw: float = 0.0  # std of the localization error, radians
     seed: int = 0
@@ -77,6 +78,9 @@ class NoiseConfig:
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0.0):
                 raise ValueError(f"NoiseConfig.{name} must be finite and >= 0, got {value}")
+        scale = self.odom_angular_scale
+        if not abs(scale) < 1.0:
+            raise ValueError(f"NoiseConfig.odom_angular_scale must be within (-1, 1), got {scale}")
         if not 0.0 <= self.slip < 1.0:
             raise ValueError(f"NoiseConfig.slip must be within [0, 1), got {self.slip}")
 
@@ -96,6 +100,7 @@ class WheelOdometry:
             linear *= 1.0 + rng.normal(0.0, noise.odom_linear)
         if noise.odom_angular:
             angular *= 1.0 + rng.normal(0.0, noise.odom_angular)
+        angular *= 1.0 + noise.odom_angular_scale
         self.linear, self.angular = linear, angular
         mid_yaw = self.pose.yaw + 0.5 * angular * dt
         self.pose = Pose2D(
@@ -125,8 +130,13 @@ class LidarConfig:
     range_max: float = 12.0
     height: float = 0.2
     noise: float = 0.0  # std of range noise, metres
+    dropout: float = 0.0  # share of beams that return nothing (dark or shiny surfaces)
 
     def __post_init__(self) -> None:
+        if not 0.0 <= self.dropout < 1.0:
+            raise ValueError(f"LidarConfig.dropout must be within [0, 1), got {self.dropout}")
+        if not (math.isfinite(self.noise) and self.noise >= 0.0):
+            raise ValueError(f"LidarConfig.noise must be finite and >= 0, got {self.noise}")
         if self.rays < 1:
             raise ValueError(f"LidarConfig.rays must be >= 1, got {self.rays}")
         if not 0.0 <= self.range_min < self.range_max:
@@ -146,8 +156,10 @@ def lidar_ranges(
     rng: np.random.Generator | None = None,
 ) -> npt.NDArray[np.float64]:
     """Distances to the first hit along each beam -> ranges, noisy and clipped to the
-    lidar's limits; no hit within ``range_max`` is ``inf`` (as ROS)."""
+    lidar's limits; no hit within ``range_max`` (or a dropped beam) is ``inf`` (as ROS)."""
     hit = distances <= cfg.range_max
+    if cfg.dropout and rng is not None:
+        hit &= rng.uniform(0.0, 1.0, hit.shape) >= cfg.dropout
     ranges = np.where(hit, distances, cfg.range_max)
     if cfg.noise and rng is not None:
         ranges = ranges + rng.normal(0.0, cfg.noise, ranges.shape)

@@ -7,7 +7,7 @@ read one :class:`RobotState` per bus and namespace, over shared subscriptions
 - ``{ns}/pose``: PoseStamped, the robot in ``map`` (localization);
 - ``{ns}/odom``: Odometry (pose in ``odom``, twist);
 - ``{ns}/battery``: BatteryState;
-- ``{ns}/initialpose``: PoseStamped, a localization reset;
+- ``{ns}/initialpose``: PoseWithCovarianceStamped (or a PoseStamped), a localization reset;
 - ``{ns}/tracking_feedback``: TrackingFeedback, published by the controller
   each control cycle while it follows a path.
 
@@ -22,7 +22,14 @@ import logging
 import math
 from typing import TYPE_CHECKING, Any, ClassVar
 
-from aiobt.msgs import BatteryState, Msg, Odometry, PoseStamped, TrackingFeedback
+from aiobt.msgs import (
+    BatteryState,
+    Msg,
+    Odometry,
+    PoseStamped,
+    PoseWithCovarianceStamped,
+    TrackingFeedback,
+)
 from aiobt.nav.context import NavNode
 from aiobt.nav.shared_topics import SharedTopic, SharedTopics, shared_topics
 
@@ -41,7 +48,7 @@ POSE, ODOM, BATTERY, INITIAL_POSE, TRACKING = (
 _MODELS: dict[str, type[Msg]] = {
     POSE: PoseStamped,
     ODOM: Odometry,
-    INITIAL_POSE: PoseStamped,
+    INITIAL_POSE: PoseWithCovarianceStamped,
     TRACKING: TrackingFeedback,
 }
 ODOM_SMOOTHING_WINDOW = 0.3  # s of odometry averaged for the speed (Nav2's OdomSmoother)
@@ -129,8 +136,8 @@ class RobotState:
         return self._odom().latest
 
     @property
-    def initial_pose(self) -> PoseStamped | None:
-        return self.topics.topic(INITIAL_POSE, PoseStamped).latest
+    def initial_pose(self) -> PoseWithCovarianceStamped | None:
+        return self.topics.topic(INITIAL_POSE, PoseWithCovarianceStamped).latest
 
     @property
     def tracking_feedback(self) -> TrackingFeedback | None:

@@ -22,6 +22,19 @@ def check_name(name: str, what: str) -> str:
     return name
 
 
+# The simulation's own keys live under ``{ns}/sim/``: its truth, for tests, benchmarks
+# and pictures only. No navigation service reads them (a real robot has none).
+SIM_PREFIX = "sim"
+
+
+def sim_topic(name: str) -> str:
+    """The topic name (for :meth:`Keys.topic` and the bus) of the simulation's ``name``."""
+    return f"{SIM_PREFIX}/{check_name(name, 'sim topic')}"
+
+
+SIM_POSE = sim_topic("pose")  # the simulation's truth: PoseStamped of the robot in map
+
+
 class Keys:
     """Key expressions of one robot namespace."""
 

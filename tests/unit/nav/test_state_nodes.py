@@ -9,7 +9,13 @@ import pytest
 from aiobt.core.clock import ManualClock
 from aiobt.core.errors import NodeError
 from aiobt.core.status import Status
-from aiobt.msgs import BatteryState, Odometry, PowerSupplyStatus, TrackingFeedback
+from aiobt.msgs import (
+    BatteryState,
+    Odometry,
+    PoseWithCovarianceStamped,
+    PowerSupplyStatus,
+    TrackingFeedback,
+)
 from aiobt.msgs.geometry import Header, Pose, Twist, Vector3
 from aiobt.transport import Bus
 from tests.unit.nav.state_support import at, deliver, nav_tree
@@ -82,7 +88,7 @@ async def test_initial_pose_received_port_then_topic(local_bus: Bus) -> None:
     assert await tree.tick_exactly_once() is S
     from_topic = nav_tree(local_bus, "<InitialPoseReceived/>")
     assert await from_topic.tick_exactly_once() is F
-    await deliver(local_bus, "initialpose", at(0.5, 0.5))
+    await deliver(local_bus, "initialpose", PoseWithCovarianceStamped.from_xy_yaw(0.5, 0.5, 0.0))
     assert await from_topic.tick_exactly_once() is S
 
 

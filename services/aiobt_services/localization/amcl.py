@@ -1,0 +1,177 @@
+"""The particle filter as ``amcl_node`` runs it, on plain arrays: no transport,
+no clock. One call per scan (:meth:`Amcl.on_scan`) with the odometry pose the
+scan was taken at; the caller publishes what it returns.
+
+Flow per scan (``laserReceived``): the first scan after an initialisation only
+records the odometry; later ones move the particles by the odometry since the
+last update (:mod:`.motion_model`) once it exceeds ``update_min_d`` (in x or y)
+or ``update_min_a``, or when a no-motion update was requested; then weigh them
+(:mod:`.laser_model`), update the recovery averages, and every
+``resample_interval`` updates resample (:mod:`.resample`). The estimate and the
+``map`` -> ``odom`` correction are recomputed after each resample.
+"""
+
+from __future__ import annotations
+
+import logging
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import se2
+from .estimate import Estimate, estimate
+from .initial_pose import DEFAULT_COVARIANCE, InitialPose, checked, sample
+from .laser_model import Beams, LikelihoodFieldModel
+from .likelihood_field import LikelihoodField
+from .motion_model import DifferentialMotionModel
+from .params import AmclParams
+from .recovery import RecoveryAverages
+from .resample import resample
+from .se2 import FloatArray
+
+log = logging.getLogger("aiobt_services.localization.amcl")
+
+
+@dataclass(slots=True, frozen=True)
+class ScanOutcome:
+    """What one scan did: ``updated`` (motion + weighing ran), ``resampled``, and,
+    when the estimate changed, the new ``estimate`` and ``map_to_odom``."""
+
+    updated: bool
+    resampled: bool
+    estimate: Estimate | None = None
+    map_to_odom: FloatArray | None = None
+
+
+class Amcl:
+    """Particles, weights and AMCL's bookkeeping for one map."""
+
+    def __init__(self, params: AmclParams, rng: np.random.Generator | None = None) -> None:
+        self.params = params
+        seed = None if params.random_seed < 0 else params.random_seed
+        self.rng = rng if rng is not None else np.random.default_rng(seed)
+        self.motion = DifferentialMotionModel(
+            params.alpha1, params.alpha2, params.alpha3, params.alpha4
+        )
+        self.recovery = RecoveryAverages(params.recovery_alpha_slow, params.recovery_alpha_fast)
+        self.field: LikelihoodField | None = None
+        self.laser: LikelihoodFieldModel | None = None
+        self.particles = np.zeros((0, 3))
+        self.weights = np.zeros(0)
+        self.last_estimate: Estimate | None = None
+        self.map_to_odom: FloatArray | None = None
+        self._odom_ref: FloatArray | None = None  # AMCL's pf_odom_pose_ (None: pf_init_ false)
+        self._force_update = False
+        self._resample_count = 0
+
+    # -- inputs other than scans ----------------------------------------
+    def set_map(self, field: LikelihoodField) -> None:
+        """Use ``field`` from now on (a new map keeps the particles, as AMCL does
+        unless ``always_reset_initial_pose``)."""
+        self.field = field
+        self.laser = LikelihoodFieldModel(field, self.params.z_rand)
+
+    @property
+    def initialized(self) -> bool:
+        """Has the filter been given a pose (or told to localize globally)?"""
+        return len(self.particles) > 0
+
+    def check_pose(
+        self,
+        x: float,
+        y: float,
+        yaw: float,
+        covariance: FloatArray | None = None,
+        where: str = "initial pose",
+    ) -> InitialPose:
+        """The pose checked against the map (raises :class:`InitialPoseError`)."""
+        cov = DEFAULT_COVARIANCE if covariance is None else covariance
+        return checked(x, y, yaw, cov, self.field, where)
+
+    def initialize(self, pose: InitialPose) -> None:
+        """``max_particles`` drawn from the pose's Gaussian (``handleInitialPose``)."""
+        self._reset(sample(pose, self.params.max_particles, self.rng))
+        self.last_estimate = Estimate(pose.mean.copy(), pose.covariance.copy(), 1, 1.0)
+
+    def global_localization(self) -> None:
+        """``max_particles`` uniform over the free space, any heading."""
+        if self.field is None:
+            raise RuntimeError("no map yet: global localization needs the map's free space")
+        self._reset(self.field.random_free_poses(self.params.max_particles, self.rng))
+        self.last_estimate = estimate(self.particles, self.weights)
+
+    def request_nomotion_update(self) -> None:
+        """The next scan updates the filter even if the robot has not moved."""
+        self._force_update = True
+
+    def _reset(self, particles: FloatArray) -> None:
+        self.particles = particles
+        self.weights = np.full(len(particles), 1.0 / len(particles))
+        self._odom_ref = None
+        self.recovery.reset()
+
+    # -- scans -----------------------------------------------------------
+    def on_scan(self, odom_pose: FloatArray, beams: Beams) -> ScanOutcome:
+        """One scan taken at ``odom_pose`` (x, y, yaw in ``odom``)."""
+        if self.laser is None or not self.initialized:
+            return ScanOutcome(False, False)
+        odom_pose = np.asarray(odom_pose, dtype=np.float64)
+        if self._odom_ref is None:  # first scan since (re)initialisation
+            self._odom_ref = odom_pose
+            self._resample_count = 0
+            self._weigh(beams)
+            return self._publish(odom_pose, resampled=self._maybe_resample())
+        delta = np.array(
+            [
+                *(odom_pose[:2] - self._odom_ref[:2]),
+                float(se2.angle_diff(odom_pose[2], self._odom_ref[2])),
+            ]
+        )
+        p = self.params
+        moved = bool(np.any(np.abs(delta[:2]) > p.update_min_d) or abs(delta[2]) > p.update_min_a)
+        if not (moved or self._force_update):
+            return ScanOutcome(False, False)
+        self._force_update = False
+        self.particles = self.motion.odometry_update(self.particles, odom_pose, delta, self.rng)
+        self._odom_ref = odom_pose
+        self._weigh(beams)
+        resampled = self._maybe_resample()
+        if not resampled:
+            return ScanOutcome(True, False)
+        return self._publish(odom_pose, resampled=True)
+
+    def _weigh(self, beams: Beams) -> None:
+        assert self.laser is not None
+        weights = self.weights * self.laser.likelihood(self.particles, beams)
+        total = float(weights.sum())
+        if total > 0.0 and np.isfinite(total):
+            # the prior weights sum to 1, so ``total`` is the measurement's mean likelihood
+            # (see :mod:`.recovery` for why not AMCL's ``total / N``)
+            self.recovery.update(total)
+            self.weights = weights / total
+        else:
+            self.weights = np.full(len(weights), 1.0 / len(weights))
+
+    def _maybe_resample(self) -> bool:
+        self._resample_count += 1
+        if self._resample_count % self.params.resample_interval:
+            return False
+        assert self.field is not None
+        w_diff = self.recovery.w_diff
+        self.particles = resample(
+            self.particles,
+            self.weights,
+            params=self.params,
+            w_diff=w_diff,
+            field=self.field,
+            rng=self.rng,
+        )
+        self.weights = np.full(len(self.particles), 1.0 / len(self.particles))
+        if w_diff > 0.0:
+            self.recovery.reset()
+        return True
+
+    def _publish(self, odom_pose: FloatArray, *, resampled: bool) -> ScanOutcome:
+        self.last_estimate = estimate(self.particles, self.weights)
+        self.map_to_odom = se2.compose(self.last_estimate.mean, se2.inverse(odom_pose))
+        return ScanOutcome(True, resampled, self.last_estimate, self.map_to_odom)

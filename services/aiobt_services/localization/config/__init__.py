@@ -1,0 +1,1 @@
+"""AMCL params files shipped with the service (``--params-file NAME``)."""

@@ -1,0 +1,190 @@
+"""``python -m aiobt_services.localization``: Nav2's AMCL as a service on Zenoh.
+
+Reads the latched ``{ns}/map``, ``{ns}/odom`` and ``{ns}/scan``; takes
+``{ns}/initialpose`` (a PoseWithCovarianceStamped, or a PoseStamped / its short
+form with Nav2's default covariance). Publishes ``{ns}/amcl_pose`` (latched),
+the ``map`` -> ``odom`` transform on ``{ns}/tf``, ``{ns}/particle_cloud``
+(thinned) and ``{ns}/pose``: the estimate composed with the newest odometry, at
+odometry rate. Serves ``{ns}/srv/reinitialize_global_localization``,
+``{ns}/srv/request_nomotion_update`` and ``{ns}/srv/localization/stats``;
+holds the liveliness token ``{ns}/nodes/localization``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import contextlib
+import logging
+import time
+
+import numpy as np
+
+from aiobt.msgs import (
+    Empty,
+    LaserScan,
+    Msg,
+    OccupancyGrid,
+    Odometry,
+    ParticleCloud,
+    PoseStamped,
+    PoseWithCovarianceStamped,
+    ReinitializeGlobalLocalization,
+    TFMessage,
+)
+from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
+from aiobt.transport import Bus, BusSettings, Subscription
+from aiobt.transport.announce import announce
+
+from .laser_model import ScanError
+from .messages import LocalizationStats
+from .node import LocalizationNode, Reply
+from .options import add_arguments as add_arguments
+from .options import params_from_args
+from .params import AmclParams, ParamError
+
+log = logging.getLogger("aiobt_services.localization.main")
+
+Ack = ReinitializeGlobalLocalization.Response
+PUBLISHED: dict[str, type[Msg]] = {
+    "tf": TFMessage,
+    "particle_cloud": ParticleCloud,
+    "pose": PoseStamped,
+}
+MAP_WAIT_LOG = 5.0  # wall s between "waiting for the map" lines
+ODOM_WAIT = 0.05  # wall s a scan waits for the odometry of its own stamp
+SCAN_QUEUE = 10  # scans that wait while the filter is busy (a preempted process); then
+# the oldest are dropped and counted (AMCL's scan filter queues 100)
+
+
+class Outputs:
+    def __init__(self, bus: Bus) -> None:
+        self._pubs = {name: bus.publisher(name, model) for name, model in PUBLISHED.items()}
+        self._pubs["amcl_pose"] = bus.latched_publisher("amcl_pose", PoseWithCovarianceStamped)
+
+    def send(self, messages: list[tuple[str, Msg]]) -> None:
+        for topic, msg in messages:
+            self._pubs[topic].put(msg)
+
+
+def _ack(reply: Reply) -> Ack:
+    if not reply.ok:
+        log.warning("%s", reply.message)
+    return Ack(ok=reply.ok, message=reply.message)
+
+
+async def _follow_map(bus: Bus, node: LocalizationNode, sub: Subscription[OccupancyGrid]) -> None:
+    """Every map the latched topic brings; while none has come, say so and why."""
+    key = bus.keys.topic(node.params.map_topic)
+    updates = aiter(sub)
+    while True:
+        try:
+            async with asyncio.timeout(None if node.has_map else MAP_WAIT_LOG):
+                grid = await anext(updates)
+        except TimeoutError:
+            log.warning("waiting for the map on %s (latched, from the robot or a map server): "
+                        "the filter needs it to weigh scans and to check poses", key)  # fmt: skip
+            continue
+        reply = node.on_map(grid)
+        if not reply.ok:
+            log.error("%s", reply.message)
+
+
+class ScanWorker:
+    """Reads scans one at a time off the loop's other work, waiting briefly for the
+    odometry of the scan's own stamp."""
+
+    def __init__(self, node: LocalizationNode, outputs: Outputs) -> None:
+        self.node, self.outputs = node, outputs
+        self.odom_arrived = asyncio.Event()
+
+    def on_odom(self, msg: Odometry) -> None:
+        self.outputs.send(self.node.on_odom(msg))
+        self.odom_arrived.set()
+
+    async def run(self, scans: Subscription[LaserScan]) -> None:
+        stats = self.node.stats
+        async for scan in scans:
+            began, updates = time.perf_counter(), stats.updates  # wall time: a measurement
+            await self._odom_up_to(scan.header.stamp)
+            try:
+                self.outputs.send(self.node.on_scan(scan))
+            except ScanError as exc:
+                log.warning("scan at %.3f refused: %s", scan.header.stamp, exc)
+            if stats.updates > updates:
+                stats.record_latency(time.perf_counter() - began)
+
+    async def _odom_up_to(self, stamp: float) -> None:
+        newest = self.node.odom.newest
+        with contextlib.suppress(TimeoutError):
+            async with asyncio.timeout(ODOM_WAIT):
+                while newest is None or newest[0] < stamp:
+                    self.odom_arrived.clear()
+                    await self.odom_arrived.wait()
+                    newest = self.node.odom.newest
+
+
+def _stats(node: LocalizationNode, scans: Subscription[LaserScan]) -> LocalizationStats:
+    cpu = np.asarray(node.stats.update_cpu) * 1000.0
+    p50, p99, top = np.percentile(cpu, [50, 99, 100]) if cpu.size else (0.0, 0.0, 0.0)
+    wall = np.asarray(node.stats.update_wall) * 1000.0
+    w50, w99 = np.percentile(wall, [50, 99]) if wall.size else (0.0, 0.0)
+    return LocalizationStats(
+        scans=node.stats.scans, dropped=scans.dropped_overflow,
+        skipped_no_odom=node.stats.skipped_no_odom, updates=node.stats.updates,
+        update_ms_p50=float(p50), update_ms_p99=float(p99), update_ms_max=float(top),
+        latency_ms_p50=float(w50), latency_ms_p99=float(w99),
+        particles=len(node.amcl.particles),
+    )  # fmt: skip
+
+
+def _wire(bus: Bus, node: LocalizationNode, worker: ScanWorker) -> Subscription[LaserScan]:
+    p = node.params
+    bus.subscribe("odom", Odometry, callback=worker.on_odom, queue_size=8)
+    scans = bus.subscribe(p.scan_topic, LaserScan, queue_size=SCAN_QUEUE)
+
+    def initialpose(msg: PoseWithCovarianceStamped) -> None:
+        _ack(node.on_initialpose(msg))
+
+    bus.subscribe("initialpose", PoseWithCovarianceStamped, callback=initialpose, queue_size=1)
+    bus.serve("reinitialize_global_localization", Empty, Ack,
+              lambda _: _ack(node.reinitialize_global_localization()))  # fmt: skip
+    bus.serve("request_nomotion_update", Empty, Ack, lambda _: _ack(node.request_nomotion_update()))
+    bus.serve("localization/stats", Empty, LocalizationStats, lambda _: _stats(node, scans))
+    return scans
+
+
+async def serve(args: argparse.Namespace, params: AmclParams) -> None:
+    stop = stop_on_signals()
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
+        node = LocalizationNode(params)
+        worker = ScanWorker(node, Outputs(bus))
+        maps = bus.subscribe(params.map_topic, OccupancyGrid, latched=True, queue_size=1)
+        scans = _wire(bus, node, worker)
+        announce(bus, "localization", sim_time=args.sim_time)
+        log.info("localization up on namespace '%s': %d..%d particles, %d beams%s",
+                 bus.namespace, params.min_particles, params.max_particles, params.max_beams,
+                 "" if params.set_initial_pose else "; waiting for initialpose")  # fmt: skip
+        async with asyncio.TaskGroup() as tasks:
+            jobs = [
+                tasks.create_task(_follow_map(bus, node, maps)),
+                tasks.create_task(worker.run(scans)),
+            ]
+            await stop.wait()
+            for job in jobs:
+                job.cancel()
+        s = _stats(node, scans)
+        log.info("localization stopped: %d scans, %d updates (CPU p50 %.2f ms, p99 %.2f ms), "
+                 "%d dropped unread", s.scans, s.updates, s.update_ms_p50, s.update_ms_p99,
+                 s.dropped)  # fmt: skip
+
+
+def run(args: argparse.Namespace) -> int:
+    try:
+        params = params_from_args(args)
+    except ParamError as exc:
+        log.error("localization: %s", exc)
+        return 2
+    return run_service(serve(args, params), log, "localization")

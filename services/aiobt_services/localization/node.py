@@ -1,0 +1,192 @@
+"""What ``amcl_node`` does with each message, without Zenoh: the map, odometry,
+scans, initial poses and the two services in; the messages to publish out. The
+service's ``main`` wires these methods to keys; tests call them directly.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from aiobt.msgs import (
+    LaserScan,
+    Msg,
+    OccupancyGrid,
+    Odometry,
+    PoseWithCovarianceStamped,
+)
+
+from . import convert, se2
+from .amcl import Amcl
+from .initial_pose import InitialPoseError, covariance_from_6x6
+from .laser_model import ScanError, check_scan_shape, effective_range_limits, select_beams
+from .likelihood_field import LikelihoodField, MapError
+from .odom_buffer import OdomBuffer
+from .params import AmclParams
+
+log = logging.getLogger("aiobt_services.localization.node")
+
+
+@dataclass(slots=True, frozen=True)
+class Reply:
+    """A service's or a topic's outcome: ``ok`` and why."""
+
+    ok: bool
+    message: str
+
+
+@dataclass(slots=True)
+class UpdateStats:
+    """Scans seen, filter updates, their CPU seconds (the update's own thread time)."""
+
+    scans: int = 0
+    updates: int = 0
+    skipped_no_odom: int = 0
+    update_cpu: list[float] = field(default_factory=list)
+    update_wall: list[float] = field(default_factory=list)  # scan read -> outputs sent
+
+    def record(self, seconds: float) -> None:
+        self.updates += 1
+        if len(self.update_cpu) < 100_000:
+            self.update_cpu.append(seconds)
+
+    def record_latency(self, seconds: float) -> None:
+        if len(self.update_wall) < 100_000:
+            self.update_wall.append(seconds)
+
+
+class LocalizationNode:
+    """One robot's AMCL: call :meth:`on_map`, :meth:`on_odom`, :meth:`on_scan`, ...;
+    each returns the messages to publish as ``(topic, message)`` pairs."""
+
+    def __init__(self, params: AmclParams, rng: np.random.Generator | None = None) -> None:
+        self.params = params
+        self.amcl = Amcl(params, rng)
+        self.odom = OdomBuffer()
+        self.stats = UpdateStats()
+        self._map_seen = False
+        self._frame = params.global_frame_id
+
+    @property
+    def has_map(self) -> bool:
+        return self.amcl.field is not None
+
+    # -- the map -----------------------------------------------------------
+    def on_map(self, grid: OccupancyGrid) -> Reply:
+        """Build the likelihood field (once per map; ``first_map_only`` keeps the first)."""
+        if self._map_seen and self.params.first_map_only:
+            return Reply(True, "map ignored: first_map_only")
+        origin = grid.info.origin.position
+        p = self.params
+        try:
+            field_ = LikelihoodField.build(
+                grid.array, grid.info.resolution, (origin.x, origin.y),
+                max_dist=p.laser_likelihood_max_dist, z_hit=p.z_hit, sigma_hit=p.sigma_hit,
+            )  # fmt: skip
+        except MapError as exc:
+            return Reply(False, f"map refused: {exc}")
+        self.amcl.set_map(field_)
+        first, self._map_seen = not self._map_seen, True
+        log.info("map %dx%d at %g m/cell: likelihood field ready", *grid.array.shape[::-1],
+                 grid.info.resolution)  # fmt: skip
+        if first and p.set_initial_pose:
+            ip = p.initial_pose
+            return self.initial_pose(ip.x, ip.y, ip.yaw, None, "parameter initial_pose")
+        return Reply(True, "map ready")
+
+    # -- odometry: {ns}/pose at odometry rate -------------------------------
+    def on_odom(self, msg: Odometry) -> list[tuple[str, Msg]]:
+        """Record the odometry; the estimate composed with it as ``pose`` once known."""
+        stamp = msg.header.stamp
+        here = (msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
+        self.odom.add(stamp, *here)
+        if self.amcl.map_to_odom is None:
+            return []
+        pose = se2.compose(self.amcl.map_to_odom, np.array(here))
+        return [("pose", convert.map_pose(pose, stamp, self._frame))]
+
+    # -- scans ---------------------------------------------------------------
+    def on_scan(self, scan: LaserScan) -> list[tuple[str, Msg]]:
+        """One scan through the filter (:class:`ScanError` for a malformed one)."""
+        self.stats.scans += 1
+        if not (self.has_map and self.amcl.initialized):
+            return []
+        check_scan_shape(len(scan.ranges), scan.angle_min, scan.angle_max, scan.angle_increment)
+        odom_pose = self.odom.at(scan.header.stamp, tolerance=self.params.transform_tolerance)
+        if odom_pose is None:
+            self.stats.skipped_no_odom += 1
+            return []
+        start = time.thread_time()
+        low, high = effective_range_limits(
+            scan.range_min, scan.range_max, self.params.laser_min_range, self.params.laser_max_range
+        )
+        beams = select_beams(
+            scan.ranges_array(), scan.angles_array(),
+            max_beams=self.params.max_beams, range_min=low, range_max=high,
+        )  # fmt: skip
+        outcome = self.amcl.on_scan(odom_pose, beams)
+        if outcome.updated:
+            self.stats.record(time.thread_time() - start)
+        return self._outputs(outcome.estimate is not None, scan.header.stamp, outcome.updated)
+
+    def _outputs(self, estimated: bool, stamp: float, updated: bool) -> list[tuple[str, Msg]]:
+        out: list[tuple[str, Msg]] = []
+        amcl, frame = self.amcl, self._frame
+        if estimated and amcl.last_estimate is not None and amcl.map_to_odom is not None:
+            out.append(("amcl_pose", convert.amcl_pose(amcl.last_estimate, stamp, frame)))
+            if self.params.tf_broadcast:
+                tf = convert.map_to_odom(amcl.map_to_odom, stamp, frame, self.params.odom_frame_id)
+                out.append(("tf", tf))
+        if updated:
+            cloud = convert.particle_cloud(amcl.particles, amcl.weights, stamp, frame)
+            out.append(("particle_cloud", cloud))
+        return out
+
+    # -- initial pose and services ------------------------------------------
+    def on_initialpose(self, msg: PoseWithCovarianceStamped) -> Reply:
+        """``initialpose``: refused (and nothing changed) unless in ``map``, finite, on
+        the map, off the walls, with a positive-definite covariance."""
+        frame = msg.header.frame_id
+        if frame not in (self._frame, ""):
+            return Reply(
+                False, f"initialpose: header.frame_id must be {self._frame!r}, got {frame!r}"
+            )
+        try:
+            cov = covariance_from_6x6(msg.pose.covariance)
+        except InitialPoseError as exc:
+            return Reply(False, f"initialpose: {exc}")
+        return self.initial_pose(msg.x, msg.y, msg.yaw, cov, "initialpose")
+
+    def initial_pose(
+        self, x: float, y: float, yaw: float, cov: np.ndarray | None, where: str
+    ) -> Reply:
+        if not self.has_map:
+            return Reply(False, f"{where}: no map yet; the pose needs the map to be checked")
+        try:
+            pose = self.amcl.check_pose(x, y, yaw, cov, where)
+        except InitialPoseError as exc:
+            return Reply(False, str(exc))
+        self.amcl.initialize(pose)
+        log.info("%s: pose set to (%.3f, %.3f, %.3f)", where, x, y, yaw)
+        return Reply(True, f"pose set to ({x:.3f}, {y:.3f}, {yaw:.3f})")
+
+    def reinitialize_global_localization(self) -> Reply:
+        if not self.has_map:
+            return Reply(
+                False, "no map yet: global localization spreads particles over its free space"
+            )
+        self.amcl.global_localization()
+        log.info("global localization: %d particles over the free space", len(self.amcl.particles))
+        return Reply(True, "particles spread over the free space")
+
+    def request_nomotion_update(self) -> Reply:
+        if not self.amcl.initialized:
+            return Reply(False, "no pose yet: set initialpose or reinitialize global localization")
+        self.amcl.request_nomotion_update()
+        return Reply(True, "the next scan updates the filter")
+
+
+__all__ = ["LocalizationNode", "Reply", "ScanError"]

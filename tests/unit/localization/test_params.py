@@ -1,0 +1,43 @@
+import pytest
+
+from aiobt_services.localization.params import AmclParams, InitialPose, ParamError
+
+
+def test_defaults_are_nav2s() -> None:
+    p = AmclParams()
+    assert (p.alpha1, p.alpha2, p.alpha3, p.alpha4) == (0.2, 0.2, 0.2, 0.2)
+    assert (p.min_particles, p.max_particles, p.pf_err, p.pf_z) == (500, 2000, 0.05, 0.99)
+    assert (p.z_hit, p.z_rand, p.sigma_hit, p.laser_likelihood_max_dist) == (0.5, 0.5, 0.2, 2.0)
+    assert (p.max_beams, p.update_min_d, p.update_min_a, p.resample_interval) == (60, 0.25, 0.2, 1)
+    assert (p.recovery_alpha_slow, p.recovery_alpha_fast, p.do_beamskip) == (0.0, 0.0, False)
+
+
+def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> None:
+    p = AmclParams.from_mapping(
+        {"use_sim_time": True, "max_particles": 3000, "recovery_alpha_slow": 0.001,
+         "initial_pose": {"x": 1, "y": 2.0, "yaw": 0.5}, "set_initial_pose": True}
+    )  # fmt: skip
+    assert p.max_particles == 3000
+    assert p.recovery_alpha_slow == 0.001
+    assert p.initial_pose == InitialPose(1.0, 2.0, 0.0, 0.5)
+    assert p.set_initial_pose
+    assert AmclParams.from_mapping({"initial_pose.x": 4}).initial_pose.x == 4.0
+
+
+@pytest.mark.parametrize(
+    ("values", "names"),
+    [
+        ({"max_particls": 3}, "max_particls"),
+        ({"min_particles": 3000}, "min_particles"),
+        ({"pf_err": 0.0}, "pf_err"),
+        ({"sigma_hit": -1.0}, "sigma_hit"),
+        ({"do_beamskip": True}, "do_beamskip"),
+        ({"laser_model_type": "beam"}, "laser_model_type"),
+        ({"robot_model_type": "nav2_amcl::OmniMotionModel"}, "robot_model_type"),
+        ({"max_beams": "60"}, "max_beams"),
+        ({"alpha1": float("nan")}, "alpha1"),
+    ],
+)
+def test_bad_parameters_are_refused_by_name(values: dict[str, object], names: str) -> None:
+    with pytest.raises(ParamError, match=names):
+        AmclParams.from_mapping(values)
