@@ -9,6 +9,7 @@ run the same code.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import importlib
 import logging
 import os
@@ -35,6 +36,14 @@ COMMANDS: dict[str, tuple[str, str]] = {
     **{spec.name: (spec.module, spec.summary) for spec in SERVICES},
 }
 
+# long-running processes whose INFO lines are their log (aiobt up's services.log);
+# every other command shows the person at the terminal warnings and errors only
+LOGGING_COMMANDS = frozenset(
+    {"router", "up", "robot", "planner", "controller", "behaviors", "navigator"}
+)
+
+VERBOSE_HELP = "more logging: -v the library's INFO lines, -vv DEBUG"
+
 
 def _load(module_name: str) -> object:
     return importlib.import_module(module_name)
@@ -48,10 +57,13 @@ def main(argv: Sequence[str] | None = None) -> int:
 
         die_with_supervisor()
     args = _full_parser(argv).parse_args(argv)
+    quiet = args.command not in LOGGING_COMMANDS and args.verbose == 0
     logging.basicConfig(
-        level=logging.DEBUG if args.verbose > 1 else logging.INFO,
+        level=logging.DEBUG if args.verbose > 1 else logging.WARNING if quiet else logging.INFO,
         format="%(asctime)s %(levelname).1s %(name)s: %(message)s",
     )
+    if quiet:  # the command says itself that no router answered, and what to do
+        logging.getLogger("aiobt.transport.session").setLevel(logging.ERROR)
     module = _load(args._module)
     code: int = module.run(args)  # type: ignore[attr-defined]
     return code
@@ -59,7 +71,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 def _full_parser(argv: Sequence[str]) -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="aiobt", description="aiobt: asyncio behavior trees")
-    parser.add_argument("-v", "--verbose", action="count", default=0, help="more logging")
+    parser.add_argument("-v", "--verbose", action="count", default=0, help=VERBOSE_HELP)
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     wanted = next((a for a in argv if not a.startswith("-")), None)
     for name, (module_name, help_text) in COMMANDS.items():
@@ -67,6 +79,11 @@ def _full_parser(argv: Sequence[str]) -> argparse.ArgumentParser:
         sub.set_defaults(_module=module_name)
         if name == wanted:
             _load(module_name).add_arguments(sub)  # type: ignore[attr-defined]
+            with contextlib.suppress(argparse.ArgumentError):  # the services' flags have it
+                # after the command too (SUPPRESS: not undoing a -v given before it)
+                sub.add_argument(
+                    "-v", "--verbose", action="count", default=argparse.SUPPRESS, help=VERBOSE_HELP
+                )
     return parser
 
 

@@ -19,6 +19,7 @@ import signal
 import sys
 from typing import TextIO
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.monitor import TreeView
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
@@ -132,5 +133,5 @@ def run(args: argparse.Namespace) -> int:
     try:
         return asyncio.run(monitor(args, sys.stdout))
     except (BusUnavailable, BusConfigError) as exc:
-        print(f"aiobt monitor: {exc}", file=sys.stderr)
+        print(failure("monitor", exc), file=sys.stderr)
         return 2

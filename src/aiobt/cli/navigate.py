@@ -14,10 +14,10 @@ from __future__ import annotations
 import argparse
 import asyncio
 import sys
-import time
-from typing import TextIO
 
-from aiobt.embed import Feedback, NavigationOutcome, RobotClient, connect
+from aiobt.cli.failure import failure
+from aiobt.cli.feedback_line import FeedbackLine
+from aiobt.embed import NavigationOutcome, RobotClient, connect
 from aiobt.transport import (
     BusConfigError,
     BusSettings,
@@ -62,38 +62,8 @@ def pose_text(text: str) -> tuple[float, ...]:
     return values
 
 
-class FeedbackLine:
-    """Live feedback: one rewritten line on a terminal, a line a second otherwise."""
-
-    def __init__(self, out: TextIO) -> None:
-        self.out = out
-        self.live = out.isatty()
-        self._last = 0.0
-
-    def __call__(self, feedback: Feedback) -> None:
-        now = time.monotonic()  # wall time by intent: how often a person reads the line
-        if not self.live and now - self._last < 1.0:
-            return
-        self._last = now
-        text = (
-            f"distance remaining {feedback.distance_remaining:6.2f} m  "
-            f"time {feedback.navigation_time:6.1f} s  "
-            f"recoveries {feedback.number_of_recoveries}"
-        )
-        remaining = getattr(feedback, "number_of_poses_remaining", None)
-        if remaining is not None:
-            text += f"  poses left {remaining}"
-        self.out.write(f"\r{text}" if self.live else f"{text}\n")
-        self.out.flush()
-
-    def end(self) -> None:
-        if self.live:
-            self.out.write("\n")
-
-
-async def navigate(args: argparse.Namespace, out: TextIO) -> NavigationOutcome:
+async def navigate(args: argparse.Namespace, show: FeedbackLine) -> NavigationOutcome:
     settings = BusSettings.from_args(args)
-    show = FeedbackLine(out)
     async with connect(settings=settings, server_timeout=args.server_timeout) as robot:
         try:
             return await _send(robot, args, show)
@@ -114,19 +84,22 @@ def run(args: argparse.Namespace) -> int:
     if bool(args.through) == bool(args.pose) or (args.pose and len(args.pose) not in (2, 3)):
         print("aiobt navigate: give X Y [YAW], or --through X,Y[,YAW] ...", file=sys.stderr)
         return 2
+    show = FeedbackLine(sys.stdout, args.through or ())
     try:
-        outcome = asyncio.run(navigate(args, sys.stdout))
+        outcome = asyncio.run(navigate(args, show))
     except KeyboardInterrupt:
         print("aiobt navigate: interrupted, goal canceled", file=sys.stderr)
         return 130
     except (ServerUnavailable, GoalRejected, GoalLost, BusUnavailable, BusConfigError) as exc:
-        print(f"aiobt navigate: {exc}", file=sys.stderr)
+        print(failure("navigate", exc), file=sys.stderr)
         return 2
     except ValueError as exc:
         print(f"aiobt navigate: {exc}", file=sys.stderr)
         return 2
     if outcome.succeeded:
-        print("goal reached")
+        x, y = (args.through[-1] if args.through else args.pose)[:2]
+        off = show.distance_to(x, y)
+        print("goal reached" + ("" if off is None else f", {off:.2f} m from the goal pose"))
         return 0
     print(f"navigation {outcome.state.name}: error {outcome.error_code} {outcome.error_msg}")
     return 1

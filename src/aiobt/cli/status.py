@@ -16,6 +16,7 @@ import asyncio
 import sys
 from dataclasses import dataclass
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.msgs import Empty
 from aiobt.msgs.system import ServiceInfo
@@ -93,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
     try:
         rows = asyncio.run(status(args))
     except (BusUnavailable, BusConfigError) as exc:
-        print(f"aiobt status: {exc}", file=sys.stderr)
+        print(failure("status", exc), file=sys.stderr)
         return 2
     if not rows:
         print("no aiobt service is up on this router", file=sys.stderr)

@@ -17,6 +17,7 @@ import logging
 import sys
 from typing import Any
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.costmap.inflation import InflationParams
 from aiobt.system.service import non_negative, positive
@@ -90,5 +91,5 @@ def run(args: argparse.Namespace) -> int:
     try:
         return asyncio.run(serve(args))
     except (BusUnavailable, BusConfigError, OSError, ValueError) as exc:
-        print(f"aiobt web: {exc}", file=sys.stderr)
+        print(failure("web", exc), file=sys.stderr)
         return 2

@@ -59,8 +59,31 @@ def test_navigate_reaches_a_goal_with_live_feedback(system: str) -> None:
     done = aiobt(system, "navigate", "1.0", "1.0", "1.57")
     assert done.returncode == 0, done.stdout + done.stderr
     lines = done.stdout.splitlines()
-    assert lines[-1] == "goal reached"
-    assert any(line.startswith("distance remaining") for line in lines)
+    assert lines[-1].startswith("goal reached, "), lines[-1]
+    off = float(lines[-1].split(", ")[1].split()[0])  # "goal reached, 0.12 m from the goal pose"
+    assert off <= 0.3  # the goal checker's 0.25 m, and the newest feedback's lag
+    progress = [line for line in lines if line.startswith("distance remaining")]
+    assert float(progress[-1].split()[2]) <= 0.5, progress[-1]  # the last line is the newest
+
+
+def test_navigate_through_counts_the_poses_down_as_the_robot_passes_them(system: str) -> None:
+    done = aiobt(system, "navigate", "--through", "1,1", "1.5,-1", "0,0")
+    assert done.returncode == 0, done.stdout + done.stderr
+    counts = [
+        int(line.split("  ")[-1].split()[0])
+        for line in done.stdout.splitlines()
+        if line.endswith(("poses left", "pose left"))
+    ]
+    assert 2 in counts, done.stdout  # one line a second: each pose takes longer to pass
+    assert counts[-1] == 1, done.stdout  # (the first may be passed at once: where is the robot?)
+    assert counts == sorted(counts, reverse=True), done.stdout
+
+
+def test_goal_refused_by_the_navigator_exits_1_with_its_reason(system: str) -> None:
+    done = aiobt(system, "goal", "40", "40")
+    assert done.returncode == 1, done.stdout + done.stderr
+    assert done.stderr.startswith("aiobt goal: the navigator refused goal (40, 40, yaw 0): ")
+    assert "outside the map" in done.stderr
 
 
 def test_navigate_to_a_goal_off_the_map_fails_with_nav2s_error(system: str) -> None:
@@ -79,7 +102,10 @@ def test_goal_then_monitor_sees_the_tree_run(system: str) -> None:
             assert first.startswith("tree NavigateToPose"), first
             sent = aiobt(system, "goal", "-1.0", "-1.0")
             assert sent.returncode == 0, sent.stderr
-            assert sent.stdout.strip() == f"goal (-1, -1, yaw 0) sent on {NS}/goal_pose"
+            assert sent.stdout.strip() == (
+                "goal (-1, -1, yaw 0) sent: the navigator is driving to it "
+                "(follow it: aiobt monitor)"
+            )
             deadline = time.monotonic() + 90.0
             line = ""
             while not _follows_path(line):
