@@ -19,6 +19,7 @@ import sys
 from pathlib import Path
 from typing import TextIO
 
+from aiobt.cli.words import plural
 from aiobt.demo.mission import PATROL, Patrol
 from aiobt.demo.picture import render
 from aiobt.demo.record import Leg, Record
@@ -65,7 +66,7 @@ class ProgressLine:
         distance, recoveries = feedback.distance_remaining, feedback.number_of_recoveries
         text = (
             f"\r  goal {number + 1}/{len(PATROL)} {leg.name}: "
-            f"{distance:5.2f} m to go, recoveries {recoveries}"
+            f"{distance:5.2f} m to go, {plural(recoveries, 'recovery')}"
         )
         self.out.write(f"{text:<90}")
         self.out.flush()
@@ -75,7 +76,7 @@ class ProgressLine:
         prefix = "\r" if self.live else ""
         line = (
             f"{prefix}  goal {number + 1}/{len(PATROL)} {leg.name}: {mark} "
-            f"in {leg.seconds:.1f} s sim, {leg.recoveries} recoveries"
+            f"in {leg.seconds:.1f} s sim, {plural(leg.recoveries, 'recovery')}"
         )
         self.out.write(f"{line:<90}\n")
         self.out.flush()
@@ -103,7 +104,8 @@ async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
     reached = sum(leg.reached for leg in record.legs)
     recoveries = sum(leg.recoveries for leg in record.legs)
     total = len(record.legs)
-    out.write(f"{reached} of {total} goals reached, {recoveries} recoveries; picture: {picture}\n")
+    recovered = plural(recoveries, "recovery")
+    out.write(f"{reached} of {total} goals reached, {recovered}; picture: {picture}\n")
     return 0 if reached == len(record.legs) else 1
 
 

@@ -6,7 +6,8 @@
   RemovePassedGoals, ticked when it replans), so the lower of the two is shown.
 - :class:`FeedbackLine` shows the newest feedback: one rewritten line on a
   terminal, a line a second otherwise; at the end the newest feedback is shown if
-  it was not yet, so no stale "1.20 m" stands above "goal reached".
+  it was not yet, so no stale "1.20 m" stands above "goal reached"; feedback
+  before the first path (distance 0) is not shown.
 """
 
 from __future__ import annotations
@@ -50,8 +51,13 @@ class FeedbackLine:
         self.latest: Feedback | None = None
         self._shown = True
         self._last = 0.0
+        self._planned = False
 
     def __call__(self, feedback: Feedback) -> None:
+        # before the first path the distance reads 0 (Nav2's feedback): not worth a line
+        self._planned |= feedback.distance_remaining > 0.0
+        if not self._planned:
+            return
         self.latest, self._shown = feedback, False
         now = time.monotonic()  # wall time by intent: how often a person reads the line
         if self.live or now - self._last >= 1.0:
@@ -75,6 +81,13 @@ class FeedbackLine:
         self._shown = True
         text = self.text(feedback)
         self.out.write(f"\r{text:<70}" if self.live else f"{text}\n")
+        self.out.flush()
+
+    def note(self, text: str) -> None:
+        """A line of news (a service went away) between the progress lines."""
+        self.out.write(f"\r{text:<70}\n" if self.live else f"{text}\n")
+        if self.live and self.latest is not None:
+            self._show(self.latest)  # the live line again, below the news
         self.out.flush()
 
     def end(self) -> None:

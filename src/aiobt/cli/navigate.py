@@ -6,7 +6,9 @@
 Feedback (distance remaining, time, recoveries) is shown while the robot
 drives. Exit status: 0 when the goal SUCCEEDED, 1 when it was ABORTED or
 CANCELED (Nav2's error code and message are printed), 2 for bad input or no
-navigator within ``--server-timeout``. Ctrl-C cancels the goal.
+navigator within ``--server-timeout``. Ctrl-C cancels the goal. A service that
+goes away meanwhile (killed, restarted by ``aiobt up``) and comes back is
+shown on a line of its own.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ import sys
 
 from aiobt.cli.failure import failure
 from aiobt.cli.feedback_line import FeedbackLine
+from aiobt.cli.service_watch import watch_services
 from aiobt.embed import NavigationOutcome, RobotClient, connect
 from aiobt.transport import (
     BusConfigError,
@@ -65,6 +68,7 @@ def pose_text(text: str) -> tuple[float, ...]:
 async def navigate(args: argparse.Namespace, show: FeedbackLine) -> NavigationOutcome:
     settings = BusSettings.from_args(args)
     async with connect(settings=settings, server_timeout=args.server_timeout) as robot:
+        watch_services(robot.bus, show.note)
         try:
             return await _send(robot, args, show)
         finally:

@@ -39,6 +39,8 @@ def test_the_line_shows_the_lower_of_the_navigators_count_and_the_poses_passed()
 def test_the_newest_feedback_is_shown_at_the_end_when_the_last_line_was_older() -> None:
     out = io.StringIO()
     line = FeedbackLine(out)
+    line(NavigateToPose.Feedback(distance_remaining=0.0))  # no path yet: no "0.00 m" line
+    assert out.getvalue() == ""
     for distance in (2.0, 1.2, 0.1):  # within a second: only the first is printed at once
         line(NavigateToPose.Feedback(distance_remaining=distance, number_of_recoveries=1))
     assert "2.00 m" in out.getvalue()
