@@ -16,6 +16,7 @@ import os
 import sys
 from collections.abc import Sequence
 
+from aiobt.cli.unknown_flags import command_parser, unknown_flags_message
 from aiobt.system.catalog import SERVICES
 
 # name -> (module, one-line help): every sub-command.
@@ -38,9 +39,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
 
 # long-running processes whose INFO lines are their log (aiobt up's services.log);
 # every other command shows the person at the terminal warnings and errors only
-LOGGING_COMMANDS = frozenset(
-    {"router", "up", "robot", "planner", "controller", "behaviors", "navigator"}
-)
+LOGGING_COMMANDS = frozenset({"router", "up", *(spec.name for spec in SERVICES)})
 
 VERBOSE_HELP = "more logging: -v the library's INFO lines, -vv DEBUG"
 
@@ -56,7 +55,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         from aiobt.system.lifeline import die_with_supervisor
 
         die_with_supervisor()
-    args = _full_parser(argv).parse_args(argv)
+    parser = _full_parser(argv)
+    args, extra = parser.parse_known_args(argv)
+    if extra:
+        command = command_parser(parser, args.command)
+        command.error(unknown_flags_message(extra, command))
     quiet = args.command not in LOGGING_COMMANDS and args.verbose == 0
     logging.basicConfig(
         level=logging.DEBUG if args.verbose > 1 else logging.WARNING if quiet else logging.INFO,
