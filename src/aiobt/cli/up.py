@@ -29,6 +29,7 @@ from pathlib import Path
 
 from aiobt.cli.web import add_web_arguments, web_options
 from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
+from aiobt.system.announce import announce
 from aiobt.system.console import wants_colour
 from aiobt.system.foxglove import FoxgloveOptions, start_foxglove, stop_foxglove
 from aiobt.system.supervisor import on_signals
@@ -109,6 +110,7 @@ async def web_view(
             sink.event("web", f"not started: {exc} (--web-port PORT, or --no-web)")
         else:
             sink.event("web", f"web view on {view.url}")
+            announce(bus, "web", sim_time=False, url=view.url)  # aiobt status lists it
         yield
 
 

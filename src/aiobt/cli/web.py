@@ -20,6 +20,7 @@ from typing import Any
 from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.costmap.inflation import InflationParams
+from aiobt.system.announce import announce
 from aiobt.system.service import non_negative, positive
 from aiobt.system.signals import stop_on_signals
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
@@ -82,7 +83,8 @@ def web_options(args: argparse.Namespace, prefix: str = "") -> WebOptions:
 async def serve(args: argparse.Namespace) -> int:
     options = web_options(args)
     stop = stop_on_signals()
-    async with open_bus(BusSettings.from_args(args)) as bus, serve_web(bus, options):
+    async with open_bus(BusSettings.from_args(args)) as bus, serve_web(bus, options) as view:
+        announce(bus, "web", sim_time=False, url=view.url)  # aiobt status lists it
         await stop.wait()
     return 0
 
