@@ -130,7 +130,7 @@ def _line(stream: IO[str], timeout: float) -> str:
 
 
 def _follows_path(line: str) -> bool:
-    return " RUNNING " in line and line.rstrip().endswith("/FollowPath")
+    return line.split()[2:] == ["RUNNING", "FollowPath"]  # "    1.2 s  RUNNING  FollowPath"
 
 
 def test_monitor_once_prints_the_whole_tree(system: str) -> None:
