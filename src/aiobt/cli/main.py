@@ -37,9 +37,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
     **{spec.name: (spec.module, spec.summary) for spec in SERVICES},
 }
 
-# long-running processes whose INFO lines are their log (aiobt up's services.log);
-# every other command shows the person at the terminal warnings and errors only
-LOGGING_COMMANDS = frozenset({"router", "up", *(spec.name for spec in SERVICES)})
+# long-running processes whose INFO lines are their log (aiobt up's services.log; the
+# web view's and Foxglove's address and clients); every other command shows the person
+# at the terminal warnings and errors only
+LOGGING_COMMANDS = frozenset({"router", "up", "web", "foxglove", *(spec.name for spec in SERVICES)})
 
 VERBOSE_HELP = "more logging: -v the library's INFO lines, -vv DEBUG"
 
