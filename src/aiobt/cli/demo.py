@@ -100,7 +100,8 @@ async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
                     await patrol.drive(number, leg)
                     progress.done(number, leg)
     picture = out_dir / "patrol.png"
-    picture.write_bytes(render(record))
+    title = f"aiobt demo: a patrol of {len(PATROL)} goals, small world, sim at x{config.speed:g}"
+    picture.write_bytes(render(record, title=title))
     reached = sum(leg.reached for leg in record.legs)
     recoveries = sum(leg.recoveries for leg in record.legs)
     total = len(record.legs)
