@@ -19,10 +19,10 @@ import sys
 from pathlib import Path
 from typing import TextIO
 
-from aiobt.cli.words import plural
 from aiobt.demo.mission import PATROL, Patrol
 from aiobt.demo.picture import render
 from aiobt.demo.record import Leg, Record
+from aiobt.display import plural
 from aiobt.embed import Feedback, connect
 from aiobt.system import ConfigError, Fatal, SystemConfig, load_config, run_system
 from aiobt.transport import BusSettings

@@ -17,7 +17,7 @@ import time
 from collections.abc import Sequence
 from typing import TextIO
 
-from aiobt.cli.words import plural
+from aiobt.display import plural
 from aiobt.embed import Feedback
 
 PASSED_RADIUS = 0.7  # m: a pose counts as passed within this (the through-poses tree's radius)

@@ -19,9 +19,9 @@ import sys
 from pathlib import Path
 
 from aiobt.cli import run as run_cli
-from aiobt.cli.words import plural
 from aiobt.core.blackboard import Blackboard
 from aiobt.core.errors import BlackboardError, TreeLoadError
+from aiobt.display import plural
 from aiobt.xml.model import read_tree_nodes_model
 
 

@@ -10,7 +10,6 @@ import math
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from aiobt.cli.words import plural
 from aiobt.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
 from aiobt.costmap.inflation import InflationParams, inflate
 from aiobt.demo.annotate import (
@@ -27,6 +26,7 @@ from aiobt.demo.annotate import (
     start_mark,
 )
 from aiobt.demo.record import XY, Record
+from aiobt.display import plural
 
 SCALE = 6  # pixels per map cell
 GOAL_TOLERANCE = 0.25  # m: the goal checker's xy_goal_tolerance (Nav2's default)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import io
 
 from aiobt.cli.feedback_line import FeedbackLine, PassedPoses
-from aiobt.cli.words import plural
+from aiobt.display import plural
 from aiobt.msgs import NavigateThroughPoses, NavigateToPose, PoseStamped
 
 THROUGH = [(1.0, 1.0), (1.5, -1.0), (0.0, 0.0)]
