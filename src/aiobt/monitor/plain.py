@@ -76,7 +76,11 @@ class PlainLog:
         self.recoveries = shot.number_of_recoveries
         if shot.state != self.state and shot.state not in ("navigating", "idle"):
             error = f": error {shot.error_code} {shot.error_msg}" if shot.error_code else ""
-            lines.append(self._line(shot.stamp, f"navigation {shot.state}{error}"))
+            ended = f"navigation {shot.state}{error}"
+            if self.started is None:  # it ended before this monitor saw it run
+                lines.append(f"the last {ended}")
+            else:
+                lines.append(self._line(shot.stamp, ended))
         self.state = shot.state
         return lines
 

@@ -60,3 +60,9 @@ def test_recoveries_and_the_end_each_get_a_line() -> None:
     end = shot(20.0, state="aborted", error_code=104, error_msg="no progress")
     assert log.on_snapshot(end) == ["   10.0 s  navigation aborted: error 104 no progress"]
     assert log.on_snapshot(end) == []
+
+
+def test_a_navigation_that_ended_before_the_monitor_came_is_said_without_a_time() -> None:
+    log = PlainLog()
+    log.on_tree(TREE)
+    assert log.on_snapshot(shot(50.0, state="succeeded")) == ["the last navigation succeeded"]
