@@ -39,7 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 class FileSink:
-    """The services' output into a log file; supervisor events also on the terminal."""
+    """The services' output into a log file; a crash or restart also on the terminal."""
 
     def __init__(self, log: TextIO, out: TextIO) -> None:
         self.log = log
@@ -51,7 +51,9 @@ class FileSink:
     def event(self, name: str, text: str) -> None:
         self.log.write(f"{name:>10} * {text}\n")
         self.log.flush()
-        if text != "up":
+        # crashes and restarts reach the terminal; coming up and a slow stop at the end
+        # (killed after its grace) are the log's
+        if text != "up" and not text.startswith("did not stop within"):
             self.out.write(f"  [{name}] {text}\n")
 
 
