@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import logging
 import sys
 from pathlib import Path
 from typing import TextIO
@@ -57,6 +58,28 @@ class FileSink:
             self.out.write(f"  [{name}] {text}\n")
 
 
+class StoryLines(logging.Handler):
+    """The demo's own log lines (``aiobt.demo``: the boxes put in the robot's way and
+    taken away, a path not drawn) as lines of its output, between the progress lines."""
+
+    def __init__(self, out: TextIO) -> None:
+        super().__init__(logging.INFO)
+        self.out = out
+        self.live = out.isatty()
+
+    def emit(self, record: logging.LogRecord) -> None:
+        warning = "warning: " if record.levelno >= logging.WARNING else ""
+        text = f"  {warning}{record.getMessage()}"
+        self.out.write(f"\r{text:<90}\n" if self.live else f"{text}\n")
+        self.out.flush()
+
+    def attach(self) -> None:
+        story = logging.getLogger("aiobt.demo")
+        story.setLevel(logging.INFO)
+        story.propagate = False  # not also as a log record on stderr
+        story.addHandler(self)
+
+
 class ProgressLine:
     def __init__(self, out: TextIO) -> None:
         self.out = out
@@ -87,6 +110,7 @@ class ProgressLine:
 async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
     record = Record()
     progress = ProgressLine(out)
+    StoryLines(out).attach()
     with (out_dir / "services.log").open("w") as log:
         async with run_system(config, FileSink(log, out)) as system:
             down = await system.wait_healthy(HEALTH_TIMEOUT)
