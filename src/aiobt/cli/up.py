@@ -29,11 +29,11 @@ from pathlib import Path
 
 from aiobt.cli.web import add_web_arguments, web_options
 from aiobt.system import ConfigError, ConsoleSink, Fatal, SystemConfig, load_config, run_system
-from aiobt.system.announce import announce
 from aiobt.system.console import wants_colour
 from aiobt.system.foxglove import FoxgloveOptions, start_foxglove, stop_foxglove
 from aiobt.system.supervisor import on_signals
 from aiobt.transport import Bus
+from aiobt.transport.announce import announce
 from aiobt.web import WebOptions, serve_web
 
 log = logging.getLogger("aiobt.cli.up")

@@ -20,10 +20,10 @@ from typing import Any
 from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.costmap.inflation import InflationParams
-from aiobt.system.announce import announce
 from aiobt.system.service import non_negative, positive
 from aiobt.system.signals import stop_on_signals
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt.transport.announce import announce
 from aiobt.web import WebOptions, serve_web
 
 log = logging.getLogger("aiobt.cli.web")
