@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import re
 import sys
 
 from aiobt.cli.failure import failure
@@ -31,6 +32,7 @@ from aiobt.transport import (
     add_bus_arguments,
 )
 
+NEGATIVE_POSE = re.compile(r"^-\d*\.?\d+(,-?\d*\.?\d+){0,2}$")
 CONNECT_TIMEOUT = 5.0  # s: a command line tool reports a missing router instead of waiting
 
 
@@ -41,6 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="navigate through these poses, in order",
     )  # fmt: skip
     parser.add_argument("--tree", default="", metavar="FILE|ID", help="the navigator's tree")
+    # "-1.5,1.9" is a pose, not a flag: argparse (3.11) takes only "-1.5" for a number
+    parser._negative_number_matcher = NEGATIVE_POSE
     add_client_arguments(parser)
 
 
@@ -68,11 +72,13 @@ def pose_text(text: str) -> tuple[float, ...]:
 async def navigate(args: argparse.Namespace, show: FeedbackLine) -> NavigationOutcome:
     settings = BusSettings.from_args(args)
     async with connect(settings=settings, server_timeout=args.server_timeout) as robot:
-        watch_services(robot.bus, show.note)
+        news = watch_services(robot.bus, show.note)
         try:
             return await _send(robot, args, show)
         finally:
             show.end()
+            if news.gone:  # went away during the navigation and not back by its end
+                print(f"{', '.join(sorted(news.gone))} not back yet", file=show.out)
 
 
 async def _send(

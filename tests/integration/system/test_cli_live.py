@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import os
 import select
+import signal
 import subprocess
 import sys
 import time
@@ -139,3 +141,26 @@ def test_monitor_once_prints_the_whole_tree(system: str) -> None:
     lines = done.stdout.splitlines()
     assert lines[0].startswith("NavigateToPoseWReplanningAndRecovery (run ")
     assert any(line.split()[1:] == ["ComputePathToPose"] for line in lines)
+
+
+def test_navigate_tells_of_a_planner_that_crashes_and_comes_back(system: str) -> None:
+    status = aiobt(system, "status")
+    [planner] = [row.split() for row in status.stdout.splitlines() if " planner " in row]
+    far = ["1.5,1.5", "-1.5,1.9", "-1.5,-1.6", "1.5,-1.6"]  # long enough for a restart
+    command = [sys.executable, "-m", "aiobt.cli.main", "navigate", "--through", *far,
+               "-e", system, "-n", NS]  # fmt: skip
+    with subprocess.Popen(command, stdout=subprocess.PIPE, text=True) as navigate:
+        try:
+            assert navigate.stdout is not None
+            line = _line(navigate.stdout, 60.0)
+            assert line.startswith("distance remaining"), line  # driving
+            os.kill(int(planner[4]), signal.SIGKILL)  # aiobt up, this test's, restarts it
+            told = [_line(navigate.stdout, 60.0)]
+            while told[-1] and not told[-1].startswith("planner is back"):  # "": its end
+                told.append(_line(navigate.stdout, 60.0))
+            assert "planner went away (aiobt up restarts a crashed service)\n" in told, told
+            assert told[-1] == "planner is back\n", told
+            code = navigate.wait(120.0)
+        finally:
+            navigate.kill()
+    assert code == 0  # the navigation still arrived
