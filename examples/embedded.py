@@ -1,6 +1,6 @@
-"""aiobt inside your own asyncio program (run `aiobt up --world small` first).
+"""aiobt inside your own asyncio program (run `.venv/bin/aiobt up --world small` first).
 
-    python examples/embedded.py --connect tcp/127.0.0.1:7447 --namespace robot
+    .venv/bin/python examples/embedded.py    # --connect tcp/127.0.0.1:7447 --namespace robot
 
 1. Ticks a small Nav2 tree of its own (plan with ComputePathToPose, drive
    with FollowPath) in this program, next to another task of the program.
@@ -39,8 +39,10 @@ async def heartbeat(robot: RobotClient, stop: asyncio.Event) -> int:
 
 
 async def main(args: argparse.Namespace) -> int:
+    print(f"connecting to {args.connect}, namespace {args.namespace}", flush=True)
     async with connect(args.namespace, args.connect, sim_time=args.sim_time) as robot:
         # 1. a tree of our own, ticked here: Nav2's nodes talk to the planner and controller
+        print("own tree: planning and driving to (0.8, 0.6)...", flush=True)
         tree = robot.load_tree(TREE, goal="0.8;0.6;0.0")
         stop = asyncio.Event()
         beating = asyncio.create_task(heartbeat(robot, stop))
@@ -49,15 +51,22 @@ async def main(args: argparse.Namespace) -> int:
         print(f"own tree: {status.name} ({await beating} s of heartbeat meanwhile)")
 
         # 2. a goal for the navigator, which runs Nav2's full tree with recoveries
+        shown = [-1.0]  # robot time of the last line: one a second
+
         def show(feedback: object) -> None:
-            print(f"  {getattr(feedback, 'distance_remaining', 0.0):.2f} m to go")
+            if robot.clock.now() - shown[0] >= 1.0:
+                shown[0] = robot.clock.now()
+                print(f"  {getattr(feedback, 'distance_remaining', 0.0):.2f} m to go", flush=True)
+
+        print("navigator: driving to (-0.5, -0.5)...", flush=True)
 
         try:
             outcome: NavigationOutcome = await robot.navigate_to(-0.5, -0.5, 0.0, on_feedback=show)
         except ActionError as exc:  # no navigator, goal rejected, or the navigator went away
             print(f"navigator: {exc}")
             return 1
-        print(f"navigator: {outcome.state.name} {outcome.error_code} {outcome.error_msg}")
+        error = f" error {outcome.error_code} {outcome.error_msg}" if outcome.error_code else ""
+        print(f"navigator: {outcome.state.name}{error}")
     return 0 if status is Status.SUCCESS and outcome.succeeded else 1
 
 

@@ -1,4 +1,5 @@
-"""A unicode rendering of a tree and its current statuses (test failures, the CLI).
+"""Text for people: a unicode rendering of a tree and its current statuses (test
+failures, the CLI), and :func:`plural` ("1 recovery", "2 recoveries").
 
 ::
 
@@ -69,3 +70,14 @@ def render(
 
     walk(root, "")
     return "\n".join(lines)
+
+
+def plural(count: int, word: str, words: str = "") -> str:
+    """``1 recovery``, ``2 recoveries``, ``0 goals`` (``words``: the plural, default word+s)."""
+    if count == 1:
+        return f"1 {word}"
+    if not words:
+        words = (
+            word[:-1] + "ies" if word.endswith("y") and word[-2:-1] not in "aeiou" else word + "s"
+        )
+    return f"{count} {words}"

@@ -124,9 +124,12 @@ class RobotClient:
         )
         return await _outcome(sent)
 
-    async def publish_goal(self, x: float, y: float, yaw: float = 0.0) -> None:
+    async def publish_goal(
+        self, x: float, y: float, yaw: float = 0.0, before_put: Callable[[], object] = tuple
+    ) -> None:
         """Put a goal on ``{ns}/goal_pose`` (the navigator starts or updates a navigation);
-        waits up to ``server_timeout`` for a subscriber, so the goal is not lost."""
+        waits up to ``server_timeout`` for a subscriber, so the goal is not lost.
+        ``before_put`` is called just before the put."""
         publisher = self.bus.publisher("goal_pose", PoseStamped, reliable=True)
         try:
             if not await publisher.wait_for_subscribers(self.server_timeout):
@@ -134,7 +137,9 @@ class RobotClient:
                     f"{self.bus.namespace}/goal_pose: no subscriber (navigator) within "
                     f"{self.server_timeout:g} s"
                 )
-            publisher.put(pose(x, y, yaw))
+            goal = pose(x, y, yaw)
+            before_put()
+            publisher.put(goal)
         finally:
             publisher.close()
 

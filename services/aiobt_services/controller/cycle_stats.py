@@ -72,7 +72,7 @@ class CycleStats:
     def summary(self) -> str:
         """One line: ``N cycles, rate R of C Hz, cycle p50 A ms p99 B ms max M ms, cpu p50
         D ms p99 E ms, costmap updates U p50 F ms p99 G ms, slots lost L (the sleeps before
-        them: robot p50 H ms, wall p50 K ms p90 M ms)``."""
+        them: robot p50 H ms, wall p50 K ms p90 M ms)``; no parenthesis when none was lost."""
         updates = [_nearest_rank(self._updates, q) * 1e3 for q in (50, 99)]
         robot = _nearest_rank([r for r, _ in self._sleeps], 50) * 1e3
         wall = [_nearest_rank([w for _, w in self._sleeps], q) * 1e3 for q in (50, 90)]
@@ -81,9 +81,13 @@ class CycleStats:
             f"cycle p50 {self.percentile(50) * 1e3:.2f} ms p99 {self.percentile(99) * 1e3:.2f} ms "
             f"max {self.percentile(100) * 1e3:.2f} ms, cpu p50 {self.cpu_percentile(50) * 1e3:.2f}"
             f" ms p99 {self.cpu_percentile(99) * 1e3:.2f} ms, costmap updates {len(self._updates)}"
-            f" p50 {updates[0]:.2f} ms p99 {updates[1]:.2f} ms, slots lost {self._lost} (the"
-            f" sleeps before them: robot p50 {robot:.0f} ms, wall p50 {wall[0]:.1f} ms p90"
-            f" {wall[1]:.1f} ms)"
+            f" p50 {updates[0]:.2f} ms p99 {updates[1]:.2f} ms, slots lost {self._lost}"
+            + (
+                f" (the sleeps before them: robot p50 {robot:.0f} ms, wall p50 {wall[0]:.1f} ms"
+                f" p90 {wall[1]:.1f} ms)"
+                if self._lost
+                else ""
+            )
         )
 
 

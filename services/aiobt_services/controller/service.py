@@ -129,8 +129,9 @@ class ControllerService:
             self._publish(STOP)
             if self._view is not None:
                 self._view.end(session.request.path.frame_id, self.clock.now())
-        outcome = FollowPathError(result.error_code).name
-        log.info("follow_path: goal %s ended %s %s", handle.goal_id, outcome, result.error_msg)
+        code = result.error_code
+        outcome = f"error {code} {FollowPathError(code).name}" if code else "succeeded"
+        log.info("follow_path: goal %s %s %s", handle.goal_id, outcome, result.error_msg)
         return result
 
     async def _run(self, session: FollowPathSession, handle: Handle) -> FollowPath.Result:

@@ -93,7 +93,7 @@ class Navigation:
         codes = navigator_codes(self.request)
         problem = self.navigator.goal_problem(self.request)
         if problem is not None:
-            log.error("goal %s refused: %s", self.request.goal_id, problem.error_msg)
+            log.error("refused %s", problem.error_msg)  # it names the action and the goal
             return problem
         # bt_navigator: "Initial robot pose is not available." (TF_ERROR)
         pose_timeout = self.navigator.options.pose_timeout

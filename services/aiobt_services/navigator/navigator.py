@@ -171,6 +171,7 @@ class Navigator:
                 ticks=navigation.ticks,
                 number_of_recoveries=navigation.number_of_recoveries,
                 distance_remaining=navigation.distance_remaining,
+                goals=list(navigation.request.poses),
             )
         if self._last is None:
             return self.stream.snapshot(self._state, self.clock.now())
@@ -182,6 +183,7 @@ class Navigator:
             goal_id=request.goal_id,
             error_code=result.error_code,
             error_msg=result.error_msg,
+            goals=list(request.poses),
         )
 
     def open_btlog(self, tree: Tree, request: NavRequest) -> BtlogLogger | None:

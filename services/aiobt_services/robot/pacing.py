@@ -47,10 +47,15 @@ def speed_label(speed: float) -> str:
     return "max" if math.isinf(speed) else f"x{speed:g}"
 
 
+MET = 0.95  # of --speed achieved over a report's span: the speed was met (lag made up)
+
+
 class Pacer:
     """Paces steps of ``dt`` sim seconds against a wall clock read by the caller."""
 
-    __slots__ = ("_dt", "_max_lag", "_report_every", "_sim0", "_wall0", "_window", "speed")
+    __slots__ = (
+        "_dt", "_max_lag", "_report_every", "_sim0", "_wall0", "_window", "fell_short", "speed",
+    )  # fmt: skip
 
     def __init__(
         self, speed: float, dt: float, *, max_lag: float = 0.25, report_every: float = 5.0
@@ -66,6 +71,7 @@ class Pacer:
         self._report_every = report_every
         self._wall0 = self._sim0 = 0.0
         self._window = _Window(0.0, 0.0)
+        self.fell_short = False  # the last report's span achieved less than MET of speed
 
     @property
     def unpaced(self) -> bool:
@@ -109,6 +115,8 @@ class Pacer:
             return None
         achieved = (sim - window.sim) / span if span > 0.0 else 0.0
         self._window = _Window(wall, sim)
+        met = self.unpaced or achieved >= MET * self.speed
+        self.fell_short = not met
         holds = (
             f"; waited {window.holds} time(s), {window.held:.2f} s in all, for a late cmd_vel"
             if window.holds
@@ -121,8 +129,9 @@ class Pacer:
         head = f"achieved x{achieved:.1f} over the last {span:.1f} s"
         if window.events == 0:
             return f"simulation at --speed {self.speed:g}: {head}{holds}"
+        where = "at" if met else "behind"
         return (
-            f"simulation behind --speed {self.speed:g}: {head}; fell more than "
+            f"simulation {where} --speed {self.speed:g}: {head}; fell more than "
             f"{self._max_lag:g} s behind {window.events} time(s), {window.lost:.2f} s of sim "
             f"time given up{holds}"
         )

@@ -176,7 +176,7 @@ class SimRunner:
                 self.tick()
                 line = pacer.report(self.wall.now(), self.sim.time)
                 if line is not None:
-                    log.log(logging.INFO if pacer.unpaced else logging.WARNING, "%s", line)
+                    log.log(logging.WARNING if pacer.fell_short else logging.INFO, "%s", line)
         finally:
             self.publish_clock()
             self._clock_batch = 1

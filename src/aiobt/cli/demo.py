@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import asyncio
+import logging
 import sys
 from pathlib import Path
 from typing import TextIO
@@ -22,6 +23,7 @@ from typing import TextIO
 from aiobt.demo.mission import PATROL, Patrol
 from aiobt.demo.picture import render
 from aiobt.demo.record import Leg, Record
+from aiobt.display import plural
 from aiobt.embed import Feedback, connect
 from aiobt.system import ConfigError, Fatal, SystemConfig, load_config, run_system
 from aiobt.transport import BusSettings
@@ -38,7 +40,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 class FileSink:
-    """The services' output into a log file; supervisor events also on the terminal."""
+    """The services' output into a log file; a crash or restart also on the terminal."""
 
     def __init__(self, log: TextIO, out: TextIO) -> None:
         self.log = log
@@ -50,8 +52,32 @@ class FileSink:
     def event(self, name: str, text: str) -> None:
         self.log.write(f"{name:>10} * {text}\n")
         self.log.flush()
-        if text != "up":
+        # crashes and restarts reach the terminal; coming up and a slow stop at the end
+        # (killed after its grace) are the log's
+        if text != "up" and not text.startswith("did not stop within"):
             self.out.write(f"  [{name}] {text}\n")
+
+
+class StoryLines(logging.Handler):
+    """The demo's own log lines (``aiobt.demo``: the boxes put in the robot's way and
+    taken away, a path not drawn) as lines of its output, between the progress lines."""
+
+    def __init__(self, out: TextIO) -> None:
+        super().__init__(logging.INFO)
+        self.out = out
+        self.live = out.isatty()
+
+    def emit(self, record: logging.LogRecord) -> None:
+        warning = "warning: " if record.levelno >= logging.WARNING else ""
+        text = f"  {warning}{record.getMessage()}"
+        self.out.write(f"\r{text:<90}\n" if self.live else f"{text}\n")
+        self.out.flush()
+
+    def attach(self) -> None:
+        story = logging.getLogger("aiobt.demo")
+        story.setLevel(logging.INFO)
+        story.propagate = False  # not also as a log record on stderr
+        story.addHandler(self)
 
 
 class ProgressLine:
@@ -65,7 +91,7 @@ class ProgressLine:
         distance, recoveries = feedback.distance_remaining, feedback.number_of_recoveries
         text = (
             f"\r  goal {number + 1}/{len(PATROL)} {leg.name}: "
-            f"{distance:5.2f} m to go, recoveries {recoveries}"
+            f"{distance:5.2f} m to go, {plural(recoveries, 'recovery')}"
         )
         self.out.write(f"{text:<90}")
         self.out.flush()
@@ -75,7 +101,7 @@ class ProgressLine:
         prefix = "\r" if self.live else ""
         line = (
             f"{prefix}  goal {number + 1}/{len(PATROL)} {leg.name}: {mark} "
-            f"in {leg.seconds:.1f} s sim, {leg.recoveries} recoveries"
+            f"in {leg.seconds:.1f} s sim, {plural(leg.recoveries, 'recovery')}"
         )
         self.out.write(f"{line:<90}\n")
         self.out.flush()
@@ -84,6 +110,7 @@ class ProgressLine:
 async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
     record = Record()
     progress = ProgressLine(out)
+    StoryLines(out).attach()
     with (out_dir / "services.log").open("w") as log:
         async with run_system(config, FileSink(log, out)) as system:
             down = await system.wait_healthy(HEALTH_TIMEOUT)
@@ -99,11 +126,13 @@ async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
                     await patrol.drive(number, leg)
                     progress.done(number, leg)
     picture = out_dir / "patrol.png"
-    picture.write_bytes(render(record))
+    title = f"aiobt demo: a patrol of {len(PATROL)} goals, small world, sim at x{config.speed:g}"
+    picture.write_bytes(render(record, title=title))
     reached = sum(leg.reached for leg in record.legs)
     recoveries = sum(leg.recoveries for leg in record.legs)
     total = len(record.legs)
-    out.write(f"{reached} of {total} goals reached, {recoveries} recoveries; picture: {picture}\n")
+    recovered = plural(recoveries, "recovery")
+    out.write(f"{reached} of {total} goals reached, {recovered}; picture: {picture}\n")
     return 0 if reached == len(record.legs) else 1
 
 

@@ -16,6 +16,7 @@ import asyncio
 import sys
 from pathlib import Path
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.foxglove import DEFAULT_PORT, LAYOUT, LOCAL_HOST, BridgeOptions, running_bridge
 from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS
@@ -96,5 +97,5 @@ def run(args: argparse.Namespace) -> int:
         options = options_from_args(args)
         return asyncio.run(bridge(args, options))
     except (BusUnavailable, BusConfigError, ValueError, OSError, RuntimeError) as exc:
-        print(f"aiobt foxglove: {exc}", file=sys.stderr)
+        print(failure("foxglove", exc), file=sys.stderr)
         return 2

@@ -1,7 +1,7 @@
 """``aiobt monitor``: the navigator's running tree, live, in the terminal.
 
     aiobt monitor                 # full-screen view, redrawn as statuses change
-    aiobt monitor --plain         # one line per status change (also when piped)
+    aiobt monitor --plain         # a line per change worth reading (also when piped)
     aiobt monitor --once          # print the tree once and exit
 
 Reads the status stream ``{ns}/bt/tree``, ``{ns}/bt/transitions`` and
@@ -19,8 +19,10 @@ import signal
 import sys
 from typing import TextIO
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.monitor import TreeView
+from aiobt.monitor.plain import PlainLog
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
 from aiobt.transport import (
     Bus,
@@ -38,7 +40,9 @@ _REFRESH = 0.1  # s of wall time between redraws: what an eye follows
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
     parser.set_defaults(connect_timeout=CONNECT_TIMEOUT)
-    parser.add_argument("--plain", action="store_true", help="a line per change, no redraw")
+    parser.add_argument(
+        "--plain", action="store_true", help="a line per change worth reading, no redraw"
+    )
     parser.add_argument("--once", action="store_true", help="print the tree once and exit")
     parser.add_argument(
         "--timeout", type=float, default=10.0, metavar="SECONDS",
@@ -51,12 +55,12 @@ class Monitor:
 
     def __init__(self, out: TextIO, plain: bool, colour: bool) -> None:
         self.view = TreeView()
+        self.log = PlainLog()
         self.out = out
         self.plain = plain
         self.colour = colour
         self.changed = asyncio.Event()
         self.have_tree = asyncio.Event()
-        self._state = ""
 
     def attach(self, bus: Bus) -> None:
         bus.subscribe("bt/tree", BtTree, self.on_tree, latched=True)
@@ -67,27 +71,26 @@ class Monitor:
         self.view.on_tree(tree)
         self.have_tree.set()
         if self.plain:
-            self._write(
-                f"tree {tree.tree_id} (run {tree.run}, {len(tree.nodes)} nodes) {tree.source}"
-            )
+            self._write(*self.log.on_tree(tree))
         self.changed.set()
 
     def on_transitions(self, message: BtTransitions) -> None:
         for node, status in self.view.on_transitions(message):
-            if self.plain:
-                self._write(f"{message.stamp:9.2f}s  {status:<8} {node.path}")
+            line = self.log.on_transition(node, status, message.stamp) if self.plain else None
+            if line is not None:
+                self._write(line)
         self.changed.set()
 
     def on_snapshot(self, snapshot: BtSnapshot) -> None:
         self.view.on_snapshot(snapshot)
-        if self.plain and snapshot.state != self._state and self.view.snapshot is snapshot:
-            self._state = snapshot.state
-            self._write(self.view.header())
+        if self.plain and self.view.snapshot is snapshot:
+            self._write(*self.log.on_snapshot(snapshot))
         self.changed.set()
 
-    def _write(self, line: str) -> None:
-        self.out.write(line + "\n")
-        self.out.flush()
+    def _write(self, *lines: str) -> None:
+        if lines:
+            self.out.write("".join(line + "\n" for line in lines))
+            self.out.flush()
 
     async def redraw_forever(self) -> None:
         while True:
@@ -132,5 +135,5 @@ def run(args: argparse.Namespace) -> int:
     try:
         return asyncio.run(monitor(args, sys.stdout))
     except (BusUnavailable, BusConfigError) as exc:
-        print(f"aiobt monitor: {exc}", file=sys.stderr)
+        print(failure("monitor", exc), file=sys.stderr)
         return 2

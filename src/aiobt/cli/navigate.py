@@ -6,18 +6,22 @@
 Feedback (distance remaining, time, recoveries) is shown while the robot
 drives. Exit status: 0 when the goal SUCCEEDED, 1 when it was ABORTED or
 CANCELED (Nav2's error code and message are printed), 2 for bad input or no
-navigator within ``--server-timeout``. Ctrl-C cancels the goal.
+navigator within ``--server-timeout``. Ctrl-C cancels the goal. A service that
+goes away meanwhile (killed, restarted by ``aiobt up``) and comes back is
+shown on a line of its own.
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import re
 import sys
-import time
-from typing import TextIO
 
-from aiobt.embed import Feedback, NavigationOutcome, RobotClient, connect
+from aiobt.cli.failure import failure
+from aiobt.cli.feedback_line import FeedbackLine
+from aiobt.cli.service_watch import watch_services
+from aiobt.embed import NavigationOutcome, RobotClient, connect
 from aiobt.transport import (
     BusConfigError,
     BusSettings,
@@ -28,6 +32,7 @@ from aiobt.transport import (
     add_bus_arguments,
 )
 
+NEGATIVE_POSE = re.compile(r"^-\d*\.?\d+(,-?\d*\.?\d+){0,2}$")
 CONNECT_TIMEOUT = 5.0  # s: a command line tool reports a missing router instead of waiting
 
 
@@ -38,6 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="navigate through these poses, in order",
     )  # fmt: skip
     parser.add_argument("--tree", default="", metavar="FILE|ID", help="the navigator's tree")
+    # "-1.5,1.9" is a pose, not a flag: argparse (3.11) takes only "-1.5" for a number
+    parser._negative_number_matcher = NEGATIVE_POSE
     add_client_arguments(parser)
 
 
@@ -62,43 +69,16 @@ def pose_text(text: str) -> tuple[float, ...]:
     return values
 
 
-class FeedbackLine:
-    """Live feedback: one rewritten line on a terminal, a line a second otherwise."""
-
-    def __init__(self, out: TextIO) -> None:
-        self.out = out
-        self.live = out.isatty()
-        self._last = 0.0
-
-    def __call__(self, feedback: Feedback) -> None:
-        now = time.monotonic()  # wall time by intent: how often a person reads the line
-        if not self.live and now - self._last < 1.0:
-            return
-        self._last = now
-        text = (
-            f"distance remaining {feedback.distance_remaining:6.2f} m  "
-            f"time {feedback.navigation_time:6.1f} s  "
-            f"recoveries {feedback.number_of_recoveries}"
-        )
-        remaining = getattr(feedback, "number_of_poses_remaining", None)
-        if remaining is not None:
-            text += f"  poses left {remaining}"
-        self.out.write(f"\r{text}" if self.live else f"{text}\n")
-        self.out.flush()
-
-    def end(self) -> None:
-        if self.live:
-            self.out.write("\n")
-
-
-async def navigate(args: argparse.Namespace, out: TextIO) -> NavigationOutcome:
+async def navigate(args: argparse.Namespace, show: FeedbackLine) -> NavigationOutcome:
     settings = BusSettings.from_args(args)
-    show = FeedbackLine(out)
     async with connect(settings=settings, server_timeout=args.server_timeout) as robot:
+        news = watch_services(robot.bus, show.note)
         try:
             return await _send(robot, args, show)
         finally:
             show.end()
+            if news.gone:  # went away during the navigation and not back by its end
+                print(f"{', '.join(sorted(news.gone))} not back yet", file=show.out)
 
 
 async def _send(
@@ -114,19 +94,22 @@ def run(args: argparse.Namespace) -> int:
     if bool(args.through) == bool(args.pose) or (args.pose and len(args.pose) not in (2, 3)):
         print("aiobt navigate: give X Y [YAW], or --through X,Y[,YAW] ...", file=sys.stderr)
         return 2
+    show = FeedbackLine(sys.stdout, args.through or ())
     try:
-        outcome = asyncio.run(navigate(args, sys.stdout))
+        outcome = asyncio.run(navigate(args, show))
     except KeyboardInterrupt:
         print("aiobt navigate: interrupted, goal canceled", file=sys.stderr)
         return 130
     except (ServerUnavailable, GoalRejected, GoalLost, BusUnavailable, BusConfigError) as exc:
-        print(f"aiobt navigate: {exc}", file=sys.stderr)
+        print(failure("navigate", exc), file=sys.stderr)
         return 2
     except ValueError as exc:
         print(f"aiobt navigate: {exc}", file=sys.stderr)
         return 2
     if outcome.succeeded:
-        print("goal reached")
+        x, y = (args.through[-1] if args.through else args.pose)[:2]
+        off = show.distance_to(x, y)
+        print("goal reached" + ("" if off is None else f", {off:.2f} m from the goal pose"))
         return 0
     print(f"navigation {outcome.state.name}: error {outcome.error_code} {outcome.error_msg}")
     return 1

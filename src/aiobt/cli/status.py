@@ -3,8 +3,10 @@
     aiobt status                   # every namespace on the router
     aiobt status robot r2          # these robots only
 
-Liveliness tokens ``{ns}/nodes/<service>`` say who is up; each service then
-answers ``{ns}/srv/info/<service>`` with its version, process, host and clock.
+The first line names the router asked. Liveliness tokens
+``{ns}/nodes/<service>`` say who is up (``web``: a web view, with its address);
+each then answers ``{ns}/srv/info/<service>`` with its version, process, host
+and clock.
 Exit status: 0 when at least one service is up, 1 when none is, 2 when the
 router cannot be reached.
 """
@@ -16,6 +18,7 @@ import asyncio
 import sys
 from dataclasses import dataclass
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.msgs import Empty
 from aiobt.msgs.system import ServiceInfo
@@ -69,8 +72,15 @@ async def _ask(bus: Bus, namespace: str, service: str) -> ServiceRow:
     return ServiceRow(namespace, service, info)
 
 
-def render(rows: list[ServiceRow]) -> str:
-    lines = [f"{'NAMESPACE':<14} {'SERVICE':<11} {'VERSION':<9} {'CLOCK':<5} {'PID':>7}  HOST"]
+@dataclass(slots=True, frozen=True)
+class Survey:
+    router: str  # the endpoint(s) asked and the router's Zenoh id
+    rows: list[ServiceRow]
+
+
+def render(rows: list[ServiceRow], router: str = "") -> str:
+    lines = [f"router {router}"] if router else []
+    lines.append(f"{'NAMESPACE':<14} {'SERVICE':<11} {'VERSION':<9} {'CLOCK':<5} {'PID':>7}  HOST")
     for row in rows:
         info = row.info
         if info is None:
@@ -79,24 +89,27 @@ def render(rows: list[ServiceRow]) -> str:
         clock = "sim" if info.sim_time else "wall"
         lines.append(
             f"{row.namespace:<14} {row.service:<11} {info.version:<9} {clock:<5} "
-            f"{info.pid:>7}  {info.host}"
+            f"{info.pid:>7}  {info.host}" + (f"  {info.url}" if info.url else "")
         )
     return "\n".join(lines)
 
 
-async def status(args: argparse.Namespace) -> list[ServiceRow]:
-    async with open_bus(BusSettings.from_args(args)) as bus:
-        return await survey(bus, args.namespaces)
+async def status(args: argparse.Namespace) -> Survey:
+    settings = BusSettings.from_args(args)
+    async with open_bus(settings) as bus:
+        zids = ", ".join(bus.routers()) or "none"
+        router = f"{', '.join(settings.connect) or 'found by scouting'} (Zenoh id {zids})"
+        return Survey(router, await survey(bus, args.namespaces))
 
 
 def run(args: argparse.Namespace) -> int:
     try:
-        rows = asyncio.run(status(args))
+        found = asyncio.run(status(args))
     except (BusUnavailable, BusConfigError) as exc:
-        print(f"aiobt status: {exc}", file=sys.stderr)
+        print(failure("status", exc), file=sys.stderr)
         return 2
-    if not rows:
-        print("no aiobt service is up on this router", file=sys.stderr)
+    if not found.rows:
+        print(f"router {found.router}: no aiobt service is up on it", file=sys.stderr)
         return 1
-    print(render(rows))
+    print(render(found.rows, found.router))
     return 0

@@ -33,6 +33,7 @@ from aiobt.system.console import wants_colour
 from aiobt.system.foxglove import FoxgloveOptions, start_foxglove, stop_foxglove
 from aiobt.system.supervisor import on_signals
 from aiobt.transport import Bus
+from aiobt.transport.announce import announce
 from aiobt.web import WebOptions, serve_web
 
 log = logging.getLogger("aiobt.cli.up")
@@ -109,6 +110,7 @@ async def web_view(
             sink.event("web", f"not started: {exc} (--web-port PORT, or --no-web)")
         else:
             sink.event("web", f"web view on {view.url}")
+            announce(bus, "web", sim_time=False, url=view.url)  # aiobt status lists it
         yield
 
 

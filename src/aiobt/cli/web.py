@@ -17,11 +17,13 @@ import logging
 import sys
 from typing import Any
 
+from aiobt.cli.failure import failure
 from aiobt.cli.navigate import CONNECT_TIMEOUT
 from aiobt.costmap.inflation import InflationParams
 from aiobt.system.service import non_negative, positive
 from aiobt.system.signals import stop_on_signals
 from aiobt.transport import BusConfigError, BusSettings, BusUnavailable, add_bus_arguments, open_bus
+from aiobt.transport.announce import announce
 from aiobt.web import WebOptions, serve_web
 
 log = logging.getLogger("aiobt.cli.web")
@@ -81,7 +83,8 @@ def web_options(args: argparse.Namespace, prefix: str = "") -> WebOptions:
 async def serve(args: argparse.Namespace) -> int:
     options = web_options(args)
     stop = stop_on_signals()
-    async with open_bus(BusSettings.from_args(args)) as bus, serve_web(bus, options):
+    async with open_bus(BusSettings.from_args(args)) as bus, serve_web(bus, options) as view:
+        announce(bus, "web", sim_time=False, url=view.url)  # aiobt status lists it
         await stop.wait()
     return 0
 
@@ -90,5 +93,5 @@ def run(args: argparse.Namespace) -> int:
     try:
         return asyncio.run(serve(args))
     except (BusUnavailable, BusConfigError, OSError, ValueError) as exc:
-        print(f"aiobt web: {exc}", file=sys.stderr)
+        print(failure("web", exc), file=sys.stderr)
         return 2

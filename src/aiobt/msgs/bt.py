@@ -24,6 +24,7 @@ from typing import Literal
 from pydantic import Field
 
 from aiobt.msgs._base import Msg
+from aiobt.msgs.geometry import PoseStamped
 
 StatusName = Literal["IDLE", "RUNNING", "SUCCESS", "FAILURE", "SKIPPED"]
 """A node status as BT.CPP names it (``aiobt.core.Status`` member names)."""
@@ -98,7 +99,8 @@ class BtSnapshot(Msg):
     ``state`` is the navigation's state (``idle`` before the first goal);
     ``goal_id`` the navigation action's goal id (empty between navigations);
     ``ticks`` the number of root ticks of this run so far; ``error_code`` and
-    ``error_msg`` the result of the navigation once it has ended.
+    ``error_msg`` the result of the navigation once it has ended; ``goals`` the
+    pose(s) of the goal being driven to (or of the last one, once it ended).
     """
 
     run: int = Field(ge=0)
@@ -112,4 +114,5 @@ class BtSnapshot(Msg):
     distance_remaining: float = Field(default=0.0, ge=0.0)
     error_code: int = Field(default=0, ge=0, le=65535)
     error_msg: str = ""
+    goals: list[PoseStamped] = Field(default_factory=list)
     nodes: list[BtNodeStatus]

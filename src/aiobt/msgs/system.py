@@ -17,3 +17,4 @@ class ServiceInfo(Msg):
     host: str
     sim_time: bool = Field(description="whether it runs on the simulation's clock")
     started: float = Field(ge=0.0, description="wall time it came up, s since the epoch")
+    url: str = Field(default="", description="where a person opens it (the web view's page)")

@@ -132,7 +132,7 @@ class Supervisor:
         """The back-off before restarting ``child``, or None when its exit is fatal."""
         now = self._clock.now()
         child.crashes = [t for t in child.crashes if now - t < self.restart.window] + [now]
-        why = f"exited with code {code}: {child.last_words()}"
+        why = exit_reason(code, child.last_words())
         if not child.ever_healthy:
             self._give_up(f"{child.name} failed to start ({why})")
             return None
@@ -175,6 +175,18 @@ class Supervisor:
 
     def pids(self) -> list[int]:
         return [c.pid for c in self.children.values() if c.pid is not None]
+
+
+def exit_reason(code: int, last_words: str) -> str:
+    """``killed by signal 9 (SIGKILL)``: a signal says it all (the last line printed is
+    no reason); ``exited with code 1: <its last words>`` otherwise."""
+    if code < 0:
+        try:
+            name = f" ({signal.Signals(-code).name})"
+        except ValueError:
+            name = ""
+        return f"killed by signal {-code}{name}"
+    return f"exited with code {code}: {last_words}"
 
 
 async def _wait_exit(child: Child) -> None:

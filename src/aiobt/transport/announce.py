@@ -27,8 +27,9 @@ def version() -> str:
         return "unknown (not installed)"
 
 
-def announce(bus: Bus, service: str, *, sim_time: bool) -> ServiceInfo:
-    """Serve ``srv/info/{service}``, then declare the token ``nodes/{service}``."""
+def announce(bus: Bus, service: str, *, sim_time: bool, url: str = "") -> ServiceInfo:
+    """Serve ``srv/info/{service}``, then declare the token ``nodes/{service}``
+    (``url``: where a person opens it, for a web view)."""
     info = ServiceInfo(
         service=service,
         namespace=bus.namespace,
@@ -37,6 +38,7 @@ def announce(bus: Bus, service: str, *, sim_time: bool) -> ServiceInfo:
         host=socket.gethostname(),
         sim_time=sim_time,
         started=time.time(),  # wall time by intent: when the process came up
+        url=url,
     )
     bus.serve(f"info/{service}", Empty, ServiceInfo, lambda _request: info)
     bus.declare_token(f"nodes/{service}")

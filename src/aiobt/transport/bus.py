@@ -189,6 +189,10 @@ class Bus:
 
         return await asyncio.to_thread(collect)
 
+    def routers(self) -> list[str]:
+        """The Zenoh ids of the routers this session is connected to."""
+        return [str(zid) for zid in self.session.info.routers_zid()]
+
     def declare_token(self, name: str) -> zenoh.LivelinessToken:
         """A liveliness token on ``{ns}/{name}`` (e.g. ``nodes/planner``), until the bus closes."""
         token = self.session.liveliness().declare_token(self.keys.topic(name))

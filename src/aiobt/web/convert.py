@@ -104,7 +104,7 @@ def tree_payload(tree: BtTree) -> Json:
 
 
 def navigation_payload(snapshot: BtSnapshot) -> Json:
-    """The navigation's state from the navigator's snapshot."""
+    """The navigation's state from the navigator's snapshot, with the goal it drives to."""
     return {
         "run": snapshot.run,
         "state": snapshot.state,
@@ -113,4 +113,5 @@ def navigation_payload(snapshot: BtSnapshot) -> Json:
         "error_code": snapshot.error_code,
         "error_msg": snapshot.error_msg,
         "stamp": snapshot.stamp,
+        "goals": [pose_payload(goal) for goal in snapshot.goals],
     }

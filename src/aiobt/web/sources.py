@@ -17,10 +17,10 @@ since the last flush and hands it to the :class:`Hub`. Streams:
                window (Nav2's occupancy values), at the controller's 2 Hz
 ``plan``       the planner's latest path (``compute_path_to_pose`` and
                ``compute_path_through_poses`` results)
-``goal``       ``{ns}/goal_pose`` (the page's clicks, ``aiobt goal``)
 ``feedback``   navigate_to_pose / navigate_through_poses feedback
 ``tree``       ``{ns}/bt/tree``; ``status`` from ``bt/transitions`` and
-``nav``        ``bt/snapshot`` (the navigation's state)
+``nav``        ``bt/snapshot`` (the navigation's state, and the goal it
+               drives to: the navigator's, however it was sent)
 =============  ==========================================================
 """
 
@@ -89,7 +89,7 @@ class Sources:
         topics: list[tuple[str, type[Msg], bool]] = [
             ("map", OccupancyGrid, True), ("pose", PoseStamped, False),
             ("scan", LaserScan, False), ("cmd_vel", Twist, False),
-            ("goal_pose", PoseStamped, False), ("bt/snapshot", BtSnapshot, False),
+            ("bt/snapshot", BtSnapshot, False),
             ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
         ]  # fmt: skip
         for name, model, latched in topics:
@@ -153,8 +153,6 @@ class Sources:
             self.hub.publish("scan", convert.scan_points(message, robot.pose))
         elif isinstance(message, Twist):
             robot.command = message
-        elif isinstance(message, PoseStamped):  # goal_pose
-            self.hub.publish("goal", convert.pose_payload(message))
         elif isinstance(message, BtSnapshot):
             self._tree_changed |= self.tree.on_snapshot(message)
             self.hub.publish("nav", convert.navigation_payload(message))

@@ -32,8 +32,10 @@ def test_the_embedding_example_ticks_its_tree_and_navigates(tmp_path: Path) -> N
             )
             assert done.returncode == 0, done.stdout + done.stderr
             lines = done.stdout.splitlines()
-            assert lines[0].startswith("own tree: SUCCESS (")
-            assert lines[-1] == "navigator: SUCCEEDED 0 "
+            assert lines[0] == f"connecting to {endpoint}, namespace embed"  # at once
+            assert lines[1] == "own tree: planning and driving to (0.8, 0.6)..."
+            assert lines[2].startswith("own tree: SUCCESS (")
+            assert lines[-1] == "navigator: SUCCEEDED"
             assert any(line.endswith(" m to go") for line in lines)
     finally:
         kill_mentioning(endpoint)

@@ -1,7 +1,8 @@
 """The web view in headless Chromium, fed by the whole stack (router, robot, planner,
 controller, behaviors, navigator) at 4x: the page loads the map, shows the robot,
 a click on the map puts a goal on ``{ns}/goal_pose`` that the navigator takes (its
-tree is drawn with live statuses) and the robot drives in the page."""
+tree is drawn with live statuses) and the robot drives in the page; a goal sent
+as a navigate_to_pose action then is the one marked; the map has a scale bar."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import WebDriverWait
 
-from aiobt.msgs import PoseStamped
+from aiobt.msgs import NavigateToPose, PoseStamped
 from aiobt.testing.browser import measured_rate, page_value
 from aiobt.testing.stack import StackConfig, running_stack
 from aiobt.transport import open_bus
@@ -23,6 +24,7 @@ from aiobt.web import WebOptions, serve_web
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 GOAL = (18.5, 18.0)  # the office's north-east room, ~25 m of path from the start
+OTHER_GOAL = (4.0, 9.75)  # 2 m east of the start, sent as an action
 WAIT = 90.0  # s for anything the page must show (a loaded machine)
 # the e2e tests' speed-up: at 10x on a machine at load ~20 the stack itself may not drive
 # (bench/web measures the page at 10x)
@@ -122,6 +124,26 @@ async def test_page_shows_the_robot_driving_to_a_clicked_goal(browser, tmp_path)
                 rate = await asyncio.to_thread(measured_rate, browser)
                 print(f"web view at {SPEED:g}x: {rate[0]:.1f} updates/s, {rate[1]:.1f} poses/s")
                 assert rate[1] > 0  # the robot kept moving in the page (a rate, not a bound)
+                bar = page_value(browser, "window.aiobtState.scaleBar")
+                assert bar["metres"] in (1, 2, 5, 10), bar  # the office: some 20 m across
+                per_metre = page_value(  # canvas pixels per metre of map
+                    browser,
+                    "(s => document.getElementById('map').width / (s.map.width * s.map.resolution))"
+                    "(window.aiobtState)",
+                )
+                assert bar["pixels"] == pytest.approx(bar["metres"] * per_metre)
+                # the marker is the goal the navigator drives to, not the last goal_pose
+                client = bus.action_client(NavigateToPose.name, NavigateToPose)
+                other = PoseStamped.from_xy_yaw(*OTHER_GOAL, 0.0)
+                await client.send_goal(NavigateToPose.Goal(pose=other), server_timeout=WAIT)
+                marked = await wait_page(
+                    browser,
+                    f"(g => g.length && Math.hypot(g[0].x - {OTHER_GOAL[0]}, "
+                    f"g[0].y - {OTHER_GOAL[1]}) < 0.01 && g)(window.aiobtState.goals)",
+                    "the action's goal marked",
+                )
+                assert len(marked) == 1
+                assert goals.empty()  # and no goal_pose was put for it
                 shot = tmp_path / "web_view.png"
                 assert await asyncio.to_thread(browser.save_screenshot, str(shot))
                 assert shot.stat().st_size > 10_000

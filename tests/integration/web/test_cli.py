@@ -15,7 +15,8 @@ import aiohttp
 import numpy as np
 import pytest
 
-from aiobt.msgs import OccupancyGrid, PoseStamped
+from aiobt.msgs import Msg, OccupancyGrid, PoseStamped
+from aiobt.msgs.bt import BtSnapshot
 from aiobt.testing.bus import ServiceProcess, free_endpoint, free_port, wait_port
 from aiobt.transport import Bus
 from tests.integration.system.helpers import SystemProcess, kill_mentioning, processes_mentioning
@@ -45,11 +46,12 @@ async def first(ws: aiohttp.ClientWebSocketResponse, stream: str, check: Any = N
     raise AssertionError("unreachable")
 
 
-async def keep_publishing(bus: Bus, pose: PoseStamped) -> None:
-    """The robot's pose at 20 Hz, as a robot would (a put before the view subscribed is lost)."""
-    publisher = bus.publisher("pose", PoseStamped)
+async def keep_publishing(bus: Bus, message: Msg, topic: str = "pose") -> None:
+    """``message`` at 20 Hz, as a robot would its pose (a put before the view subscribed is
+    lost)."""
+    publisher = bus.publisher(topic, type(message))
     while True:
-        publisher.put(pose)
+        publisher.put(message)
         await asyncio.sleep(0.05)
 
 
@@ -88,7 +90,15 @@ async def test_aiobt_web_serves_the_page_fed_from_the_bus_and_takes_goals(
                 assert (await first(ws, "goal_reply"))["ok"]
                 goal = await asyncio.wait_for(goals.get(), WAIT)
                 assert (goal.x, goal.y, round(goal.yaw, 6)) == (2.0, 1.0, 0.5)
-                assert (await first(ws, "goal"))["x"] == 2.0  # shown on the map
+                # the map marks the navigator's goal (bt/snapshot), whatever goal_pose said
+                driven = PoseStamped.from_xy_yaw(-1.0, 0.5)
+                shot = BtSnapshot(run=0, state="navigating", goals=[driven], nodes=[])
+                snapshots = asyncio.create_task(keep_publishing(bus, shot, "bt/snapshot"))
+                try:
+                    nav = await first(ws, "nav", lambda n: n["goals"])
+                finally:
+                    snapshots.cancel()
+                assert [(g["x"], g["y"]) for g in nav["goals"]] == [(-1.0, 0.5)]
                 await ws.send_str('{"goal": {"x": "far"}}')
                 bad = await first(ws, "goal_reply")
                 assert not bad["ok"]

@@ -63,14 +63,28 @@ def test_validate_names_file_line_node_and_port_and_checks_every_file(
     assert "1 of 2 files valid" in err
 
 
-def test_validate_a_file_without_trees_and_a_missing_file(
+def test_validate_a_file_of_node_models_an_empty_file_and_a_missing_file(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     model = _file(tmp_path, "model.xml", MODEL)
-    assert main(["validate", model, str(tmp_path / "gone.xml")]) == 1
+    empty = _file(tmp_path, "empty.xml", '<root BTCPP_format="4"/>')
+    assert main(["validate", model]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == f"ok      {model} (3 node models, no tree)"
+    assert main(["validate", model, empty, str(tmp_path / "gone.xml")]) == 1
     err = capsys.readouterr().err
-    assert f"INVALID {model}: no <BehaviorTree> in this file" in err
+    assert f"INVALID {empty}: no <BehaviorTree> and no <TreeNodesModel> in this file" in err
     assert "gone.xml" in err
+    assert "1 of 3 files valid" in err
+
+
+def test_validate_every_shipped_nav2_file_as_the_readme_does(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    files = sorted(str(p) for p in (Path(__file__).parents[3] / "trees" / "nav2").glob("*.xml"))
+    assert main(["validate", *files]) == 0
+    out = capsys.readouterr().out
+    assert "nav2_tree_nodes.xml (" in out
+    assert out.splitlines()[-1] == f"{len(files)} of {len(files)} files valid"
 
 
 def test_an_unknown_id_mentions_plugin_and_nodes_model_without_a_misleading_guess(

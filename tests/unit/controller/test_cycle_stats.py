@@ -72,3 +72,10 @@ def test_slots_lost_are_counted_with_the_sleeps_before_them() -> None:
     assert stats.summary().endswith(
         "slots lost 3 (the sleeps before them: robot p50 100 ms, wall p50 6.0 ms p90 10.0 ms)"
     )
+
+
+def test_a_goal_without_lost_slots_has_no_empty_sleep_figures() -> None:
+    stats = CycleStats(0.05)
+    for i in range(5):
+        stats.record(i * 0.05, 0.001)
+    assert stats.summary().endswith(", slots lost 0")

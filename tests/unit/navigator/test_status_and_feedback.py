@@ -47,6 +47,7 @@ async def test_the_structure_then_transitions_per_tick_then_a_snapshot(tmp_path:
     statuses = {s.uid: s.status for s in during.nodes}
     assert during.state == "navigating"
     assert during.goal_id == "g"
+    assert [(g.x, g.y) for g in during.goals] == [(1.0, 2.0)]  # what the web view marks
     assert statuses[by_name["drive"].uid] == "RUNNING"
     assert statuses[by_name["park"].uid] == "IDLE"
     batches_before = len(rig.sink.batches)
@@ -59,6 +60,7 @@ async def test_the_structure_then_transitions_per_tick_then_a_snapshot(tmp_path:
     await asyncio.wait_for(task, WAIT)
     final = rig.sink.snapshots[-1]
     assert final.state == "succeeded"
+    assert [(g.x, g.y) for g in final.goals] == [(1.0, 2.0)]  # the last goal, once ended
     assert final.run == 1
     assert {s.status for s in final.nodes} == {"IDLE"}  # the halted tree rests
 

@@ -97,7 +97,7 @@ async def test_a_crash_after_being_up_restarts_with_doubling_back_off_then_gives
             child.process.terminate()
         async with asyncio.timeout(WAIT):
             reason = await supervisor.fatal
-        assert "planner exited with code -15" in str(reason)
+        assert "planner killed by signal 15 (SIGTERM);" in str(reason)
         assert "4 crashes in 60 s, giving up" in str(reason)
         crashes = [text for name, text in sink.events if text.startswith("crashed")]
         assert [c.rsplit("restart in ", 1)[1] for c in crashes] == ["0.1 s", "0.2 s", "0.3 s"]

@@ -58,7 +58,8 @@ class IsGoalNearby(RobotStateNode, ConditionNode):
         if not path.poses:
             if not self._empty_reported:
                 self._empty_reported = True
-                log.warning("%s: the path is empty", self.path)
+                # every navigation starts so (no plan yet): not worth a warning
+                log.debug("%s: the path is empty", self.path)
             return False
         self._empty_reported = False
         robot = self.robot_pose(path.header.frame_id)

@@ -3,7 +3,8 @@
 
 const state = {
   connected: false, frames: 0, updatesPerSecond: 0, poseUpdatesPerSecond: 0, poseUpdates: 0,
-  robot: null, map: null, costmap: null, scan: [], plan: [], local: [], goal: null,
+  robot: null, map: null, costmap: null, scan: [], plan: [], local: [], goals: [],
+  scaleBar: null,
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
   goalsSent: 0, goalReply: null,
@@ -52,7 +53,7 @@ function receive(update) {
     state.poseUpdatesPerSecond = countRate(poseArrivals, now);
     canvas.dataset.robotX = update.pose.x; canvas.dataset.robotY = update.pose.y;
   }
-  for (const key of ["scan", "plan", "local", "goal", "footprint"]) {
+  for (const key of ["scan", "plan", "local", "footprint"]) {
     if (key in update) state[key] = update[key];
   }
   if ("map" in update) { state.map = update.map; layers.map = gridImage(update.map, mapColour); }
@@ -72,7 +73,7 @@ function receive(update) {
   if ("nav" in update) showNav(update.nav);
   if ("feedback" in update) showFeedback(update.feedback);
   if ("goal_reply" in update) showGoalReply(update.goal_reply);
-  setText("rate", `${state.updatesPerSecond} updates/s`);
+  setText("rate", `${state.updatesPerSecond} ${state.updatesPerSecond === 1 ? "update" : "updates"}/s`);
   dirty = true;
 }
 
@@ -177,8 +178,37 @@ function draw() {
   polyline(state.plan, "#2962ff", 2.5);
   polyline(state.local, "#00a86b", 3);
   polyline(state.localPlan, "#e6007a", 3);
-  if (state.goal) arrow(state.goal, "#8e24aa", 0.15);
+  drawGoals();
   if (state.robot) arrow(state.robot, "#ff9800", state.footprint.radius);
+  drawScaleBar();
+}
+// the navigator's goal (however it was sent): purple while driven to, grey once ended;
+// the via-points of navigate_through_poses as small circles
+function drawGoals() {
+  const goals = state.goals; if (!goals.length) return;
+  const active = state.nav && state.nav.state === "navigating";
+  const colour = active ? "#8e24aa" : "#9e9e9e";
+  for (const via of goals.slice(0, -1)) {
+    const [cx, cy] = toCanvas(via.x, via.y);
+    ctx.strokeStyle = colour; ctx.lineWidth = 2;
+    ctx.beginPath(); ctx.arc(cx, cy, 5, 0, 2 * Math.PI); ctx.stroke();
+  }
+  arrow(goals[goals.length - 1], colour, 0.15);
+}
+// a bar of 1, 2 or 5 x 10^k metres, about a fifth of the map's width, bottom left
+function drawScaleBar() {
+  const m = state.map; const across = m.width * m.resolution / 5;
+  const power = 10 ** Math.floor(Math.log10(across));
+  const metres = [5, 2, 1].map((f) => f * power).find((v) => v <= across) || power;
+  const pixels = metres / m.resolution * scale;
+  const x = 12; const y = canvas.height - 14;
+  ctx.fillStyle = "rgba(255, 255, 255, 0.8)"; ctx.fillRect(x - 6, y - 20, pixels + 12, 28);
+  ctx.strokeStyle = "#222"; ctx.lineWidth = 3;
+  ctx.beginPath(); ctx.moveTo(x, y - 5); ctx.lineTo(x, y); ctx.lineTo(x + pixels, y);
+  ctx.lineTo(x + pixels, y - 5); ctx.stroke();
+  ctx.fillStyle = "#222"; ctx.font = "13px system-ui, sans-serif";
+  ctx.fillText(`${metres} m`, x + 4, y - 7);
+  state.scaleBar = { metres, pixels };
 }
 
 // ---- goals ---------------------------------------------------------------------------
@@ -209,7 +239,7 @@ function showGoalReply(reply) {
 
 // ---- navigation and the tree ---------------------------------------------------------
 function showNav(nav) {
-  state.nav = nav;
+  state.nav = nav; state.goals = nav.goals || [];
   let text = `${nav.state}, ${nav.distance_remaining.toFixed(2)} m to go`;
   if (nav.error_code) text += `, error ${nav.error_code} ${nav.error_msg}`;
   setText("nav", text);
