@@ -12,7 +12,11 @@ import argparse
 import logging
 
 from aiobt.core.clock import Clock
-from aiobt.system.costmap_flags import add_local_costmap_arguments, local_costmap_from
+from aiobt.system.costmap_flags import (
+    add_command_argument,
+    add_local_costmap_arguments,
+    local_costmap_from,
+)
 from aiobt.system.service import add_clock_arguments, positive, run_service, serve_on_clock
 from aiobt.transport import Bus, add_bus_arguments
 
@@ -42,6 +46,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "moved on as long, or the robot sent nothing, is stale, s (default: %(default)s)",
     )
     add_local_costmap_arguments(group)
+    add_command_argument(group)
 
 
 async def serve(args: argparse.Namespace) -> None:
@@ -54,6 +59,7 @@ async def serve(args: argparse.Namespace) -> None:
             clock_timeout=args.clock_timeout,
             safety=safety,
             robot_time=args.sim_time,
+            cmd_vel_topic=args.cmd_vel_topic,
         )
         BehaviorService(bus, clock, local_costmap_from(args), options).start()
 

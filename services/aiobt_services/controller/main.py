@@ -17,7 +17,11 @@ from dataclasses import replace
 
 from aiobt.core.clock import Clock
 from aiobt.system.catalog import realtime_priority
-from aiobt.system.costmap_flags import add_local_costmap_arguments, local_costmap_from
+from aiobt.system.costmap_flags import (
+    add_command_argument,
+    add_local_costmap_arguments,
+    local_costmap_from,
+)
 from aiobt.system.realtime import add_realtime_argument
 from aiobt.system.service import (
     add_clock_arguments,
@@ -70,6 +74,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="CONTROLLER_TIMED_OUT after this long, s; 0: no limit (default: %(default)s)",
     )
     add_local_costmap_arguments(group)
+    add_command_argument(group)
+    add(
+        "--no-obstacle-layer",
+        dest="obstacle_layer",
+        action="store_false",
+        help="the local costmap does not read the lidar (tests of the collision monitor)",
+    )
     add_realtime_argument(group, realtime_priority("controller"))
 
 
@@ -89,7 +100,12 @@ def config_from(args: argparse.Namespace) -> ControllerConfig:
 
 async def serve(args: argparse.Namespace) -> None:
     def start(bus: Bus, clock: Clock) -> None:
-        options = ServiceOptions(args.clock_timeout, robot_time=args.sim_time)
+        options = ServiceOptions(
+            args.clock_timeout,
+            robot_time=args.sim_time,
+            cmd_vel_topic=args.cmd_vel_topic,
+            obstacle_layer=args.obstacle_layer,
+        )
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 
     detail = f" at {args.rate:g} Hz"
