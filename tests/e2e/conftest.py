@@ -32,11 +32,12 @@ from .world import ACTIONS, NAVIGATORS, World
 __all__ = ["pytest_runtest_makereport"]
 
 SPEED = float(os.environ.get("AIOBT_E2E_SPEED", "4"))
+SAFETY_CHAIN = os.environ.get("AIOBT_E2E_SAFETY_CHAIN", "") == "1"  # smoother + monitor in
 READY_TIMEOUT = 90.0  # wall s for five Python services to import and connect on 2 loaded cores
 
 
 def _config() -> StackConfig:
-    return StackConfig(world="office", speed=SPEED, seed=7)
+    return StackConfig(world="office", speed=SPEED, seed=7, safety_chain=SAFETY_CHAIN)
 
 
 @pytest.fixture(scope="module")

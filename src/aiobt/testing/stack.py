@@ -28,7 +28,8 @@ if TYPE_CHECKING:
     from aiobt.transport import Bus, BusSettings
 
 SERVICES = ("robot", "planner", "controller", "behaviors", "navigator")
-SIM_TIME = ("controller", "behaviors", "navigator")  # the planner needs no clock
+SAFETY_CHAIN = ("velocity_smoother", "collision_monitor")  # with safety_chain, before navigator
+SIM_TIME = ("controller", "behaviors", "navigator", *SAFETY_CHAIN)  # the planner needs no clock
 
 
 class StackError(RuntimeError):
@@ -50,15 +51,25 @@ class StackConfig:
     clock_timeout: float = 10.0
     services: Sequence[str] = SERVICES
     extra: dict[str, list[str]] = field(default_factory=dict)
+    # the velocity smoother and collision monitor between controller/behaviors and the base
+    safety_chain: bool = False
+
+    def __post_init__(self) -> None:
+        if self.safety_chain and not set(SAFETY_CHAIN) & set(self.services):
+            names = list(self.services)
+            at = names.index("navigator") if "navigator" in names else len(names)
+            self.services = (*names[:at], *SAFETY_CHAIN, *names[at:])
 
     def command(self, service: str, endpoint: str, namespace: str) -> list[str]:
         """The argv (after ``python``) that starts ``service``."""
-        args = ["-m", "aiobt.cli.main", service, "--connect", endpoint]
+        args = ["-m", "aiobt.cli.main", service.replace("_", "-"), "--connect", endpoint]
         args += ["--namespace", namespace, "--lease-ms", str(self.lease_ms)]
         if service == "robot":
             args += ["--world", self.world, "--speed", str(self.speed), "--seed", str(self.seed)]
         if service in SIM_TIME:
             args += ["--sim-time", "--clock-timeout", str(self.clock_timeout)]
+        if self.safety_chain and service in ("controller", "behaviors"):
+            args += ["--cmd-vel-topic", "cmd_vel_nav"]
         return args + self.extra.get(service, [])
 
 
