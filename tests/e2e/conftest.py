@@ -8,6 +8,8 @@
 - ``bus``: a client of the stack's router in its namespace; ``track`` (the robot's
   pose), ``goals`` (every server's goal states and last result codes), ``tree`` (the
   navigator's tree transitions) and ``world`` (obstacles, resets, navigation goals).
+- ``AIOBT_E2E_SAFETY_CHAIN=1``: the velocity smoother and the collision monitor run
+  between the controller/behaviors (on ``cmd_vel_nav``) and the base.
 
 Readiness is liveliness tokens ({ns}/nodes/<service>) and the navigator's action
 servers, never a fixed sleep; every wait is bounded; processes are killed by PID;
