@@ -110,6 +110,7 @@ class CollisionMonitor:
             p = zone.params
             if not p.enabled or p.action_type == "none":
                 continue
+            zone.update(cmd)
             wanted = [by_source[n] for n in p.sources_names if n in by_source]
             points = np.concatenate(wanted) if wanted else np.zeros((0, 2))
             found = self._zone_action(zone, points, cmd, action)

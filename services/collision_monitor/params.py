@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import Any, Literal
 
 from .shapes import Shape, ShapeError, circle, polygon
+from .velocity_polygons import SubPolygon, VelocityPolygonError, sub_polygons
 
 ActionType = Literal["none", "stop", "slowdown", "limit", "approach"]
 SourceType = Literal["scan", "pointcloud"]
@@ -45,6 +46,8 @@ class ZoneParams:
     release_consecutive_points: int = 1
     visualize: bool = False
     sources_names: tuple[str, ...] = ()
+    sub_polygons: tuple[SubPolygon, ...] = ()  # a velocity_polygon's, in order
+    holonomic: bool = False
 
 
 @dataclass(slots=True, frozen=True)
@@ -82,7 +85,7 @@ _ZONE = {"type", "points", "radius", "action_type", "enabled", "min_points", "sl
          "linear_limit", "angular_limit", "time_before_collision", "simulation_time_step",
          "trigger_consecutive_points", "release_consecutive_points", "visualize",
          "polygon_pub_topic", "sources_names", "footprint_topic", "polygon_sub_topic",
-         "polygon_subscribe_transient_local"}  # fmt: skip
+         "polygon_subscribe_transient_local", "velocity_polygons", "holonomic"}  # fmt: skip
 _SOURCE = {"type", "topic", "enabled", "source_timeout", "min_height", "max_height",
            "transport_type", "use_global_height"}  # fmt: skip
 
@@ -215,7 +218,9 @@ def _shape(section: Mapping[str, Any], name: str, action: str, footprint: Shape)
             return polygon(name, _points(where, section["points"]))
     except ShapeError as exc:
         raise MonitorConfigError(str(exc)) from None
-    raise MonitorConfigError(f"{where}: unknown polygon type {kind!r}; known: polygon, circle")
+    raise MonitorConfigError(
+        f"{where}: unknown polygon type {kind!r}; known: polygon, circle, velocity_polygon"
+    )
 
 
 def _zone(config: Mapping[str, Any], name: str, sources: tuple[str, ...],
@@ -233,9 +238,10 @@ def _zone(config: Mapping[str, Any], name: str, sources: tuple[str, ...],
             raise MonitorConfigError(
                 f"{where}: source '{source}' is not one of the observation_sources {list(sources)}"
             )
+    subs = _velocity_polygons(section, name)
     return ZoneParams(
         name=name,
-        shape=_shape(section, name, action, footprint),
+        shape=subs[-1].shape if subs else _shape(section, name, action, footprint),
         action_type=action,
         enabled=bool(section.get("enabled", True)),
         min_points=_integer(section, where, "min_points", 4),
@@ -248,7 +254,18 @@ def _zone(config: Mapping[str, Any], name: str, sources: tuple[str, ...],
         release_consecutive_points=_integer(section, where, "release_consecutive_points", 1),
         visualize=bool(section.get("visualize", False)),
         sources_names=names,
+        sub_polygons=subs,
+        holonomic=bool(section.get("holonomic", False)),
     )
+
+
+def _velocity_polygons(section: Mapping[str, Any], name: str) -> tuple[SubPolygon, ...]:
+    if section.get("type") != "velocity_polygon":
+        return ()
+    try:
+        return sub_polygons(name, section, _points)
+    except VelocityPolygonError as exc:
+        raise MonitorConfigError(str(exc)) from None
 
 
 def _ratio(section: Mapping[str, Any], where: str) -> float:

@@ -43,6 +43,7 @@ class MonitorService:
         self._state: Publisher[CollisionMonitorState] | None = None
         self._polygons: Publisher[CollisionPolygons] | None = None
         self._shown: tuple[str, str] | None = None  # the (action, polygon) last reported
+        self._shapes: tuple[int, ...] = ()  # the zones' shapes last published
 
     def start(self) -> None:
         if isinstance(self.clock, SimTime):
@@ -94,16 +95,20 @@ class MonitorService:
         return Toggle.Response(success=True, message=message)
 
     def _report(self, action: Action, force: bool = False) -> None:
-        """State and polygons when the acting polygon changes (Nav2 notifies on change)."""
+        """The state when the acting polygon changes (Nav2 notifies on change); the
+        polygons then too, and when a velocity polygon changes its shape."""
         shown = (action.action_type, action.polygon_name)
-        if shown == self._shown and not force:
-            return
-        if shown != self._shown:
-            log.info("%s", action.reason or "robot to continue normal operation")
-        self._shown = shown
+        shapes = tuple(id(z.shape) for z in self.monitor.zones)
         stamp = Header(stamp=self.clock.now(), frame_id="base_link")
-        if self._state is not None:
-            self._state.put(self._state_of(action, stamp))
+        if shown != self._shown or force:
+            if shown != self._shown:
+                log.info("%s", action.reason or "robot to continue normal operation")
+            self._shown = shown
+            if self._state is not None:
+                self._state.put(self._state_of(action, stamp))
+        elif shapes == self._shapes:
+            return
+        self._shapes = shapes
         if self._polygons is not None:
             self._polygons.put(self._outlines(action, stamp))
 
@@ -127,7 +132,7 @@ class MonitorService:
                 action_type=z.params.action_type,
                 enabled=z.params.enabled,
                 acting=z.params.name == action.polygon_name,
-                points=[(float(x), float(y)) for x, y in z.params.shape.outline()],
+                points=[(float(x), float(y)) for x, y in z.shape.outline()],
             )
             for z in self.monitor.zones
         ]

@@ -8,7 +8,8 @@ import math
 import numpy as np
 
 from .params import ZoneParams
-from .shapes import Points
+from .shapes import Points, Shape
+from .velocity_polygons import select
 
 Vel = tuple[float, float, float]  # vx, vy, wz
 
@@ -28,11 +29,20 @@ def simulated_poses(velocity: Vel, step: float, horizon: float) -> np.ndarray:
 class Zone:
     """A polygon of the monitor and its trigger state."""
 
-    __slots__ = ("_hits", "_misses", "active", "params")
+    __slots__ = ("_hits", "_misses", "active", "params", "shape")
 
     def __init__(self, params: ZoneParams) -> None:
         self.params = params
+        self.shape: Shape = params.shape
         self.reset()
+
+    def update(self, cmd: Vel) -> None:
+        """A velocity polygon takes the shape of the first sub-polygon covering ``cmd``
+        (none: it keeps its shape, as Nav2's)."""
+        if self.params.sub_polygons:
+            sub = select(self.params.sub_polygons, cmd, self.params.holonomic)
+            if sub is not None:
+                self.shape = sub.shape
 
     def reset(self) -> None:
         self._hits = 0
@@ -40,7 +50,7 @@ class Zone:
         self.active = False
 
     def count(self, points: Points) -> int:
-        return int(np.count_nonzero(self.params.shape.inside(points)))
+        return int(np.count_nonzero(self.shape.inside(points)))
 
     def triggered(self, points: Points) -> bool:
         """Whether ``min_points`` lie inside, after the consecutive-cycle debounce."""
@@ -72,6 +82,6 @@ class Zone:
         moved = np.stack(
             (dx * c[:, None] + dy * s[:, None], -dx * s[:, None] + dy * c[:, None]), -1
         )
-        inside = p.shape.inside(moved.reshape(-1, 2)).reshape(len(poses), len(points))
+        inside = self.shape.inside(moved.reshape(-1, 2)).reshape(len(poses), len(points))
         colliding = np.flatnonzero(np.count_nonzero(inside, axis=1) >= p.min_points)
         return float(colliding[0] * p.simulation_time_step) if colliding.size else -1.0
