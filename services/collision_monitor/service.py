@@ -14,16 +14,16 @@ import logging
 
 from aiobt.core.clock import Clock
 from aiobt.msgs import Header, LaserScan, Odometry, Toggle, Twist
-from aiobt.transport import Bus, Publisher
-from aiobt.transport.simtime import SimTime
-
-from .messages import (
+from aiobt.msgs.safety import (
     ACTION_CODES,
     CollisionMonitorState,
     CollisionPolygons,
     PointCloud,
     ZoneOutline,
 )
+from aiobt.transport import Bus, Publisher
+from aiobt.transport.simtime import SimTime
+
 from .monitor import Action, CollisionMonitor
 from .sources import Source, cloud_points, scan_points
 

@@ -16,8 +16,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from aiobt.msgs import LaserScan
+from aiobt.msgs.safety import PointCloud
 
-from .messages import PointCloud
 from .params import SourceParams
 from .shapes import Points
 

@@ -18,10 +18,10 @@ import pytest
 import yaml
 
 from aiobt.msgs import Clock, Odometry, PoseStamped, Twist
+from aiobt.msgs.safety import CollisionMonitorState
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 from aiobt_services.collision_monitor.main import DEFAULT_PARAMS
-from aiobt_services.collision_monitor.messages import CollisionMonitorState
 
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 ROBOT_RADIUS = 0.22

@@ -1,12 +1,12 @@
-"""Wire models of the collision monitor that ``aiobt.msgs`` does not have: a point
-source's points, the monitor's state and its polygons for viewers (JSON, as every
-:class:`aiobt.msgs.Msg`)."""
+"""Wire models of the safety chain (the collision monitor, ``aiobt_services.collision_monitor``):
+a point source's points, the monitor's state and its polygons for viewers."""
 
 from __future__ import annotations
 
 from pydantic import Field
 
-from aiobt.msgs import Header, Msg, Point
+from aiobt.msgs._base import Msg
+from aiobt.msgs.geometry import Header, Point
 
 ACTION_CODES = {"none": 0, "stop": 1, "slowdown": 2, "approach": 3, "limit": 4}  # Nav2's
 
