@@ -1,11 +1,20 @@
 """The velocity smoother on the bus: ``{ns}/cmd_vel_nav`` in, ``{ns}/cmd_vel_smoothed``
 out at ``smoothing_frequency`` of robot time (the injected clock: sim time at any
-speed-up), ``{ns}/odom`` read for CLOSED_LOOP feedback."""
+speed-up), ``{ns}/odom`` read for CLOSED_LOOP feedback.
+
+Unlike Nav2's, which publishes on its timer only, a command is smoothed and sent
+as it arrives (when half a period or more has passed since the last output), and
+the timer fills in when commands stop coming (the timeout's ramp down). A timer
+alone delays every command until its next tick: up to a period, and a whole period
+when the controller ticks on the same clock just before it, as on sim time, where
+both wake on the same clock stamp (measured: p50 54 ms at 20 Hz, bench/safety).
+"""
 
 from __future__ import annotations
 
 import asyncio
 import logging
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,6 +51,8 @@ class SmootherService:
         self._sub: Subscription[Twist] | None = None
         self._task: asyncio.Task[None] | None = None
         self._reported = 0
+        self._last = -math.inf  # when the last update ran, robot s
+        self._streaming = False  # the last update was a command's: the timer waits longer
 
     @property
     def dropped(self) -> int:
@@ -57,25 +68,36 @@ class SmootherService:
         self._task = asyncio.create_task(self.run(), name="velocity_smoother")
 
     def on_command(self, msg: Twist) -> None:
-        self.smoother.command((msg.linear.x, msg.linear.y, msg.angular.z), self.clock.now())
+        now = self.clock.now()
+        self.smoother.command((msg.linear.x, msg.linear.y, msg.angular.z), now)
+        if now - self._last >= 0.5 * self.smoother.params.period:
+            self._update(now, streaming=True)
+
+    def _update(self, now: float, streaming: bool) -> None:
+        self._last, self._streaming = now, streaming
+        out = self.smoother.update(now)
+        if out is not None and self._pub is not None:
+            self._pub.put(Twist.planar(float(out[0]), float(out[2]), float(out[1])))
 
     def on_odom(self, msg: Odometry) -> None:
         t = msg.twist
         self.smoother.odom.add(msg.header.stamp, np.array([t.linear.x, t.linear.y, t.angular.z]))
 
     async def run(self) -> None:
-        """Nav2's timer: one update per period of robot time, until cancelled."""
+        """The timer: an update a period after the last one (one and a half after a
+        command's, so a stream of commands is never overtaken by it), until cancelled."""
         period = self.smoother.params.period
         next_report = self.clock.now() + REPORT_PERIOD
         while True:
             now = self.clock.now()
-            out = self.smoother.update(now)
-            if out is not None and self._pub is not None:
-                self._pub.put(Twist.planar(float(out[0]), float(out[2]), float(out[1])))
             if now >= next_report:
                 next_report = now + REPORT_PERIOD
                 self._report_drops()
-            await self.clock.sleep(period)
+            due = self._last + (1.5 if self._streaming else 1.0) * period
+            if now < due:
+                await self.clock.sleep(due - now)
+                continue
+            self._update(now, streaming=False)
 
     def _report_drops(self) -> None:
         dropped = self.dropped

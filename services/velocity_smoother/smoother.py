@@ -8,6 +8,10 @@ command is clamped to ``[min_velocity, max_velocity]``, moved towards from the
 current velocity (the last output, OPEN_LOOP; the mean odometry, CLOSED_LOOP) within
 ``max_accel`` / ``max_decel`` per period (all axes scaled alike with
 ``scale_velocities``), and a magnitude under ``deadband_velocity`` is sent as 0.
+
+An update sooner than a period after the last one (the service updates as each
+command arrives, see :mod:`.service`) may change the velocity by only that much
+less: ``max_accel`` times the time since the last update.
 """
 
 from __future__ import annotations
@@ -25,8 +29,8 @@ from .params import SmootherParams
 class VelocitySmoother:
     """The smoothing state of one base. Time is the caller's clock, in seconds."""
 
-    __slots__ = ("_command", "_command_time", "_last", "_stopped", "_vec", "odom", "params",
-                 "rejected")  # fmt: skip
+    __slots__ = ("_command", "_command_time", "_last", "_stopped", "_updated", "_vec", "odom",
+                 "params", "rejected")  # fmt: skip
 
     def __init__(self, params: SmootherParams | None = None) -> None:
         self.params = params or SmootherParams()
@@ -40,6 +44,7 @@ class VelocitySmoother:
         self._command_time: float | None = None
         self._last = np.zeros(3)  # the last output before the deadband (Nav2's last_cmd_)
         self._stopped = False
+        self._updated: float | None = None  # when the last output was made
         self.odom = OdomAverage(p.odom_duration)
         self.rejected = 0  # input commands dropped for NaN or inf
 
@@ -67,20 +72,24 @@ class VelocitySmoother:
                 return None
             self._command = np.zeros(3)
         self._stopped = False
-        return self._step()
+        elapsed = period = self.params.period
+        if self._updated is not None:
+            elapsed = min(period, max(now - self._updated, 1e-3 * period))
+        self._updated = now
+        return self._step(1.0 / elapsed)
 
-    def _step(self) -> Vec:
+    def _step(self, frequency: float) -> Vec:
         v, p = self._vec, self.params
         current = self._last if p.feedback == "OPEN_LOOP" else self.odom.twist()
         self._command = np.clip(self._command, v["min_velocity"], v["max_velocity"])
         eta = 1.0
         if p.scale_velocities:
             etas = find_eta_constraint(
-                current, self._command, v["max_accel"], v["max_decel"], p.smoothing_frequency
+                current, self._command, v["max_accel"], v["max_decel"], frequency
             )
             eta = common_eta(etas)
         out = apply_constraints(
-            current, self._command, v["max_accel"], v["max_decel"], eta, p.smoothing_frequency
+            current, self._command, v["max_accel"], v["max_decel"], eta, frequency
         )
         self._last = out
         return np.where(np.abs(out) < v["deadband_velocity"], 0.0, out)

@@ -118,3 +118,17 @@ def test_a_new_command_after_stopping_starts_again() -> None:
     out = smoother.update(2.1)
     assert out is not None
     assert out[0] == pytest.approx(0.125)
+
+
+def test_an_update_sooner_than_a_period_moves_by_the_time_since_the_last() -> None:
+    smoother = VelocitySmoother()
+    smoother.command((0.5, 0.0, 0.0), 0.0)
+    first = smoother.update(0.0)
+    assert first is not None
+    assert first[0] == pytest.approx(2.5 * PERIOD)  # the first: a whole period's worth
+    sooner = smoother.update(0.03)
+    assert sooner is not None
+    assert sooner[0] == pytest.approx(2.5 * PERIOD + 2.5 * 0.03)
+    late = smoother.update(0.03 + 3 * PERIOD)  # never more than a period's worth
+    assert late is not None
+    assert late[0] == pytest.approx(sooner[0] + 2.5 * PERIOD)
