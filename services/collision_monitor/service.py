@@ -1,6 +1,8 @@
 """The collision monitor on the bus: ``{ns}/cmd_vel_smoothed`` in, ``{ns}/cmd_vel`` out,
 one decision per command (as Nav2's); sources subscribed as configured (the lidar on
-``{ns}/scan``, point clouds on any key); ``{ns}/odom`` for ``base_shift_correction``.
+``{ns}/scan``, point clouds on any key); ``{ns}/odom`` for ``base_shift_correction``,
+kept undecoded as it comes (50 Hz: no wake-up of the loop each) and read when a scan
+or a command arrives.
 
 Publishes, latched, its state on ``{ns}/collision_monitor/state`` (which polygon acts
 and why, on every change) and its polygons on ``{ns}/collision_monitor/polygons`` (the
@@ -11,6 +13,7 @@ what the ``ToggleCollisionMonitor`` node calls).
 from __future__ import annotations
 
 import logging
+import math
 
 from aiobt.core.clock import Clock
 from aiobt.msgs import Header, LaserScan, Odometry, Toggle, Twist
@@ -21,7 +24,7 @@ from aiobt.msgs.safety import (
     PointCloud,
     ZoneOutline,
 )
-from aiobt.transport import Bus, Publisher
+from aiobt.transport import Bus, Latest, Publisher
 from aiobt.transport.simtime import SimTime
 
 from .monitor import Action, CollisionMonitor
@@ -30,6 +33,7 @@ from .sources import Source, cloud_points, scan_points
 log = logging.getLogger("aiobt_services.collision_monitor.service")
 POLYGONS_TOPIC = "collision_monitor/polygons"
 TOGGLE_SERVICE = "collision_monitor/toggle"
+ODOM_KEPT = 32  # odometry messages kept between reads (50 Hz; reads at 10 Hz or more)
 
 
 class MonitorService:
@@ -44,6 +48,8 @@ class MonitorService:
         self._polygons: Publisher[CollisionPolygons] | None = None
         self._shown: tuple[str, str] | None = None  # the (action, polygon) last reported
         self._shapes: tuple[int, ...] = ()  # the zones' shapes last published
+        self._odom: Latest[Odometry] | None = None
+        self._odom_fed = -math.inf  # the stamp of the newest odometry in the history
 
     def start(self) -> None:
         if isinstance(self.clock, SimTime):
@@ -55,7 +61,7 @@ class MonitorService:
         for source in self.monitor.sources.values():
             self._subscribe(source)
         if self.monitor.odom is not None:
-            self.bus.subscribe(p.odom_topic, Odometry, self.on_odom)
+            self._odom = self.bus.latest(p.odom_topic, Odometry, keep=ODOM_KEPT)
         self.bus.subscribe(p.cmd_vel_in_topic, Twist, self.on_command, queue_size=1)
         self.bus.serve(TOGGLE_SERVICE, Toggle.Request, Toggle.Response, self.on_toggle)
         self._report(self.monitor.last, force=True)
@@ -65,23 +71,40 @@ class MonitorService:
         if source.params.type == "scan":
 
             def on_scan(msg: LaserScan) -> None:
+                self._feed_odom()
                 source.take(scan_points(msg), msg.header.stamp, self.clock.now())
 
             self.bus.subscribe(topic, LaserScan, on_scan, queue_size=1)
         else:
 
             def on_cloud(msg: PointCloud) -> None:
+                self._feed_odom()
                 points = cloud_points(msg, source.params)
                 source.take(points, msg.header.stamp, self.clock.now())
 
             self.bus.subscribe(topic, PointCloud, on_cloud, queue_size=1)
 
-    def on_odom(self, msg: Odometry) -> None:
-        if self.monitor.odom is not None:
+    def _feed_odom(self) -> None:
+        """The odometry come since the last call into the history, oldest first."""
+        history = self.monitor.odom
+        if self._odom is None or history is None:
+            return
+        newest = self._odom.get()
+        if newest is not None and newest.header.stamp < self._odom_fed - 1.0:
+            self._odom_fed = -math.inf  # time went back: a restarted robot
+        fresh: list[Odometry] = []
+        for msg in self._odom.newest_first():
+            if msg.header.stamp <= self._odom_fed:
+                break
+            fresh.append(msg)
+        for msg in reversed(fresh):
             pose = msg.pose
-            self.monitor.odom.add(msg.header.stamp, pose.position.x, pose.position.y, pose.yaw)
+            history.add(msg.header.stamp, pose.position.x, pose.position.y, pose.yaw)
+        if fresh:
+            self._odom_fed = fresh[0].header.stamp
 
     def on_command(self, msg: Twist) -> None:
+        self._feed_odom()
         action = self.monitor.process((msg.linear.x, msg.linear.y, msg.angular.z), self.clock.now())
         if action.publish and self._out is not None:
             vx, vy, wz = action.velocity
