@@ -51,8 +51,9 @@ class SmootherService:
         self._sub: Subscription[Twist] | None = None
         self._task: asyncio.Task[None] | None = None
         self._reported = 0
-        self._last = -math.inf  # when the last update ran, robot s
-        self._streaming = False  # the last update was a command's: the timer waits longer
+        self._last = -math.inf  # when the last output was sent, robot s
+        self._streaming = False  # the last output was a command's: the timer waits longer
+        self._next_tick = -math.inf  # the timer's next tick, robot s
 
     @property
     def dropped(self) -> int:
@@ -74,9 +75,9 @@ class SmootherService:
             self._update(now, streaming=True)
 
     def _update(self, now: float, streaming: bool) -> None:
-        self._last, self._streaming = now, streaming
         out = self.smoother.update(now)
         if out is not None and self._pub is not None:
+            self._last, self._streaming = now, streaming
             self._pub.put(Twist.planar(float(out[0]), float(out[2]), float(out[1])))
 
     def on_odom(self, msg: Odometry) -> None:
@@ -93,10 +94,12 @@ class SmootherService:
             if now >= next_report:
                 next_report = now + REPORT_PERIOD
                 self._report_drops()
-            due = self._last + (1.5 if self._streaming else 1.0) * period
+            after_output = self._last + (1.5 if self._streaming else 1.0) * period
+            due = max(self._next_tick, after_output)
             if now < due:
                 await self.clock.sleep(due - now)
                 continue
+            self._next_tick = now + period
             self._update(now, streaming=False)
 
     def _report_drops(self) -> None:
