@@ -62,7 +62,7 @@ class StackConfig:
 
     def command(self, service: str, endpoint: str, namespace: str) -> list[str]:
         """The argv (after ``python``) that starts ``service``."""
-        args = ["-m", "aiobt.cli.main", service.replace("_", "-"), "--connect", endpoint]
+        args = ["-m", "aiobt.cli.main", service, "--connect", endpoint]
         args += ["--namespace", namespace, "--lease-ms", str(self.lease_ms)]
         if service == "robot":
             args += ["--world", self.world, "--speed", str(self.speed), "--seed", str(self.seed)]

@@ -11,8 +11,8 @@ import pytest
 
 from aiobt.core.status import Status
 from aiobt.msgs import FollowPath, LaserScan, Twist
+from aiobt.msgs.sim import Ack, BumperEvent, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.robot.messages import Ack, BumperEvent, SpawnObstacle
 from tests.integration.controller.helpers import path_through
 from tests.unit.nav.support import nav_tree, run_to_end
 

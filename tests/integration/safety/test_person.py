@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 
 from aiobt.msgs import FollowPath
+from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
-from aiobt_services.robot.messages import Ack, RemoveObstacle, SpawnObstacle
 from tests.integration.controller.helpers import path_through
 
 from .chain import Spawn, Trace, start_chain

@@ -25,9 +25,9 @@ def test_on_the_chain_runs_between_the_commands_and_the_base() -> None:
     for name in ("controller", "behaviors"):
         assert service_command(name, config)[-2:] == ["--cmd-vel-topic", "cmd_vel_nav"]
     smoother = service_command("velocity_smoother", config)
-    assert smoother[0] == "velocity-smoother"
+    assert smoother[0] == "velocity_smoother"
     assert "--sim-time" in smoother
-    assert service_command("collision_monitor", config)[0] == "collision-monitor"
+    assert service_command("collision_monitor", config)[0] == "collision_monitor"
     assert available("velocity_smoother")
     assert available("collision_monitor")
 
@@ -54,7 +54,7 @@ def test_the_compose_override_runs_the_commands_aiobt_up_runs() -> None:
     config = config_from_dict({"safety_chain": True, "router": {"listen": "tcp/router:7447"}})
     assert sorted(chain) == ["behaviors", "collision-monitor", "controller", "velocity-smoother"]
     for name, spec in chain.items():
-        assert spec["command"] == service_command(name.replace("-", "_"), config)
+        assert spec["command"] == service_command(spec["command"][0], config)
         if name in base:
             continue
         assert {k: v for k, v in spec.items() if k != "command"} == {

@@ -13,9 +13,8 @@ import argparse
 import logging
 
 from aiobt.core.clock import Clock
+from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
 from aiobt.transport import Bus, add_bus_arguments
-from aiobt_services._cli import run_service
-from aiobt_services.controller.robot_io import add_clock_arguments, serve_on_clock
 
 from .params import SmootherConfigError, SmootherParams
 from .service import SmootherService, Topics
