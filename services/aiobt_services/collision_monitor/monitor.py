@@ -14,7 +14,7 @@ magnitudes) and the first stop ends the search. :meth:`publish_due` is Nav2's
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -101,7 +101,9 @@ class CollisionMonitor:
                 self._stop_stamp = now  # just stopped
             elif now - self._stop_stamp > self.params.stop_pub_timeout:
                 publish = False
-        self._previous = replace(action, publish=publish)
+        self._previous = Action(
+            action.action_type, action.polygon_name, action.velocity, action.reason, publish
+        )
         return self._previous
 
     def _zones(self, cmd: Vel, by_source: dict[str, Points]) -> Action:

@@ -82,7 +82,8 @@ class Shape:
     def inside(self, points: Points) -> NDArray[np.bool_]:
         if self.vertices is not None:
             return inside_polygon(points, self.vertices)
-        return np.asarray(np.einsum("ij,ij->i", points, points) < self.radius**2)
+        x, y = points[:, 0], points[:, 1]
+        return np.asarray(x * x + y * y < self.radius**2)
 
     def outline(self) -> Points:
         """Vertices to draw (a circle as Nav2's 16-edge polygon)."""

@@ -9,8 +9,8 @@ stamp; the newest odometry for now).
 
 from __future__ import annotations
 
+import bisect
 import math
-from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
@@ -44,35 +44,43 @@ def cloud_points(cloud: PointCloud, params: SourceParams) -> Points:
 class OdomHistory:
     """Odometry poses (x, y, yaw in ``odom``) of the last :data:`ODOM_HISTORY` seconds."""
 
-    __slots__ = ("_poses",)
+    __slots__ = ("_poses", "_stamps")
 
     def __init__(self) -> None:
-        self._poses: deque[tuple[float, float, float, float]] = deque()
+        self._stamps: list[float] = []
+        self._poses: list[tuple[float, float, float]] = []
 
     def add(self, stamp: float, x: float, y: float, yaw: float) -> None:
-        if self._poses and stamp <= self._poses[-1][0]:
-            if stamp < self._poses[-1][0]:
-                self._poses.clear()  # time went back: a restarted robot
-            else:
+        if self._stamps and stamp <= self._stamps[-1]:
+            if stamp == self._stamps[-1]:
                 return
-        self._poses.append((stamp, x, y, yaw))
-        while self._poses[0][0] < stamp - ODOM_HISTORY:
-            self._poses.popleft()
+            self._stamps.clear()  # time went back: a restarted robot
+            self._poses.clear()
+        self._stamps.append(stamp)
+        self._poses.append((x, y, yaw))
+        old = bisect.bisect_left(self._stamps, stamp - ODOM_HISTORY)
+        if old:
+            del self._stamps[:old], self._poses[:old]
 
     @property
     def empty(self) -> bool:
-        return not self._poses
+        return not self._stamps
 
     def pose_at(self, stamp: float) -> tuple[float, float, float]:
         """The pose at ``stamp``, interpolated (the nearest end outside the history)."""
-        t, x, y, yaw = (np.asarray(v) for v in zip(*self._poses, strict=True))
-        yaw = np.unwrap(yaw)
-        return (float(np.interp(stamp, t, x)), float(np.interp(stamp, t, y)),
-                float(np.interp(stamp, t, yaw)))  # fmt: skip
+        i = bisect.bisect_left(self._stamps, stamp)
+        if i == 0:
+            return self._poses[0]
+        if i == len(self._stamps):
+            return self._poses[-1]
+        t0, t1 = self._stamps[i - 1], self._stamps[i]
+        (x0, y0, a0), (x1, y1, a1) = self._poses[i - 1], self._poses[i]
+        f = (stamp - t0) / (t1 - t0)
+        turn = math.remainder(a1 - a0, math.tau)
+        return x0 + f * (x1 - x0), y0 + f * (y1 - y0), a0 + f * turn
 
     def latest(self) -> tuple[float, float, float]:
-        _, x, y, yaw = self._poses[-1]
-        return x, y, yaw
+        return self._poses[-1]
 
 
 def shift(

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from aiobt_services.collision_monitor.monitor import INVALID_SOURCE
-from aiobt_services.collision_monitor.sources import shift
+from aiobt_services.collision_monitor.sources import OdomHistory, shift
 
 from .nav2_setup import (
     ANGULAR_LIMIT,
@@ -194,3 +194,16 @@ def test_shift_turns_and_moves_points_into_the_base_frame_now() -> None:
     assert moved == pytest.approx(np.array([[0.0, -0.5], [0.5, 0.0]]))
     moved = shift(seen, (1.0, 1.0, math.pi), (1.5, 1.0, math.pi))  # reversed 0.5 m
     assert moved == pytest.approx(np.array([[1.0, 0.0], [0.5, 0.5]]))
+
+
+def test_odometry_is_interpolated_at_a_stamp_across_the_yaw_wrap() -> None:
+    history = OdomHistory()
+    history.add(1.0, 0.0, 0.0, math.pi - 0.1)
+    history.add(1.1, 0.1, 0.2, -math.pi + 0.1)  # turned left 0.2 rad through +-pi
+    x, y, yaw = history.pose_at(1.05)
+    assert (x, y) == pytest.approx((0.05, 0.1))
+    assert math.remainder(yaw - math.pi, math.tau) == pytest.approx(0.0, abs=1e-9)
+    assert history.pose_at(0.5) == history.pose_at(1.0)  # before the history: its start
+    assert history.pose_at(9.0) == history.latest()
+    history.add(5.0, 1.0, 1.0, 0.0)  # more than ODOM_HISTORY later: the old ones go
+    assert history.pose_at(1.05) == (1.0, 1.0, 0.0)
