@@ -64,8 +64,7 @@ async def measure(endpoint: str, speed: float, seconds: float) -> Figures:
     robot = ["-m", "aiobt.cli.main", "robot", "--world", "office", "--speed", f"{speed:g}"]
     procs: dict[str, ServiceProcess] = {"robot": spawn_service([*robot, *common])}
     for name in SERVICES:
-        command = name.replace("_", "-")
-        procs[name] = spawn_service(["-m", "aiobt.cli.main", command, "--sim-time", *common])
+        procs[name] = spawn_service(["-m", "aiobt.cli.main", name, "--sim-time", *common])
     try:
         settings = BusSettings(mode="client", connect=(endpoint,), namespace=ns)
         async with open_bus(settings) as bus:
