@@ -26,6 +26,7 @@ from aiobt_services.collision_monitor.main import DEFAULT_PARAMS
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 ROBOT_RADIUS = 0.22
 START = ("--start", "-1.8", "0", "0")
+EXACT_ODOMETRY = ("--odom-noise", "0", "--slip", "0")  # the smoother's ramp is read from it
 
 
 def monitor_params(tmp: Path, change: Callable[[dict[str, Any]], None]) -> str:
@@ -49,7 +50,8 @@ async def start_chain(
 ) -> dict[str, ServiceProcess]:
     """The processes (a part given as None is not started), once each is up."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
-    robot = ["-m", "aiobt_services.robot", "--world", "small", "--speed", speed, *START]
+    robot = ["-m", "aiobt_services.robot", "--world", "small", "--speed", speed, *START,
+             *EXACT_ODOMETRY]  # fmt: skip
     procs = {"robot": spawn([*robot, *common])}
     parts = {"velocity_smoother": smoother, "collision_monitor": monitor, "controller": controller}
     for name, extra in parts.items():
