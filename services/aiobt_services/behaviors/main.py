@@ -13,6 +13,7 @@ import logging
 
 from aiobt.core.clock import Clock
 from aiobt.system.robot_flags import (
+    add_command_argument,
     add_local_costmap_arguments,
     add_pose_timeout_argument,
     local_costmap_from,
@@ -40,6 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add_pose_timeout_argument(group)
     add_local_costmap_arguments(group)
+    add_command_argument(group)
 
 
 async def serve(args: argparse.Namespace) -> None:
@@ -52,6 +54,7 @@ async def serve(args: argparse.Namespace) -> None:
             clock_timeout=args.clock_timeout,
             safety=safety,
             robot_time=args.sim_time,
+            cmd_vel_topic=args.cmd_vel_topic,
         )
         BehaviorService(bus, clock, local_costmap_from(args), options).start()
 

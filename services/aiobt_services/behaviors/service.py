@@ -37,6 +37,7 @@ class BehaviorOptions:
     clock_timeout: float = 2.0
     safety: Safety | None = None
     robot_time: bool = False  # the clock follows the robot's (--sim-time): leads by stamps
+    cmd_vel_topic: str = "cmd_vel"  # cmd_vel_nav: through the velocity smoother
 
 
 class _Run:
@@ -74,7 +75,8 @@ class BehaviorService:
         self._cmd: Publisher[Twist] | None = None
 
     def start(self) -> None:
-        self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
+        # reliable: a stop must not drop
+        self._cmd = self.bus.publisher(self.options.cmd_vel_topic, Twist, reliable=True)
         self.bus.subscribe("cmd_vel_teleop", Twist, self._on_teleop)
         self.bus.subscribe("preempt_teleop", Empty, self._on_preempt_teleop)
         for plugin in BEHAVIORS.values():

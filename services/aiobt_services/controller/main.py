@@ -19,6 +19,7 @@ from aiobt.core.clock import Clock
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.realtime import add_realtime_argument
 from aiobt.system.robot_flags import (
+    add_command_argument,
     add_local_costmap_arguments,
     add_pose_timeout_argument,
     local_costmap_from,
@@ -68,6 +69,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="CONTROLLER_TIMED_OUT after this long, s; 0: no limit (default: %(default)s)",
     )
     add_local_costmap_arguments(group)
+    add_command_argument(group)
+    add(
+        "--no-obstacle-layer",
+        dest="obstacle_layer",
+        action="store_false",
+        help="the local costmap does not read the lidar (tests of the collision monitor)",
+    )
     add_realtime_argument(group, realtime_priority("controller"))
 
 
@@ -87,7 +95,12 @@ def config_from(args: argparse.Namespace) -> ControllerConfig:
 
 async def serve(args: argparse.Namespace) -> None:
     def start(bus: Bus, clock: Clock) -> None:
-        options = ServiceOptions(args.clock_timeout, robot_time=args.sim_time)
+        options = ServiceOptions(
+            args.clock_timeout,
+            robot_time=args.sim_time,
+            cmd_vel_topic=args.cmd_vel_topic,
+            obstacle_layer=args.obstacle_layer,
+        )
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 
     detail = f" at {args.rate:g} Hz"

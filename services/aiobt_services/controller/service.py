@@ -66,6 +66,8 @@ class ServiceOptions:
     clock_timeout: float = 2.0
     clear_default_distance: float = 1.0
     robot_time: bool = False  # the clock follows the robot's (--sim-time): leads by stamps
+    cmd_vel_topic: str = "cmd_vel"  # cmd_vel_nav: through the velocity smoother
+    obstacle_layer: bool = True  # False: the local costmap ignores the lidar (tests)
 
 
 class ControllerService:
@@ -84,7 +86,10 @@ class ControllerService:
         self.config = config or ControllerConfig()
         self.costmap = costmap or LocalCostmap()
         self.options = options or ServiceOptions()
-        self.tracker = RobotTracker(clock, self.costmap, robot_time=self.options.robot_time)
+        self.tracker = RobotTracker(
+            clock, self.costmap, robot_time=self.options.robot_time,
+            scan=self.options.obstacle_layer,
+        )  # fmt: skip
         self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
         self._shift = FrameShift(self.costmap)
         self.worker = CostmapWorker(self.costmap)  # every change of the costmap, in order
@@ -93,7 +98,8 @@ class ControllerService:
         self._view: LocalView | None = None
 
     def start(self) -> None:
-        self._cmd = self.bus.publisher("cmd_vel", Twist, reliable=True)  # a stop must not drop
+        # reliable: a stop must not drop
+        self._cmd = self.bus.publisher(self.options.cmd_vel_topic, Twist, reliable=True)
         self._tracking = self.bus.publisher("tracking_feedback", TrackingFeedbackMsg)
         self._view = LocalView(
             # dropped, not blocking, when congested: an observer must never hold up a cycle

@@ -37,6 +37,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add("--speed", type=float, default=2.0, help="sim speed-up (default: %(default)s)")
     add("--out", default="out/demo", metavar="DIR", help="PNG and log (default: %(default)s)")
     add("--listen", metavar="ENDPOINT", help="the router's (default: a free loopback port)")
+    add(
+        "--safety-chain",
+        action="store_true",
+        help="the velocity smoother and the collision monitor between the commands and the base",
+    )
 
 
 class FileSink:
@@ -140,7 +145,13 @@ def run(args: argparse.Namespace) -> int:
     listen = args.listen or free_endpoint()
     try:
         config = load_config(
-            None, {"world": "small", "speed": args.speed, "router": {"listen": listen}}
+            None,
+            {
+                "world": "small",
+                "speed": args.speed,
+                "router": {"listen": listen},
+                "safety_chain": args.safety_chain,
+            },
         )
     except ConfigError as exc:
         print(f"aiobt demo: {exc}", file=sys.stderr)

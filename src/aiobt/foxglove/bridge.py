@@ -19,6 +19,7 @@ from foxglove import messages as fm
 from aiobt.foxglove import convert
 from aiobt.foxglove.channels import Channels
 from aiobt.foxglove.costmap import CostmapMirror
+from aiobt.foxglove.zones import zones_scene
 from aiobt.msgs import (
     BtTransitions,
     BtTree,
@@ -31,6 +32,7 @@ from aiobt.msgs import (
     Path,
     PoseStamped,
 )
+from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Publisher, Subscription
 from aiobt.transport.topics import declare_subscription
 
@@ -78,6 +80,8 @@ class FoxgloveBridge:
         add(bus.subscribe("local_costmap/costmap", OccupancyGrid, self.on_local_costmap))
         add(bus.subscribe("bt/tree", BtTree, self.on_tree, latched=True, queue_size=1))
         add(bus.subscribe("bt/transitions", BtTransitions, self.on_transitions))
+        add(bus.subscribe("collision_monitor/polygons", CollisionPolygons, self.on_zones,
+                          latched=True, queue_size=1))  # fmt: skip
         plans = bus.keys.action(ComputePathToPose.name).any_result
         feedback = bus.keys.action(NavigateToPose.name).any_feedback
         add(self._watch(plans, ComputePathToPose.result_type(), self.on_plan))
@@ -118,6 +122,9 @@ class FoxgloveBridge:
         self.ch.pose.log(convert.pose_in_frame(msg))
         self.ch.robot.log(convert.footprint(msg.header.stamp, self.radius))
         self._transforms()
+
+    def on_zones(self, msg: CollisionPolygons) -> None:
+        self.ch.zones.log(zones_scene(msg))
 
     def on_odom(self, msg: Odometry) -> None:
         self._odom = msg

@@ -19,6 +19,7 @@ topic                 schema                       from (under the namespace ``n
 /navigator/feedback   JSON                         ``navigate_to_pose`` feedback
 /odom/speed           JSON                         ``{ns}/odom`` (speed, for the plot)
 /log                  foxglove.Log                 ``{ns}/bt/transitions`` + bridge lines
+/collision_monitor    foxglove.SceneUpdate         ``{ns}/collision_monitor/polygons``
 ====================  ===========================  =====================================
 """
 
@@ -66,6 +67,7 @@ class Channels:
     feedback: foxglove.Channel
     speed: foxglove.Channel
     log: fc.LogChannel
+    zones: fc.SceneUpdateChannel
 
     @classmethod
     def create(cls, context: foxglove.Context) -> Channels:
@@ -85,6 +87,7 @@ class Channels:
             feedback=foxglove.Channel("/navigator/feedback", schema=_FEEDBACK, context=c),
             speed=foxglove.Channel("/odom/speed", schema=_SPEED, context=c),
             log=fc.LogChannel("/log", context=c),
+            zones=fc.SceneUpdateChannel("/collision_monitor", context=c),
         )
 
     def topics(self) -> set[str]:

@@ -49,12 +49,14 @@ class RobotTracker:
 
     ``robot_time``: the clock follows the robot's own (``--sim-time``), so the
     robot's header stamps are on it and every pose is aged by its own stamp.
+    ``scan`` False: the lidar is not read (the local costmap's obstacle layer off).
     """
 
     __slots__ = (
         "_clock",
         "_pending_scan",
         "_robot_time",
+        "_scan",
         "_taken",
         "_updates",
         "_velocity",
@@ -70,9 +72,11 @@ class RobotTracker:
         costmap: LocalCostmap | None = None,
         wall: Callable[[], float] = time.monotonic,
         robot_time: bool = False,
+        scan: bool = True,
     ) -> None:
         self._clock = clock
         self._robot_time = robot_time
+        self._scan = scan
         self._taken: dict[str, float] = {}  # frame -> the newest state's own stamp
         self.costmap = costmap
         self.states: dict[str, RobotState] = {}
@@ -116,7 +120,7 @@ class RobotTracker:
             bus.subscribe("pose", PoseStamped, self.on_pose),
             bus.subscribe("odom", Odometry, self.on_odom),
         ]
-        if self.costmap is not None:
+        if self.costmap is not None and self._scan:
             subs.append(bus.subscribe("scan", LaserScan, self.on_scan))
         return subs
 

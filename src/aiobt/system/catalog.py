@@ -35,11 +35,15 @@ SERVICES: tuple[ServiceSpec, ...] = (
     ServiceSpec("planner", "the planner service", realtime_priority=70),
     ServiceSpec("controller", "the controller service", realtime_priority=90),
     ServiceSpec("behaviors", "the behavior service"),
+    ServiceSpec("velocity_smoother", "Nav2's velocity smoother (with safety_chain)"),
+    ServiceSpec("collision_monitor", "Nav2's collision monitor (with safety_chain)"),
     ServiceSpec("navigator", "the navigator: Nav2's bt_navigator over Zenoh", realtime_priority=60),
 )
 """In start order: the robot first (the map and the clock), the navigator last."""
 
 SERVICE_NAMES: tuple[str, ...] = tuple(spec.name for spec in SERVICES)
+SAFETY_CHAIN: tuple[str, ...] = ("velocity_smoother", "collision_monitor")
+"""Between the controller/behaviors and the base: run only with ``safety_chain: true``."""
 
 
 def service(name: str) -> ServiceSpec:

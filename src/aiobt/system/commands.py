@@ -35,6 +35,8 @@ def service_command(name: str, config: SystemConfig) -> list[str]:
         command += ["--world", config.world, "--speed", f"{config.speed:g}"]
     if config.uses_sim_time and not simulation:
         command.append("--sim-time")
+    if config.safety_chain and name in ("controller", "behaviors"):
+        command += ["--cmd-vel-topic", "cmd_vel_nav"]  # through smoother and monitor
     return command + list(config.services[name].args)
 
 

@@ -4,6 +4,8 @@
     world: office             # shipped world (office, small) or a Nav2 map YAML path
     speed: 1.0                # sim time runs this many times faster than the wall
     sim_time: null            # null: on when speed != 1; true/false forces it
+    safety_chain: false       # true: the velocity smoother and the collision monitor run
+                              # between the controller/behaviors (on cmd_vel_nav) and the base
     router:
       listen: tcp/127.0.0.1:7447   # where the router listens and services connect
       start: true             # false: use a router that is already running there
@@ -18,6 +20,8 @@
       planner:    {enabled: true, args: []}
       controller: {enabled: true, args: []}
       behaviors:  {enabled: true, args: []}
+      velocity_smoother: {enabled: true, args: []}   # with safety_chain only
+      collision_monitor: {enabled: true, args: []}   # with safety_chain only
       navigator:  {enabled: true, args: []}
 
 Every key is optional; an unknown key or a value of the wrong type is a
@@ -35,7 +39,7 @@ from typing import Any
 
 import yaml
 
-from aiobt.system.catalog import SERVICE_NAMES
+from aiobt.system.catalog import SAFETY_CHAIN, SERVICE_NAMES
 from aiobt.transport.keys import check_name
 
 SERVICES = SERVICE_NAMES  # aiobt.system.catalog: the one list
@@ -73,6 +77,7 @@ class SystemConfig:
     world: str = "office"
     speed: float = 1.0
     sim_time: bool | None = None
+    safety_chain: bool = False
     router: RouterConfig = RouterConfig()
     restart: RestartConfig = RestartConfig()
     services: Mapping[str, ServiceConfig] = field(
@@ -84,7 +89,11 @@ class SystemConfig:
         return self.speed != 1.0 if self.sim_time is None else self.sim_time
 
     def enabled(self) -> list[str]:
-        return [name for name in SERVICES if self.services[name].enabled]
+        return [
+            name
+            for name in SERVICES
+            if self.services[name].enabled and (self.safety_chain or name not in SAFETY_CHAIN)
+        ]
 
 
 def load_config(
@@ -123,6 +132,7 @@ def config_from_dict(data: Mapping[str, Any], where: str = "config") -> SystemCo
         world=_typed(data, "world", str, "office", where),
         speed=_number(data, "speed", 1.0, where, positive=True),
         sim_time=_typed(data, "sim_time", bool, None, where),
+        safety_chain=_typed(data, "safety_chain", bool, False, where),
         router=_router(_section(data, "router", where), where),
         restart=_restart(_section(data, "restart", where), where),
         services=_services(_section(data, "services", where), where),

@@ -1,5 +1,5 @@
-"""The flags of the services that read the robot (the controller and the behaviors):
-when a pose is stale, and the local costmap."""
+"""The flags the controller and the behaviors share: when a pose is stale, their local
+costmap's, and the key they command the base on."""
 
 from __future__ import annotations
 
@@ -27,6 +27,17 @@ def add_local_costmap_arguments(group: argparse._ArgumentGroup) -> None:
         metavar="HZ",
         help="local costmap updates from the lidar per robot second, as Nav2's "
         "update_frequency (default: %(default)s)",
+    )
+
+
+def add_command_argument(group: argparse._ArgumentGroup) -> None:
+    """Where the base command goes (controller and behaviors)."""
+    group.add_argument(
+        "--cmd-vel-topic",
+        default="cmd_vel",
+        metavar="KEY",
+        help="publish the base command on {ns}/KEY; cmd_vel_nav puts the velocity smoother "
+        "and the collision monitor in between (default: %(default)s)",
     )
 
 

@@ -21,12 +21,12 @@ import uuid
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
-from aiobt.system.catalog import SERVICE_NAMES
+from aiobt.system.catalog import SAFETY_CHAIN, SERVICE_NAMES
 from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
 from aiobt.transport import Bus, BusSettings
 
-SERVICES = SERVICE_NAMES
-SIM_TIME = ("controller", "behaviors", "navigator")  # the planner needs no clock
+SERVICES = tuple(name for name in SERVICE_NAMES if name not in SAFETY_CHAIN)
+SIM_TIME = ("controller", "behaviors", "navigator", *SAFETY_CHAIN)  # the planner needs no clock
 
 
 class StackError(RuntimeError):
@@ -48,6 +48,14 @@ class StackConfig:
     clock_timeout: float = 10.0
     services: Sequence[str] = SERVICES
     extra: dict[str, list[str]] = field(default_factory=dict)
+    # the velocity smoother and collision monitor between controller/behaviors and the base
+    safety_chain: bool = False
+
+    def __post_init__(self) -> None:
+        if self.safety_chain and not set(SAFETY_CHAIN) & set(self.services):
+            names = list(self.services)
+            at = names.index("navigator") if "navigator" in names else len(names)
+            self.services = (*names[:at], *SAFETY_CHAIN, *names[at:])
 
     def command(self, service: str, endpoint: str, namespace: str) -> list[str]:
         """The argv (after ``python``) that starts ``service``."""
@@ -57,6 +65,8 @@ class StackConfig:
             args += ["--world", self.world, "--speed", str(self.speed), "--seed", str(self.seed)]
         if service in SIM_TIME:
             args += ["--sim-time", "--clock-timeout", str(self.clock_timeout)]
+        if self.safety_chain and service in ("controller", "behaviors"):
+            args += ["--cmd-vel-topic", "cmd_vel_nav"]
         return args + self.extra.get(service, [])
 
 

@@ -17,6 +17,7 @@ from aiobt.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
 from aiobt.costmap.inflation import InflationParams, inflate
 from aiobt.msgs import LaserScan, OccupancyGrid, Path, PoseStamped, Twist
 from aiobt.msgs.bt import BtSnapshot, BtTree
+from aiobt.msgs.safety import CollisionPolygons
 
 Json = dict[str, Any]
 OCCUPIED = 65  # occupancy from which a cell is an obstacle (Nav2's occupied_thresh 0.65)
@@ -92,6 +93,27 @@ def rollout(pose: PoseStamped, command: Twist) -> list[list[float]]:
         yaw += w * ROLLOUT_STEP / 2
         points.append([_mm(x), _mm(y)])
     return points
+
+
+def zones_payload(zones: CollisionPolygons, pose: PoseStamped) -> list[Json]:
+    """The collision monitor's enabled polygons in the map frame at ``pose`` (closed
+    outlines), the acting one marked; none while the monitor is off."""
+    if not zones.enabled:
+        return []
+    c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+    return [
+        {
+            "name": zone.name,
+            "action": zone.action_type,
+            "acting": zone.acting,
+            "points": [
+                [_mm(pose.x + x * c - y * s), _mm(pose.y + x * s + y * c)]
+                for x, y in [*zone.points, zone.points[0]]
+            ],
+        }
+        for zone in zones.polygons
+        if zone.enabled and zone.points
+    ]
 
 
 def tree_payload(tree: BtTree) -> Json:

@@ -15,6 +15,8 @@ since the last flush and hands it to the :class:`Hub`. Streams:
                local plan; empty when its goal ended), map-frame plans only
 ``local_costmap`` ``{ns}/local_costmap/costmap``: the controller's rolling
                window (Nav2's occupancy values), at the controller's 2 Hz
+``zones``      ``{ns}/collision_monitor/polygons`` (latched) placed at the pose:
+               the collision monitor's polygons, the acting one marked
 ``plan``       the planner's latest path (``compute_path_to_pose`` and
                ``compute_path_through_poses`` results)
 ``feedback``   navigate_to_pose / navigate_through_poses feedback
@@ -47,6 +49,7 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
+from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Subscription
 from aiobt.transport.topics import declare_subscription
 from aiobt.web import convert
@@ -66,6 +69,7 @@ class _Robot:
     pose: PoseStamped | None = None
     command: Twist = field(default_factory=Twist)
     grid: OccupancyGrid | None = None
+    zones: CollisionPolygons | None = None
 
 
 class Sources:
@@ -91,6 +95,7 @@ class Sources:
             ("scan", LaserScan, False), ("cmd_vel", Twist, False),
             ("bt/snapshot", BtSnapshot, False),
             ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
+            ("collision_monitor/polygons", CollisionPolygons, True),
         ]  # fmt: skip
         for name, model, latched in topics:
             sub = self.bus.subscribe(
@@ -134,6 +139,8 @@ class Sources:
                 log.warning("%s: message not shown: %s", stream, exc)
         if "pose" in fresh or "cmd_vel" in fresh:
             self._publish_local()
+        if "pose" in fresh or "collision_monitor/polygons" in fresh:
+            self._publish_zones()
         if self._tree_changed:
             self._tree_changed = False
             self.hub.publish("status", self.tree.payload())
@@ -153,6 +160,8 @@ class Sources:
             self.hub.publish("scan", convert.scan_points(message, robot.pose))
         elif isinstance(message, Twist):
             robot.command = message
+        elif isinstance(message, CollisionPolygons):
+            robot.zones = message
         elif isinstance(message, BtSnapshot):
             self._tree_changed |= self.tree.on_snapshot(message)
             self.hub.publish("nav", convert.navigation_payload(message))
@@ -180,6 +189,11 @@ class Sources:
     def _publish_local(self) -> None:
         if self._robot.pose is not None:
             self.hub.publish("local", convert.rollout(self._robot.pose, self._robot.command))
+
+    def _publish_zones(self) -> None:
+        robot = self._robot
+        if robot.pose is not None and robot.zones is not None:
+            self.hub.publish("zones", convert.zones_payload(robot.zones, robot.pose))
 
     async def send_goal(self, x: float, y: float, yaw: float) -> str:
         """Put a goal on ``{ns}/goal_pose``; "" when sent, else why not."""

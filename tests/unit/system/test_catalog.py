@@ -9,7 +9,13 @@ import importlib
 import pytest
 
 from aiobt.cli.main import COMMANDS
-from aiobt.system.catalog import SERVICE_NAMES, SERVICES, realtime_priority, service
+from aiobt.system.catalog import (
+    SAFETY_CHAIN,
+    SERVICE_NAMES,
+    SERVICES,
+    realtime_priority,
+    service,
+)
 from aiobt.system.commands import available
 from aiobt.system.config import ConfigError, SystemConfig, config_from_dict
 
@@ -23,7 +29,9 @@ def test_every_service_is_an_aiobt_command_by_module_path() -> None:
 
 def test_aiobt_up_takes_its_service_keys_and_order_from_the_list() -> None:
     assert tuple(SystemConfig().services) == SERVICE_NAMES
-    assert SystemConfig().enabled() == list(SERVICE_NAMES)
+    chain = [name for name in SERVICE_NAMES if name not in SAFETY_CHAIN]
+    assert SystemConfig().enabled() == chain  # the safety chain only with safety_chain: true
+    assert SystemConfig(safety_chain=True).enabled() == list(SERVICE_NAMES)
     with pytest.raises(ConfigError, match=r"unknown service services.plannr \(known: robot, "):
         config_from_dict({"services": {"plannr": {}}}, "cfg.yaml")
 
@@ -37,7 +45,7 @@ def test_each_service_gives_its_listed_realtime_default(name: str) -> None:
 
 
 def test_an_unknown_name_is_refused_with_the_known_ones() -> None:
-    with pytest.raises(KeyError, match="known: robot, planner, controller, behaviors, navigator"):
+    with pytest.raises(KeyError, match=f"known: {', '.join(SERVICE_NAMES)}"):
         service("plannr")
     with pytest.raises(KeyError, match="no --realtime-priority option"):
         realtime_priority("behaviors")

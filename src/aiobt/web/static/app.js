@@ -4,7 +4,7 @@
 const state = {
   connected: false, frames: 0, updatesPerSecond: 0, poseUpdatesPerSecond: 0, poseUpdates: 0,
   robot: null, map: null, costmap: null, scan: [], plan: [], local: [], goals: [],
-  scaleBar: null,
+  scaleBar: null, zones: [],
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
   goalsSent: 0, goalReply: null,
@@ -53,7 +53,7 @@ function receive(update) {
     state.poseUpdatesPerSecond = countRate(poseArrivals, now);
     canvas.dataset.robotX = update.pose.x; canvas.dataset.robotY = update.pose.y;
   }
-  for (const key of ["scan", "plan", "local", "footprint"]) {
+  for (const key of ["scan", "plan", "local", "footprint", "zones"]) {
     if (key in update) state[key] = update[key];
   }
   if ("map" in update) { state.map = update.map; layers.map = gridImage(update.map, mapColour); }
@@ -174,6 +174,10 @@ function draw() {
   if (document.getElementById("show-scan").checked) {
     ctx.fillStyle = "#e53935";
     for (const [x, y] of state.scan) { const [cx, cy] = toCanvas(x, y); ctx.fillRect(cx - 1.5, cy - 1.5, 3, 3); }
+  }
+  for (const zone of state.zones || []) { // the collision monitor's; the acting one red
+    if (zone.acting) polyline(zone.points, "#d50000", 3.5);
+    else polyline(zone.points, zone.action === "approach" ? "#2979ff" : "#ff9100", 1.5);
   }
   polyline(state.plan, "#2962ff", 2.5);
   polyline(state.local, "#00a86b", 3);

@@ -1,0 +1,136 @@
+"""What the safety chain adds between a command and the base, and what it costs.
+
+The robot (office world, at ``--speed``), the velocity smoother and the collision
+monitor (shipped defaults, on sim time) as processes on a router; this process
+drives ``{ns}/cmd_vel_nav`` at 20 Hz of sim time (the controller's rate) with
+distinct values the smoother passes through unchanged (0.3 m/s rising by 0.1 mm/s a
+command) and times each to its arrival on ``{ns}/cmd_vel`` through both links,
+against the same message's own arrival back from the router (the direct hop the
+chain replaces). Also the CPU of the two services (``/proc``) while driving.
+
+    .venv/bin/python -m bench.safety.chain_latency --speeds 1 10 --seconds 20
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import time
+import uuid
+from dataclasses import dataclass
+
+import numpy as np
+
+from aiobt.msgs import Twist
+from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
+from aiobt.transport import Bus, BusSettings, SimClockFollower, open_bus
+
+PERIOD = 0.05  # s of sim time between commands: a 20 Hz controller
+SERVICES = ("velocity_smoother", "collision_monitor")
+
+
+@dataclass(slots=True)
+class Figures:
+    speed: float
+    matched: int
+    sent: int
+    direct_ms: tuple[float, float]  # p50, p99 wall ms
+    chain_ms: tuple[float, float]
+    cpu: dict[str, float]  # % of one core
+
+    def lines(self) -> list[str]:
+        added = [(c - d) * self.speed for c, d in zip(self.chain_ms, self.direct_ms, strict=True)]
+        cpu = ", ".join(f"{k} {v:.1f} %" for k, v in self.cpu.items())
+        return [
+            f"x{self.speed:g}: {self.matched}/{self.sent} commands matched",
+            f"  direct hop p50 {self.direct_ms[0]:.2f} ms p99 {self.direct_ms[1]:.2f} ms (wall)",
+            f"  via the chain p50 {self.chain_ms[0]:.2f} ms p99 {self.chain_ms[1]:.2f} ms (wall)",
+            f"  added p50 {added[0]:.1f} ms p99 {added[1]:.1f} ms of sim time "
+            f"(one control period: {PERIOD * 1000:.0f} ms)",
+            f"  CPU while driving: {cpu} of one core",
+        ]
+
+
+def cpu_seconds(pid: int) -> float:
+    with open(f"/proc/{pid}/stat") as stat:
+        fields = stat.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+async def measure(endpoint: str, speed: float, seconds: float) -> Figures:
+    ns = f"bench{uuid.uuid4().hex[:8]}"
+    common = ["--connect", endpoint, "--namespace", ns]
+    robot = ["-m", "aiobt.cli.main", "robot", "--world", "office", "--speed", f"{speed:g}"]
+    procs: dict[str, ServiceProcess] = {"robot": spawn_service([*robot, *common])}
+    for name in SERVICES:
+        procs[name] = spawn_service(["-m", "aiobt.cli.main", name, "--sim-time", *common])
+    try:
+        settings = BusSettings(mode="client", connect=(endpoint,), namespace=ns)
+        async with open_bus(settings) as bus:
+            for name in procs:
+                if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(60.0):
+                    raise RuntimeError(f"{name} did not come up:\n{procs[name].output()}")
+            return await _drive(bus, procs, speed, seconds)
+    finally:
+        for proc in procs.values():
+            proc.cleanup()
+
+
+async def _drive(
+    bus: Bus, procs: dict[str, ServiceProcess], speed: float, seconds: float
+) -> Figures:
+    sent: dict[float, float] = {}
+    direct: dict[float, float] = {}
+    chain: dict[float, float] = {}
+    bus.subscribe(
+        "cmd_vel_nav", Twist, lambda m: direct.setdefault(m.linear.x, time.perf_counter())
+    )
+    bus.subscribe("cmd_vel", Twist, lambda m: chain.setdefault(m.linear.x, time.perf_counter()))
+    out = bus.publisher("cmd_vel_nav", Twist, reliable=True)
+    follower = SimClockFollower(bus)
+    await follower.wait_started(timeout=10.0)
+    clock = follower.clock
+    count = round(seconds / PERIOD)
+    cpu0 = {name: cpu_seconds(procs[name].pid) for name in SERVICES}
+    wall0 = time.perf_counter()
+    for k in range(count):
+        value = round(0.3 + 1e-4 * k, 6)
+        sent[value] = time.perf_counter()
+        out.put(Twist.planar(value, 0.0))
+        await clock.sleep(PERIOD)
+    wall = time.perf_counter() - wall0
+    cpu = {n: 100.0 * (cpu_seconds(procs[n].pid) - cpu0[n]) / wall for n in SERVICES}
+    follower.close()
+    ramp = round(0.3 / (2.5 * PERIOD)) + 2  # the smoother's ramp from 0: not passed through
+    keys = [v for v in list(sent)[ramp:] if v in chain and v in direct]
+    lat_d = np.array([direct[v] - sent[v] for v in keys]) * 1000.0
+    lat_c = np.array([chain[v] - sent[v] for v in keys]) * 1000.0
+
+    def p(a: np.ndarray) -> tuple[float, float]:
+        return float(np.percentile(a, 50)), float(np.percentile(a, 99))
+
+    return Figures(speed, len(keys), count - ramp, p(lat_d), p(lat_c), cpu)
+
+
+def _first(arrivals: dict[float, float], msg: Twist) -> None:
+    arrivals.setdefault(msg.linear.x, time.perf_counter())
+
+
+async def main_async(speeds: list[float], seconds: float) -> None:
+    with running_router() as (_, endpoint):
+        for speed in speeds:
+            figures = await measure(endpoint, speed, seconds)
+            print("\n".join(figures.lines()), flush=True)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--speeds", type=float, nargs="+", default=[1.0, 10.0])
+    parser.add_argument("--seconds", type=float, default=20.0, help="sim s of driving per speed")
+    args = parser.parse_args()
+    asyncio.run(main_async(args.speeds, args.seconds))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,119 @@
+"""The velocity smoother on the bus: ``{ns}/cmd_vel_nav`` in, ``{ns}/cmd_vel_smoothed``
+out at ``smoothing_frequency`` of robot time (the injected clock: sim time at any
+speed-up), ``{ns}/odom`` read for CLOSED_LOOP feedback.
+
+Unlike Nav2's, which publishes on its timer only, a command is smoothed and sent
+as it arrives (when half a period or more has passed since the last output), and
+the timer fills in when commands stop coming (the timeout's ramp down). A timer
+alone delays every command until its next tick: up to a period, and a whole period
+when the controller ticks on the same clock just before it, as on sim time, where
+both wake on the same clock stamp (measured: p50 54 ms at 20 Hz, bench/safety).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from aiobt.core.clock import Clock
+from aiobt.msgs import Odometry, Twist
+from aiobt.transport import Bus, Publisher, Subscription
+
+from .smoother import VelocitySmoother
+
+log = logging.getLogger("aiobt_services.velocity_smoother.service")
+REPORT_PERIOD = 5.0  # robot s between reports of dropped commands
+
+
+@dataclass(slots=True, frozen=True)
+class Topics:
+    """Where the commands come from and go (Nav2's remappable names)."""
+
+    cmd_in: str = "cmd_vel_nav"
+    cmd_out: str = "cmd_vel_smoothed"
+
+
+class SmootherService:
+    """Wires a :class:`VelocitySmoother` to the bus and runs its timer on ``clock``."""
+
+    def __init__(
+        self, bus: Bus, clock: Clock, smoother: VelocitySmoother, topics: Topics | None = None
+    ) -> None:
+        self.bus = bus
+        self.clock = clock
+        self.smoother = smoother
+        self.topics = topics or Topics()
+        self._pub: Publisher[Twist] | None = None
+        self._sub: Subscription[Twist] | None = None
+        self._task: asyncio.Task[None] | None = None
+        self._reported = 0
+        self._last = -math.inf  # when the last output was sent, robot s
+        self._streaming = False  # the last output was a command's: the timer waits longer
+        self._next_tick = -math.inf  # the timer's next tick, robot s
+
+    @property
+    def dropped(self) -> int:
+        """Input commands dropped: NaN/inf values, or not a Twist at all."""
+        bad_wire = self._sub.dropped_invalid if self._sub is not None else 0
+        return self.smoother.rejected + bad_wire
+
+    def start(self) -> None:
+        self._pub = self.bus.publisher(self.topics.cmd_out, Twist, reliable=True)
+        self._sub = self.bus.subscribe(self.topics.cmd_in, Twist, self.on_command, queue_size=1)
+        if self.smoother.params.feedback == "CLOSED_LOOP":
+            self.bus.subscribe(self.smoother.params.odom_topic, Odometry, self.on_odom)
+        self._task = asyncio.create_task(self.run(), name="velocity_smoother")
+
+    def on_command(self, msg: Twist) -> None:
+        now = self.clock.now()
+        self.smoother.command((msg.linear.x, msg.linear.y, msg.angular.z), now)
+        if now - self._last >= 0.5 * self.smoother.params.period:
+            self._update(now, streaming=True)
+
+    def _update(self, now: float, streaming: bool) -> None:
+        out = self.smoother.update(now)
+        if out is not None and self._pub is not None:
+            self._last, self._streaming = now, streaming
+            self._pub.put(Twist.planar(float(out[0]), float(out[2]), float(out[1])))
+
+    def on_odom(self, msg: Odometry) -> None:
+        t = msg.twist
+        self.smoother.odom.add(msg.header.stamp, np.array([t.linear.x, t.linear.y, t.angular.z]))
+
+    async def run(self) -> None:
+        """The timer: an update a period after the last one (one and a half after a
+        command's, so a stream of commands is never overtaken by it), until cancelled."""
+        period = self.smoother.params.period
+        next_report = self.clock.now() + REPORT_PERIOD
+        while True:
+            now = self.clock.now()
+            if now >= next_report:
+                next_report = now + REPORT_PERIOD
+                self._report_drops()
+            after_output = self._last + (1.5 if self._streaming else 1.0) * period
+            due = max(self._next_tick, after_output)
+            if now < due:
+                await self.clock.sleep(due - now)
+                continue
+            self._next_tick = now + period
+            self._update(now, streaming=False)
+
+    def _report_drops(self) -> None:
+        dropped = self.dropped
+        if dropped > self._reported:
+            log.warning(
+                "%d command(s) on %s dropped as invalid (NaN, inf or malformed); %d in all",
+                dropped - self._reported,
+                self.bus.keys.topic(self.topics.cmd_in),
+                dropped,
+            )
+            self._reported = dropped
+
+    async def stop(self) -> None:
+        if self._task is not None:
+            self._task.cancel()
+            await asyncio.gather(self._task, return_exceptions=True)

@@ -1,0 +1,82 @@
+"""The collision monitor's service on an in-process bus: commands in, the decision out,
+its latched state, base_shift_correction fed from odometry, and the toggle service."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+
+from aiobt.core.clock import ManualClock
+from aiobt.msgs import Header, LaserScan, Odometry, Pose, Toggle, Twist
+from aiobt.msgs.safety import CollisionMonitorState, CollisionPolygons
+from aiobt.transport import Bus, Subscription
+from aiobt_services.collision_monitor import CollisionMonitor, load_params
+from aiobt_services.collision_monitor.service import MonitorService
+
+from .nav2_setup import config, polygon, ring_scan
+
+
+def start(bus: Bus, **top: Any) -> tuple[MonitorService, ManualClock]:
+    clock = ManualClock(1.0)
+    params = load_params(config({"Stop": polygon("polygon", 1.0, "stop")}, **top))
+    service = MonitorService(bus, clock, CollisionMonitor(params))
+    service.start()
+    return service, clock
+
+
+async def decision(bus: Bus, out: Subscription[Twist], vx: float) -> float:
+    """The monitor's answer to a command of ``vx`` (sent again until one comes)."""
+    command = bus.publisher("cmd_vel_in", Twist)
+    for _ in range(50):
+        command.put(Twist.planar(vx, 0.0))
+        try:
+            return (await out.next(timeout=0.1)).linear.x
+        except TimeoutError:
+            continue
+    raise AssertionError("no decision")
+
+
+async def test_a_command_is_stopped_reported_and_let_through_when_toggled_off(
+    local_bus: Bus,
+) -> None:
+    service, _ = start(local_bus)
+    out = local_bus.subscribe("cmd_vel_out", Twist)
+    states = local_bus.subscribe("collision_monitor_state", CollisionMonitorState, latched=True)
+    polygons = local_bus.subscribe("collision_monitor/polygons", CollisionPolygons, latched=True)
+    assert await decision(local_bus, out, 0.3) == 0.0  # no scan yet: invalid source
+    assert service.monitor.last.polygon_name == "invalid source"
+    scan = local_bus.publisher("scan", LaserScan)
+    for _ in range(50):  # until the monitor has the scan: a ring 0.5 m round, in Stop
+        scan.put(ring_scan(0.5, 1.0))
+        if (
+            await decision(local_bus, out, 0.3) == 0.0
+            and service.monitor.last.polygon_name == "Stop"
+        ):
+            break
+    state = await states.wait_latest(2.0)
+    assert (state.action, state.polygon_name, state.enabled) == ("stop", "Stop", True)
+    assert (await polygons.wait_latest(2.0)).polygons[0].name == "Stop"
+    reply = await local_bus.call("collision_monitor/toggle", Toggle.Request(enable=False),
+                                 Toggle.Response)  # fmt: skip
+    assert (reply.success, reply.message) == (True, "Collision monitor toggled off successfully")
+    assert await decision(local_bus, out, 0.3) == pytest.approx(0.3)
+
+
+async def test_base_shift_correction_reads_the_odometry_come_since(local_bus: Bus) -> None:
+    service, clock = start(local_bus, base_shift_correction=True)
+    out = local_bus.subscribe("cmd_vel_out", Twist)
+    odom = local_bus.publisher("odom", Odometry)
+    for i in range(5):  # 0.1 m a step along x
+        odom.put(Odometry(header=Header(stamp=1.0 + 0.02 * i, frame_id="odom"),
+                          pose=Pose.from_xy_yaw(0.1 * i, 0.0)))  # fmt: skip
+    scan = local_bus.publisher("scan", LaserScan)
+    for _ in range(50):  # until the monitor has the scan (a ring 2 m round: no stop)
+        scan.put(ring_scan(2.0, 1.0))
+        if await decision(local_bus, out, 0.3) == pytest.approx(0.3):
+            break
+    history = service.monitor.odom
+    assert history is not None
+    assert not history.empty
+    assert history.latest() == pytest.approx((0.4, 0.0, 0.0))
+    assert clock.now() == 1.0
