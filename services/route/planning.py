@@ -41,7 +41,9 @@ class RoutePlanner:
         scorer: EdgeScorer,
         params: RouteParams,
         costmap: Callable[[], CostGrid | None],
+        no_graph: str = "no route graph set (graph_filepath is empty)",
     ) -> None:
+        self.no_graph = no_graph  # why there is no graph
         self.graph = graph
         self.scorer = scorer
         self.params = params
@@ -51,7 +53,7 @@ class RoutePlanner:
         """The (pruned) route for ``request`` and its dense path (x, y, yaw rows)."""
         graph = self.graph
         if graph is None:
-            raise RouteError("NO_VALID_GRAPH", "no route graph set (graph_filepath is empty)")
+            raise RouteError("NO_VALID_GRAPH", self.no_graph)
         start, goal = find_ends(graph, request, self.params.intent, self.costmap())
         if rerouting.start_id is not None:
             rerouted = graph.node(rerouting.start_id)

@@ -1,0 +1,108 @@
+"""``aiobt route``: Nav2's route server on Zenoh.
+
+Loads a route graph (``--graph-filepath``, Nav2 GeoJSON; a shipped world's name
+picks its graph); subscribes ``{ns}/map`` (latched), ``{ns}/pose`` and ``{ns}/scan``
+for the global costmap (the planner's, reused) that the CostmapScorer and the
+CollisionMonitor read; serves the actions ``compute_route`` and
+``compute_and_track_route`` and the service ``srv/route_server/ReroutingService/reroute``;
+publishes ``{ns}/speed_limit`` (AdjustSpeedLimit); holds ``{ns}/nodes/route``. A graph
+that does not load is logged and every request fails NO_VALID_GRAPH with that error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import logging
+
+from aiobt.core.clock import Clock, SystemClock
+from aiobt.transport import BusSettings, add_bus_arguments
+from aiobt_services._cli import (
+    non_negative,
+    open_bus_unless_stopped,
+    run_service,
+    stop_on_signals,
+    unless_stopped,
+)
+from aiobt_services.controller.robot_io import make_clock
+from aiobt_services.costmap import InflationParams
+from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
+
+from .actions import RouteActions
+from .errors import GraphError
+from .geojson import load_graph
+from .graph import Graph
+from .options import (
+    add_route_arguments,
+    check_plugins,
+    edge_scorer,
+    operations,
+    route_params,
+    tracker_params,
+)
+from .planning import RoutePlanner
+from .service import RouteService
+
+log = logging.getLogger("aiobt_services.route.main")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_bus_arguments(parser)
+    parser.add_argument("--sim-time", action="store_true",
+                        help="serve once the simulation's clock ({ns}/clock) runs")  # fmt: skip
+    group = parser.add_argument_group("route server", description=__doc__.split("\n\n")[1])
+    add_route_arguments(group)
+    costmap = parser.add_argument_group("global costmap (as the planner's)")
+    add = costmap.add_argument
+    add("--robot-radius", type=non_negative, default=0.22, help="inscribed radius, m (%(default)s)")
+    add("--inflation-radius", type=non_negative, default=0.55, help="m (default: %(default)s)")
+    add("--cost-scaling-factor", type=non_negative, default=3.0, help="1/m (%(default)s)")
+
+
+def load(path: object) -> tuple[Graph | None, str]:
+    """The graph at ``path`` (None: no graph given), or None and why it did not load."""
+    if path is None:
+        return None, "no route graph set (--graph-filepath)"
+    try:
+        graph = load_graph(str(path))
+    except GraphError as exc:
+        log.error("%s", exc)
+        return None, str(exc)
+    log.info("route graph %s: %d nodes, %d edges", path, len(graph), len(graph.edges))
+    return graph, ""
+
+
+def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
+    check_plugins(args)
+    world = service.world
+    graph, problem = load(args.graph_filepath)
+    scorer = edge_scorer(args, world.snapshot)
+    planner = RoutePlanner(graph, scorer, route_params(args), world.snapshot, problem)
+    manager, rerouting = operations(args, world.snapshot, service.publish_speed_limit)
+    service.rerouting = rerouting
+    return RouteActions(planner, manager, tracker_params(args), service.robot_position,
+                        service.clock)  # fmt: skip
+
+
+async def serve(args: argparse.Namespace) -> None:
+    stop = stop_on_signals()
+    inflation = InflationParams(args.robot_radius, args.inflation_radius, args.cost_scaling_factor)
+    world = GlobalCostmap(CostmapOptions(inflation=inflation))
+    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
+        if bus is None:
+            return
+        clock: Clock = SystemClock()
+        if args.sim_time:
+            stopper = asyncio.create_task(stop.wait())
+            made = await unless_stopped(make_clock(bus, sim_time=True), stopper)
+            if made is None:
+                return
+            clock = made[0]
+        service = RouteService(bus, world, clock, sim_time=args.sim_time)
+        service.start(build(args, service))
+        log.info("route server up on namespace '%s'", bus.namespace)
+        await stop.wait()
+
+
+def run(args: argparse.Namespace) -> int:
+    return run_service(serve(args), log, "route")
