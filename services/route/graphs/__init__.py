@@ -10,6 +10,10 @@ SMALL = GRAPHS_DIR / "small.geojson"
 
 
 def graph_path(name_or_path: str) -> Path:
-    """A shipped world's graph by the world's name ("office", "small"), or any path."""
+    """A shipped world's graph by the world's name ("office", "small"); for a map YAML
+    (``aiobt up``'s ``world``) the ``.geojson`` beside it; else the path itself."""
     shipped = GRAPHS_DIR / f"{name_or_path}.geojson"
-    return shipped if shipped.is_file() else Path(name_or_path)
+    if shipped.is_file():
+        return shipped
+    path = Path(name_or_path)
+    return path.with_suffix(".geojson") if path.suffix in (".yaml", ".yml") else path
