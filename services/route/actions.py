@@ -79,7 +79,8 @@ class RouteActions:
             log.exception("compute_route failed unexpectedly")
             return self._failed(ComputeRoute.Result, RouteError("UNKNOWN", str(exc)))
         stamp = self.clock.now()
-        log.info("route of %d nodes, cost %.2f", len(route.edges) + 1, route.route_cost)
+        log.info("route %s, cost %.2f", "-".join(str(n.nodeid) for n in route.nodes),
+                 route.route_cost)  # fmt: skip
         return ComputeRoute.Result(
             planning_time=time.monotonic() - began,
             path=path_msg(poses, stamp),

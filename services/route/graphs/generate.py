@@ -23,8 +23,8 @@ Nodes = dict[int, tuple[float, float]]
 Lanes = list[tuple[int, int]]
 
 OFFICE_NODES: Nodes = {
-    # the corridor (y 8.5-11), at its doors
-    1: (2.0, 9.75), 2: (3.5, 9.75), 3: (4.0, 9.75), 4: (9.0, 9.75), 5: (10.0, 9.75),
+    # the corridor (y 8.5-11), at its doors; node 1 by the dock, west of the start (2, 9.75)
+    1: (1.0, 9.75), 2: (3.5, 9.75), 3: (4.0, 9.75), 4: (9.0, 9.75), 5: (10.0, 9.75),
     6: (14.0, 9.75), 7: (16.5, 9.75), 8: (19.0, 9.75),
     # the west room
     10: (3.5, 7.0), 11: (3.5, 4.0), 12: (1.2, 4.0), 13: (6.0, 3.5),
