@@ -30,11 +30,10 @@ from collections.abc import AsyncIterator, Awaitable, Callable
 from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock
+from aiobt.costmap.world import POSES_KEPT, FedCostmap
 from aiobt.msgs import LaserScan, PoseStamped
 from aiobt.transport import Bus, Latest
 from aiobt.transport.on_demand import LINGER, OnDemand
-
-from .state import POSES_KEPT, GlobalCostmap
 
 Req = TypeVar("Req")
 Resp = TypeVar("Resp")
@@ -49,7 +48,7 @@ class RobotFeed:
     def __init__(
         self,
         bus: Bus,
-        world: GlobalCostmap,
+        world: FedCostmap,  # the planner's GlobalCostmap, or the route server's
         clock: Clock,
         *,
         timeout: float = FEED_TIMEOUT,

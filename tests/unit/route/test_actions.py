@@ -9,9 +9,9 @@ import numpy as np
 import pytest
 
 from aiobt.core.clock import ManualClock
+from aiobt.costmap import CostGrid, GridGeometry
 from aiobt.msgs import PoseStamped
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
-from aiobt_services.costmap import CostGrid, GridGeometry
 from aiobt_services.route.actions import RouteActions
 from aiobt_services.route.operations import CollisionMonitor, OperationsManager
 from aiobt_services.route.planning import RouteParams, RoutePlanner

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from aiobt_services.costmap import CostGrid, GridGeometry
+from aiobt.costmap import CostGrid, GridGeometry
 from aiobt_services.route.dense import densify, interpolate
 from aiobt_services.route.errors import RouteError
 from aiobt_services.route.intent import (

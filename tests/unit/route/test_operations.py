@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from aiobt_services.costmap import CostGrid, GridGeometry
+from aiobt.costmap import CostGrid, GridGeometry
 from aiobt_services.route.errors import RouteError
 from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.intent import ReroutingState

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from aiobt_services.costmap.collision import segment_points
+from aiobt.costmap.collision import segment_points
 from aiobt_services.robot.mapfile import OCCUPIED, load_map
 from aiobt_services.robot.worlds import WORLDS_DIR
 from aiobt_services.route.geojson import load_graph

@@ -7,6 +7,7 @@ from __future__ import annotations
 import logging
 
 from aiobt.core.clock import Clock
+from aiobt.costmap.world import FedCostmap
 from aiobt.msgs import OccupancyGrid
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
 from aiobt.msgs.speed_limit import SpeedLimit
@@ -14,7 +15,6 @@ from aiobt.msgs.std import Trigger
 from aiobt.system.announce import announce
 from aiobt.transport import Bus
 from aiobt_services.planner.feed import RobotFeed
-from aiobt_services.planner.state import GlobalCostmap
 
 from .actions import RouteActions
 from .operations import ReroutingService
@@ -30,7 +30,7 @@ class RouteService:
     """The route server on ``bus``; ``actions`` is built by :func:`main.build` on
     ``world`` (fed here) and on this service's :meth:`robot_position`."""
 
-    def __init__(self, bus: Bus, world: GlobalCostmap, clock: Clock, *, sim_time: bool) -> None:
+    def __init__(self, bus: Bus, world: FedCostmap, clock: Clock, *, sim_time: bool) -> None:
         self.bus = bus
         self.world = world
         self.clock = clock

@@ -15,7 +15,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-from aiobt_services.costmap import CostGrid, line_cells
+from aiobt.costmap import CostGrid, line_cells
 
 from .graph import GraphEdge
 

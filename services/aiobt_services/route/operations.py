@@ -14,8 +14,8 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Literal, Protocol
 
-from aiobt_services.costmap import NO_INFORMATION, CostGrid, points_cost
-from aiobt_services.costmap.collision import segment_points
+from aiobt.costmap import NO_INFORMATION, CostGrid, points_cost
+from aiobt.costmap.collision import segment_points
 
 from .errors import RouteError
 from .graph import GraphEdge, GraphNode, Metadata, Operation, Trigger

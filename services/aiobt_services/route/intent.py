@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from aiobt_services.costmap import INSCRIBED, NO_INFORMATION, CostGrid, segment_max_cost
+from aiobt.costmap import INSCRIBED, NO_INFORMATION, CostGrid, segment_max_cost
 
 from .errors import RouteError
 from .graph import Graph, GraphEdge, GraphNode

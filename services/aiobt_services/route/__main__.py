@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from aiobt_services._cli import module_main
+from aiobt.system.service import module_main
 
 from .main import add_arguments, run
 

@@ -8,8 +8,8 @@ import dataclasses
 from collections.abc import Callable
 from typing import Any
 
-from aiobt_services._cli import non_negative, positive
-from aiobt_services.costmap import CostGrid
+from aiobt.costmap import CostGrid
+from aiobt.system.service import non_negative, positive
 
 from .graphs import graph_path
 from .intent import IntentParams

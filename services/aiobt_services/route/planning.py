@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
-from aiobt_services.costmap import CostGrid
+from aiobt.costmap import CostGrid
 
 from .dense import Poses, densify
 from .errors import RouteError

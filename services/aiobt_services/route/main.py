@@ -16,17 +16,17 @@ import asyncio
 import logging
 
 from aiobt.core.clock import Clock, SystemClock
-from aiobt.transport import BusSettings, add_bus_arguments
-from aiobt_services._cli import (
+from aiobt.costmap import InflationParams
+from aiobt.costmap.world import FedCostmap, WorldOptions
+from aiobt.system.service import (
+    make_clock,
     non_negative,
     open_bus_unless_stopped,
     run_service,
     stop_on_signals,
     unless_stopped,
 )
-from aiobt_services.controller.robot_io import make_clock
-from aiobt_services.costmap import InflationParams
-from aiobt_services.planner.state import CostmapOptions, GlobalCostmap
+from aiobt.transport import BusSettings, add_bus_arguments
 
 from .actions import RouteActions
 from .errors import GraphError
@@ -87,7 +87,7 @@ def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
 async def serve(args: argparse.Namespace) -> None:
     stop = stop_on_signals()
     inflation = InflationParams(args.robot_radius, args.inflation_radius, args.cost_scaling_factor)
-    world = GlobalCostmap(CostmapOptions(inflation=inflation))
+    world = FedCostmap(WorldOptions(inflation=inflation))
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
