@@ -78,11 +78,13 @@ class RouteActions:
         except Exception as exc:  # a bad request never takes the server down
             log.exception("compute_route failed unexpectedly")
             return self._failed(ComputeRoute.Result, RouteError("UNKNOWN", str(exc)))
-        stamp = self.clock.now()
+        stamp, took = self.clock.now(), time.monotonic() - began
         log.info("route %s, cost %.2f", "-".join(str(n.nodeid) for n in route.nodes),
                  route.route_cost)  # fmt: skip
+        if took > self.planner.params.max_planning_time:  # Nav2 warns, and returns it
+            log.warning("route took %.3f s, over max_planning_time", took)
         return ComputeRoute.Result(
-            planning_time=time.monotonic() - began,
+            planning_time=took,
             path=path_msg(poses, stamp),
             route=route_msg(route, stamp),
         )

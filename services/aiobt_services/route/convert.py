@@ -6,10 +6,11 @@ from aiobt.msgs import Path
 from aiobt.msgs.geometry import Header, Point
 from aiobt.msgs.route import Route as RouteMsg
 from aiobt.msgs.route import RouteEdge, RouteNode
+from aiobt.msgs.route_graph import RouteGraph
 from aiobt_services.planner.actions import to_path
 
 from .dense import Poses
-from .graph import GraphNode
+from .graph import Graph, GraphEdge, GraphNode
 from .search import Route
 
 ROUTE_FRAME = "map"
@@ -19,15 +20,32 @@ def _point(node: GraphNode) -> Point:
     return Point(x=node.x, y=node.y)
 
 
+def _node(node: GraphNode) -> RouteNode:
+    return RouteNode(nodeid=node.nodeid, position=_point(node))
+
+
+def _edge(edge: GraphEdge) -> RouteEdge:
+    return RouteEdge(edgeid=edge.edgeid, start=_point(edge.start), end=_point(edge.end))
+
+
 def route_msg(route: Route, stamp: float) -> RouteMsg:
     return RouteMsg(
         header=Header(stamp=stamp, frame_id=ROUTE_FRAME),
         route_cost=route.route_cost,
-        nodes=[RouteNode(nodeid=node.nodeid, position=_point(node)) for node in route.nodes],
-        edges=[
-            RouteEdge(edgeid=edge.edgeid, start=_point(edge.start), end=_point(edge.end))
-            for edge in route.edges
-        ],
+        nodes=[_node(node) for node in route.nodes],
+        edges=[_edge(edge) for edge in route.edges],
+    )
+
+
+def graph_msg(graph: Graph | None, stamp: float) -> RouteGraph:
+    """The whole graph for viewers; an empty one without a graph."""
+    if graph is None:
+        return RouteGraph(header=Header(stamp=stamp, frame_id=ROUTE_FRAME))
+    return RouteGraph(
+        header=Header(stamp=stamp, frame_id=ROUTE_FRAME),
+        name=graph.name,
+        nodes=[_node(node) for node in graph],
+        edges=[_edge(edge) for edge in graph.edges.values()],
     )
 
 

@@ -12,6 +12,7 @@ the feature (its index in ``features`` and its id).
 from __future__ import annotations
 
 import json
+import logging
 import math
 from pathlib import Path
 from typing import Any
@@ -19,6 +20,7 @@ from typing import Any
 from .errors import GraphError
 from .graph import TRIGGERS, Graph, GraphEdge, GraphNode, Metadata, Operation
 
+log = logging.getLogger("aiobt_services.route.geojson")
 MAX_ID = 65535  # nav2_msgs carries node and edge ids as uint16
 FRAMES = ("", "map")  # the route frame; no TF here to bring other frames into it
 EDGE_TYPES = ("LineString", "MultiLineString")
@@ -151,3 +153,16 @@ def load_graph(path: str | Path) -> Graph:
     except (OSError, UnicodeDecodeError) as exc:
         raise GraphError(str(path), "file", f"cannot be read: {exc}") from None
     return parse_graph(text, str(path))
+
+
+def load_or_explain(path: str | Path | None) -> tuple[Graph | None, str]:
+    """The graph at ``path``, or None and why (logged): none given, or the error."""
+    if path is None:
+        return None, "no route graph set (--graph-filepath)"
+    try:
+        graph = load_graph(path)
+    except GraphError as exc:
+        log.error("%s", exc)
+        return None, str(exc)
+    log.info("route graph %s: %d nodes, %d edges", path, len(graph), len(graph.edges))
+    return graph, ""

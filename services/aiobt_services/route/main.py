@@ -29,9 +29,7 @@ from aiobt.system.service import (
 from aiobt.transport import BusSettings, add_bus_arguments
 
 from .actions import RouteActions
-from .errors import GraphError
-from .geojson import load_graph
-from .graph import Graph
+from .geojson import load_or_explain
 from .options import (
     add_route_arguments,
     check_plugins,
@@ -59,23 +57,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add("--cost-scaling-factor", type=non_negative, default=3.0, help="1/m (%(default)s)")
 
 
-def load(path: object) -> tuple[Graph | None, str]:
-    """The graph at ``path`` (None: no graph given), or None and why it did not load."""
-    if path is None:
-        return None, "no route graph set (--graph-filepath)"
-    try:
-        graph = load_graph(str(path))
-    except GraphError as exc:
-        log.error("%s", exc)
-        return None, str(exc)
-    log.info("route graph %s: %d nodes, %d edges", path, len(graph), len(graph.edges))
-    return graph, ""
-
-
 def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
     check_plugins(args)
     world = service.world
-    graph, problem = load(args.graph_filepath)
+    graph, problem = load_or_explain(args.graph_filepath)
     scorer = edge_scorer(args, world.snapshot)
     planner = RoutePlanner(graph, scorer, route_params(args), world.snapshot, problem)
     manager, rerouting = operations(args, world.snapshot, service.publish_speed_limit)

@@ -1,6 +1,6 @@
-"""Wires the route server onto the bus: map, pose and scans in (the planner's global
-costmap and robot feed, reused), the two actions, the reroute service, the speed
-limit and the graph out."""
+"""Wires the route server onto the bus: map, pose and scans in (a global costmap fed by
+the planner's robot feed, reused), the two actions, the reroute and set-graph
+services, the speed limit and the graph (latched, for viewers) out."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from aiobt.core.clock import Clock
 from aiobt.costmap.world import FedCostmap
 from aiobt.msgs import OccupancyGrid
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
+from aiobt.msgs.route_graph import RouteGraph, SetRouteGraph
 from aiobt.msgs.speed_limit import SpeedLimit
 from aiobt.msgs.std import Trigger
 from aiobt.system.announce import announce
@@ -17,13 +18,18 @@ from aiobt.transport import Bus
 from aiobt_services.planner.feed import RobotFeed
 
 from .actions import RouteActions
+from .convert import graph_msg
+from .geojson import load_or_explain
+from .graphs import graph_path
 from .operations import ReroutingService
+from .planning import RoutePlanner
 from .vectors import XY
 
 log = logging.getLogger("aiobt_services.route.service")
 SERVER = "route_server"
 REROUTE_SERVICE = f"{SERVER}/ReroutingService/reroute"
 SPEED_LIMIT_TOPIC = "speed_limit"
+GRAPH_TOPIC = "route_graph"
 
 
 class RouteService:
@@ -38,6 +44,8 @@ class RouteService:
         self.feed = RobotFeed(bus, world, clock)
         self.speed_limits = bus.publisher(SPEED_LIMIT_TOPIC, SpeedLimit, reliable=True)
         self.rerouting: ReroutingService | None = None  # set by the operations built
+        self.graphs = bus.latched_publisher(GRAPH_TOPIC, RouteGraph)
+        self.planner: RoutePlanner | None = None  # the actions' (set by start)
 
     def robot_position(self) -> XY:
         """The newest robot pose in ``map`` (LookupError before one came)."""
@@ -49,16 +57,30 @@ class RouteService:
         self.speed_limits.put(SpeedLimit(percentage=True, speed_limit=percent))
 
     def start(self, actions: RouteActions) -> None:
-        bus, feed, rerouting = self.bus, self.feed, self.rerouting
+        bus, feed = self.bus, self.feed
         bus.subscribe("map", OccupancyGrid, self.world.on_map, latched=True)
         bus.action_server(ComputeRoute.name, ComputeRoute, feed.action(actions.compute_route))
         bus.action_server(ComputeAndTrackRoute.name, ComputeAndTrackRoute,
                           feed.action(actions.compute_and_track_route))  # fmt: skip
-        if rerouting is not None:
-
-            def reroute(_req: Trigger.Request) -> Trigger.Response:
-                rerouting.requested = True
-                return Trigger.Response(success=True, message="reroute requested")
-
-            bus.serve(REROUTE_SERVICE, Trigger.Request, Trigger.Response, reroute)
+        if self.rerouting is not None:
+            bus.serve(REROUTE_SERVICE, Trigger.Request, Trigger.Response, self.reroute)
+        self.planner = actions.planner
+        bus.serve(SetRouteGraph.service_name, SetRouteGraph.Request, SetRouteGraph.Response,
+                  self.set_graph)  # fmt: skip
+        self.graphs.put(graph_msg(self.planner.graph, self.clock.now()))
         announce(bus, "route", sim_time=self.sim_time)
+
+    def reroute(self, _req: Trigger.Request) -> Trigger.Response:
+        """``route_server/ReroutingService/reroute``: the tracked route is planned anew."""
+        if self.rerouting is not None:
+            self.rerouting.requested = True
+        return Trigger.Response(success=True, message="reroute requested")
+
+    def set_graph(self, req: SetRouteGraph.Request) -> SetRouteGraph.Response:
+        """``route_server/set_route_graph`` (a shipped world's name or a path)."""
+        planner = self.planner
+        if planner is None:
+            return SetRouteGraph.Response(success=False, message="the server is not started")
+        planner.graph, planner.no_graph = load_or_explain(graph_path(req.graph_filepath))
+        self.graphs.put(graph_msg(planner.graph, self.clock.now()))
+        return SetRouteGraph.Response(success=planner.graph is not None, message=planner.no_graph)

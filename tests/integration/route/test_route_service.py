@@ -15,6 +15,7 @@ import pytest
 
 from aiobt.msgs import OccupancyGrid, PoseStamped
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
+from aiobt.msgs.route_graph import RouteGraph, SetRouteGraph
 from aiobt.msgs.speed_limit import SpeedLimit
 from aiobt.msgs.std import Trigger
 from aiobt.testing.bus import ServiceProcess
@@ -34,6 +35,11 @@ async def route(bus: Bus, goal: ComputeRoute.Goal) -> Any:
     client = bus.action_client(ComputeRoute.name, ComputeRoute)
     handle = await client.send_goal(goal, server_timeout=10.0)
     return await handle.result(timeout=10.0)
+
+
+async def set_graph(bus: Bus, path: str) -> Any:
+    request = SetRouteGraph.Request(graph_filepath=path)
+    return await bus.call(SetRouteGraph.service_name, request, SetRouteGraph.Response)
 
 
 async def start(spawn: Spawn, bus: Bus, settings: BusSettings, *flags: str) -> ServiceProcess:
@@ -94,6 +100,34 @@ async def test_a_graph_that_does_not_load_fails_requests_and_the_server_runs(
         assert "feature 1 (edge id 2)" in result.error_msg
         assert "endid 7 is not a node" in result.error_msg
     assert proc.running
+    # set_route_graph: the office graph, then the bad one again (as Nav2: no graph after)
+    bus.latched_publisher("map", OccupancyGrid).put(occupancy_grid(load_map(OFFICE)))
+    office_graph = asyncio.Event()
+    graphs: list[RouteGraph] = []
+
+    def on_graph(msg: RouteGraph) -> None:
+        graphs.append(msg)
+        if len(msg.nodes) == 36:
+            office_graph.set()
+
+    bus.subscribe("route_graph", RouteGraph, on_graph, latched=True)
+    reply = await set_graph(bus, "office")
+    assert reply.success, reply.message
+    async with asyncio.timeout(5.0):
+        await office_graph.wait()
+    assert len(graphs[-1].edges) == 84
+    assert graphs[-1].name == "office_graph"
+    for _ in range(20):  # the map comes to the server's costmap (the CostmapScorer's)
+        result = await route(bus, ComputeRoute.Goal(start_id=1, goal_id=8))
+        if result.error_code != Codes.NO_VALID_ROUTE:
+            break
+        await asyncio.sleep(0.1)  # polled, bounded: 20 tries
+    assert result.error_code == 0, result.error_msg
+    reply = await set_graph(bus, str(bad))
+    assert not reply.success
+    assert "endid 7 is not a node" in reply.message
+    again = await route(bus, ComputeRoute.Goal(start_id=1, goal_id=8))
+    assert again.error_code == Codes.NO_VALID_GRAPH
 
 
 def corridor_graph(path: Path) -> Path:
