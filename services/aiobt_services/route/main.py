@@ -2,11 +2,13 @@
 
 Loads a route graph (``--graph-filepath``, Nav2 GeoJSON; a shipped world's name
 picks its graph); subscribes ``{ns}/map`` (latched), ``{ns}/pose`` and ``{ns}/scan``
-for the global costmap (the planner's, reused) that the CostmapScorer and the
+for a global costmap (as the planner's) that the CostmapScorer and the
 CollisionMonitor read; serves the actions ``compute_route`` and
-``compute_and_track_route`` and the service ``srv/route_server/ReroutingService/reroute``;
-publishes ``{ns}/speed_limit`` (AdjustSpeedLimit); holds ``{ns}/nodes/route``. A graph
-that does not load is logged and every request fails NO_VALID_GRAPH with that error.
+``compute_and_track_route`` and the services ``srv/route_server/set_route_graph`` and
+``srv/route_server/ReroutingService/reroute``; publishes ``{ns}/speed_limit``
+(AdjustSpeedLimit) and ``{ns}/route_graph`` (latched); holds ``{ns}/nodes/route``. A
+graph that does not load is logged and every request fails NO_VALID_GRAPH with that
+error. See docs/route.md.
 """
 
 from __future__ import annotations

@@ -53,9 +53,9 @@ def add_route_arguments(group: argparse._ArgumentGroup) -> None:
     add("--path-density", type=positive, default=0.05, help="m between path points (%(default)s)")
     add("--max-iterations", type=int, default=0, help="search expansions, 0 = no limit")
     add("--max-planning-time", type=positive, default=2.0, help="s, warned over (%(default)s)")
-    add("--edge-cost-functions", type=_names, default=list(DEFAULT_SCORERS),
+    add("--edge-cost-functions", type=_names, default=",".join(DEFAULT_SCORERS),
         help=f"comma-separated, of {', '.join(SCORERS)} (default: %(default)s)")  # fmt: skip
-    add("--operations", type=_names, default=list(OPERATIONS),
+    add("--operations", type=_names, default=",".join(OPERATIONS),
         help=f"comma-separated, of {', '.join(OPERATIONS)} (default: %(default)s)")  # fmt: skip
     add("--param", type=_param, action="append", default=[], metavar="PLUGIN.NAME=VALUE",
         help="a scorer's or operation's parameter, e.g. CostmapScorer.weight=2.0")  # fmt: skip
