@@ -3,19 +3,20 @@ the pruning of a first or last edge the robot or goal is already along.
 
 By ids (``use_poses`` false) the nodes are the request's. By poses, each end is
 the nearest node; with ``enable_nn_search``, when the straight line to it is
-blocked in the costmap, the nearest of ``num_nearest_nodes`` with a clear line
-(Nav2 runs a breadth-first search over the costmap there; the line check is
-this server's simpler stand-in and may pick a node a wall hides less well).
+blocked in the costmap, the first of the ``num_nearest_nodes`` nearest that a
+breadth-first search over the free cells reaches (``max_nn_search_iterations``
+cells at most; none reached: the nearest), as Nav2 does.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from aiobt.costmap import INSCRIBED, NO_INFORMATION, CostGrid, segment_max_cost
+from aiobt.costmap import CostGrid
 
 from .errors import RouteError
 from .graph import Graph, GraphEdge, GraphNode
+from .reach import reachable_first, sight_blocked
 from .search import Route
 from .vectors import XY, closest_point, distance, normalized_dot
 
@@ -30,6 +31,7 @@ class IntentParams:
     min_prune_dist_from_start: float = 0.10
     enable_nn_search: bool = True
     num_nearest_nodes: int = 5
+    max_nn_search_iterations: int = 10000
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,14 +87,12 @@ def _nearest(
     if not candidates:
         raise RouteError("INDETERMINANT_NODES_ON_GRAPH",
                          f"no graph node found near the {what} pose {xy}")  # fmt: skip
-    if costmap is None or not params.enable_nn_search or _clear(costmap, xy, candidates[0]):
-        return candidates[0]
-    return next((node for node in candidates[1:] if _clear(costmap, xy, node)), candidates[0])
-
-
-def _clear(costmap: CostGrid, xy: XY, node: GraphNode) -> bool:
-    cost = segment_max_cost(costmap, xy[0], xy[1], node.x, node.y)
-    return cost < INSCRIBED or cost == NO_INFORMATION
+    nearest = candidates[0]
+    if costmap is None or len(candidates) < 2 or not sight_blocked(costmap, xy, _xy(nearest)):
+        return nearest
+    points = [_xy(node) for node in candidates]
+    found = reachable_first(costmap, xy, points, params.max_nn_search_iterations)
+    return nearest if found is None else candidates[found]
 
 
 def prune(

@@ -69,6 +69,7 @@ def add_route_arguments(group: argparse._ArgumentGroup) -> None:
     add("--min-prune-dist-from-start", type=non_negative, default=0.10, help="m (%(default)s)")
     add("--enable-nn-search", type=_flag, default=True, help="true/false (%(default)s)")
     add("--num-nearest-nodes", type=int, default=5, help="(%(default)s)")
+    add("--max-nn-search-iterations", type=int, default=10000, help="cells (%(default)s)")
 
 
 def plugin_params(args: argparse.Namespace, name: str) -> dict[str, str]:
@@ -88,7 +89,8 @@ def check_plugins(args: argparse.Namespace) -> None:
 def route_params(args: argparse.Namespace) -> RouteParams:
     intent = IntentParams(args.prune_goal, args.max_prune_dist_from_edge,
                           args.min_prune_dist_from_goal, args.min_prune_dist_from_start,
-                          args.enable_nn_search, args.num_nearest_nodes)  # fmt: skip
+                          args.enable_nn_search, args.num_nearest_nodes,
+                          args.max_nn_search_iterations)  # fmt: skip
     return RouteParams(args.path_density, args.max_iterations, args.max_planning_time, intent)
 
 

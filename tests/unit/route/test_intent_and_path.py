@@ -44,7 +44,7 @@ def test_ends_by_id_and_by_nearest_pose() -> None:
         find_ends(graph, RouteRequest(False, start_id=1, goal_id=99), PARAMS, None)
 
 
-def test_a_wall_between_pose_and_nearest_node_picks_a_visible_one() -> None:
+def test_a_wall_between_pose_and_nearest_node_picks_a_reachable_one() -> None:
     costs = np.zeros((60, 60), dtype=np.uint8)
     costs[:, 15:18] = 254  # a wall at x 1.5-1.8 m, all along
     grid = CostGrid(GridGeometry(60, 60, 0.1), costs)
@@ -53,6 +53,22 @@ def test_a_wall_between_pose_and_nearest_node_picks_a_visible_one() -> None:
     assert start.nodeid == 2
     blind = IntentParams(enable_nn_search=False)
     start, _ = find_ends(graph, RouteRequest(True, start=(1.9, 0.5), goal=(4, 4)), blind, grid)
+    assert start.nodeid == 1
+
+
+def test_the_search_takes_the_node_reached_first_round_a_wall() -> None:
+    costs = np.zeros((60, 60), dtype=np.uint8)
+    costs[3:, 15:18] = 254  # a wall at x 1.5-1.8 m, open below y 0.3 m
+    grid = CostGrid(GridGeometry(60, 60, 0.1), costs)
+    graph = square()  # node 1 (0, 0): behind the wall, 19 cells round it; node 2 (4, 0): 21
+    request = RouteRequest(True, start=(1.9, 0.5), goal=(4, 4))
+    start, _ = find_ends(graph, request, PARAMS, grid)
+    assert start.nodeid == 1
+    costs[:3, 15:18] = 254  # the gap closed: node 1 cannot be reached
+    start, _ = find_ends(graph, request, PARAMS, grid)
+    assert start.nodeid == 2
+    cut_short = IntentParams(max_nn_search_iterations=10)  # reaches none: the nearest
+    start, _ = find_ends(graph, request, cut_short, grid)
     assert start.nodeid == 1
 
 
