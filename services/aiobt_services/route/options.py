@@ -11,6 +11,7 @@ from typing import Any
 from aiobt.costmap import CostGrid
 from aiobt.system.service import non_negative, positive
 
+from .dense import Smoothing
 from .graphs import graph_path
 from .intent import IntentParams
 from .operations import (
@@ -52,6 +53,14 @@ def add_route_arguments(group: argparse._ArgumentGroup) -> None:
         help="GeoJSON route graph: a path, or a shipped world's name (office, small)")  # fmt: skip
     add("--path-density", type=positive, default=0.05, help="m between path points (%(default)s)")
     add("--max-iterations", type=int, default=0, help="search expansions, 0 = no limit")
+    add(
+        "--smooth-corners",
+        type=_flag,
+        default=False,
+        help="round corners: true/false (%(default)s)",
+    )
+    add("--smoothing-radius", type=positive, default=1.0, help="m (%(default)s)")
+    add("--smoothing-angle-threshold", type=positive, default=2.9, help="rad (%(default)s)")
     add("--max-planning-time", type=positive, default=2.0, help="s, warned over (%(default)s)")
     add("--edge-cost-functions", type=_names, default=",".join(DEFAULT_SCORERS),
         help=f"comma-separated, of {', '.join(SCORERS)} (default: %(default)s)")  # fmt: skip
@@ -91,7 +100,10 @@ def route_params(args: argparse.Namespace) -> RouteParams:
                           args.min_prune_dist_from_goal, args.min_prune_dist_from_start,
                           args.enable_nn_search, args.num_nearest_nodes,
                           args.max_nn_search_iterations)  # fmt: skip
-    return RouteParams(args.path_density, args.max_iterations, args.max_planning_time, intent)
+    smoothing = Smoothing(args.smooth_corners, args.smoothing_radius,
+                          args.smoothing_angle_threshold)  # fmt: skip
+    return RouteParams(args.path_density, args.max_iterations, args.max_planning_time, intent,
+                       smoothing)  # fmt: skip
 
 
 def tracker_params(args: argparse.Namespace) -> TrackerParams:

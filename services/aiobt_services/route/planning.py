@@ -12,7 +12,7 @@ from dataclasses import dataclass, field, replace
 
 from aiobt.costmap import CostGrid
 
-from .dense import Poses, densify
+from .dense import Poses, Smoothing, densify
 from .errors import RouteError
 from .graph import Graph
 from .intent import IntentParams, ReroutingState, RouteRequest, find_ends, prune
@@ -26,10 +26,14 @@ class RouteParams:
     max_iterations: int = 0
     max_planning_time: float = 2.0
     intent: IntentParams = field(default_factory=IntentParams)
+    smoothing: Smoothing = field(default_factory=Smoothing)
 
     def __post_init__(self) -> None:
         if not self.path_density > 0.0:
             raise ValueError(f"path_density must be > 0 m, got {self.path_density!r}")
+        if not self.smoothing.smoothing_radius > 0.0:
+            raise ValueError(f"smoothing_radius must be > 0 m, got "
+                             f"{self.smoothing.smoothing_radius!r}")  # fmt: skip
 
 
 class RoutePlanner:
@@ -64,4 +68,5 @@ class RoutePlanner:
         route = find_route(graph, start, goal, self.scorer, rerouting.blocked_ids,
                            self.params.max_iterations)  # fmt: skip
         route = prune(route, request, self.params.intent, rerouting)
-        return route, densify(route, rerouting, self.params.path_density)
+        poses = densify(route, rerouting, self.params.path_density, self.params.smoothing)
+        return route, poses
