@@ -4,8 +4,9 @@ Loads a route graph (``--graph-filepath``, Nav2 GeoJSON; a shipped world's name
 picks its graph); subscribes ``{ns}/map`` (latched), ``{ns}/pose`` and ``{ns}/scan``
 for a global costmap (as the planner's) that the CostmapScorer and the
 CollisionMonitor read; serves the actions ``compute_route`` and
-``compute_and_track_route`` and the services ``srv/route_server/set_route_graph`` and
-``srv/route_server/ReroutingService/reroute``; publishes ``{ns}/speed_limit``
+``compute_and_track_route`` and the services ``srv/route_server/set_route_graph``,
+``srv/route_server/ReroutingService/reroute`` and (with the DynamicEdgesScorer)
+``srv/route_server/DynamicEdgesScorer/adjust_edges``; publishes ``{ns}/speed_limit``
 (AdjustSpeedLimit) and ``{ns}/route_graph`` (latched); holds ``{ns}/nodes/route``. A
 graph that does not load is logged and every request fails NO_VALID_GRAPH with that
 error. See docs/route.md.
@@ -41,6 +42,7 @@ from .options import (
     tracker_params,
 )
 from .planning import RoutePlanner
+from .scorers import DynamicEdgesScorer
 from .service import RouteService
 
 log = logging.getLogger("aiobt_services.route.main")
@@ -64,6 +66,8 @@ def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
     world = service.world
     graph, problem = load_or_explain(args.graph_filepath)
     scorer = edge_scorer(args, world.snapshot)
+    dynamic = [s for s in scorer.scorers if isinstance(s, DynamicEdgesScorer)]
+    service.dynamic_edges = dynamic[0] if dynamic else None
     planner = RoutePlanner(graph, scorer, route_params(args), world.snapshot, problem)
     manager, rerouting = operations(args, world.snapshot, service.publish_speed_limit)
     service.rerouting = rerouting

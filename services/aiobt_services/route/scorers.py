@@ -1,4 +1,5 @@
-"""Nav2's edge scorers: ``DistanceScorer``, ``PenaltyScorer``, ``CostmapScorer``.
+"""Nav2's edge scorers: ``DistanceScorer``, ``PenaltyScorer``, ``CostmapScorer``,
+``DynamicEdgesScorer``.
 
 A scorer gives an edge a cost, or ``None`` when the edge may not be used now
 (Nav2's ``score`` returning false). Parameters carry Nav2's names and defaults
@@ -115,10 +116,34 @@ class CostmapScorer:
         return self.weight * float(costs.mean()) / self.max_cost
 
 
+@dataclass(slots=True)
+class DynamicEdgesScorer:
+    """Edges closed, and costs set, from outside (``adjust_edges``): a closed edge is
+    not used; an edge with a cost set scores it; any other scores 0."""
+
+    closed: set[int] = field(default_factory=set, init=False)
+    costs: dict[int, float] = field(default_factory=dict, init=False)
+
+    def adjust(self, closed: list[int], opened: list[int], costs: dict[int, float]) -> None:
+        """Nav2's ``adjust_edges``: close, then reopen, then set costs."""
+        self.closed.update(closed)
+        self.closed.difference_update(opened)
+        self.costs.update(costs)
+
+    def prepare(self) -> None:
+        return None
+
+    def score(self, edge: GraphEdge) -> float | None:
+        if edge.edgeid in self.closed:
+            return None
+        return self.costs.get(edge.edgeid, 0.0)
+
+
 SCORERS: dict[str, type[Any]] = {
     "DistanceScorer": DistanceScorer,
     "PenaltyScorer": PenaltyScorer,
     "CostmapScorer": CostmapScorer,
+    "DynamicEdgesScorer": DynamicEdgesScorer,
 }
 DEFAULT_SCORERS = ("DistanceScorer", "CostmapScorer")  # nav2_bringup's nav2_params.yaml
 

@@ -10,7 +10,7 @@ from aiobt.core.clock import Clock
 from aiobt.costmap.world import FedCostmap
 from aiobt.msgs import OccupancyGrid
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
-from aiobt.msgs.route_graph import RouteGraph, SetRouteGraph
+from aiobt.msgs.route_graph import DynamicEdges, RouteGraph, SetRouteGraph
 from aiobt.msgs.speed_limit import SpeedLimit
 from aiobt.msgs.std import Trigger
 from aiobt.system.announce import announce
@@ -23,6 +23,7 @@ from .geojson import load_or_explain
 from .graphs import graph_path
 from .operations import ReroutingService
 from .planning import RoutePlanner
+from .scorers import DynamicEdgesScorer
 from .vectors import XY
 
 log = logging.getLogger("aiobt_services.route.service")
@@ -44,6 +45,7 @@ class RouteService:
         self.feed = RobotFeed(bus, world, clock)
         self.speed_limits = bus.publisher(SPEED_LIMIT_TOPIC, SpeedLimit, reliable=True)
         self.rerouting: ReroutingService | None = None  # set by the operations built
+        self.dynamic_edges: DynamicEdgesScorer | None = None  # set by the scorers built
         self.graphs = bus.latched_publisher(GRAPH_TOPIC, RouteGraph)
         self.planner: RoutePlanner | None = None  # the actions' (set by start)
 
@@ -64,6 +66,9 @@ class RouteService:
                           feed.action(actions.compute_and_track_route))  # fmt: skip
         if self.rerouting is not None:
             bus.serve(REROUTE_SERVICE, Trigger.Request, Trigger.Response, self.reroute)
+        if self.dynamic_edges is not None:
+            bus.serve(DynamicEdges.service_name, DynamicEdges.Request, DynamicEdges.Response,
+                      self.adjust_edges)  # fmt: skip
         self.planner = actions.planner
         bus.serve(SetRouteGraph.service_name, SetRouteGraph.Request, SetRouteGraph.Response,
                   self.set_graph)  # fmt: skip
@@ -75,6 +80,15 @@ class RouteService:
         if self.rerouting is not None:
             self.rerouting.requested = True
         return Trigger.Response(success=True, message="reroute requested")
+
+    def adjust_edges(self, req: DynamicEdges.Request) -> DynamicEdges.Response:
+        """``route_server/DynamicEdgesScorer/adjust_edges``."""
+        if self.dynamic_edges is None:
+            return DynamicEdges.Response(success=False)
+        costs = {edge.edgeid: edge.cost for edge in req.adjust_edges}
+        self.dynamic_edges.adjust(req.closed_edges, req.opened_edges, costs)
+        log.info("edges closed now: %s; costs set: %s", sorted(self.dynamic_edges.closed), costs)
+        return DynamicEdges.Response(success=True)
 
     def set_graph(self, req: SetRouteGraph.Request) -> SetRouteGraph.Response:
         """``route_server/set_route_graph`` (a shipped world's name or a path)."""

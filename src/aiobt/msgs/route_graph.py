@@ -1,5 +1,5 @@
 """The route server's graph on the wire: the graph for viewers (Nav2 publishes it as
-markers on ``route_graph``) and ``nav2_msgs/SetRouteGraph``."""
+markers on ``route_graph``), ``nav2_msgs/SetRouteGraph`` and ``nav2_msgs/DynamicEdges``."""
 
 from __future__ import annotations
 
@@ -38,3 +38,29 @@ class SetRouteGraph:
     service_name: ClassVar[str] = "route_server/set_route_graph"
     Request: TypeAlias = _SetRouteGraphRequest
     Response: TypeAlias = _SetRouteGraphResponse
+
+
+class EdgeCost(Msg):
+    """``nav2_msgs/EdgeCost``: a cost for one edge."""
+
+    edgeid: int = Field(ge=0)
+    cost: float
+
+
+class _DynamicEdgesRequest(Msg):
+    closed_edges: list[int] = Field(default_factory=list)
+    opened_edges: list[int] = Field(default_factory=list)
+    adjust_edges: list[EdgeCost] = Field(default_factory=list)
+
+
+class _DynamicEdgesResponse(Msg):
+    success: bool = False
+
+
+class DynamicEdges:
+    """``nav2_msgs/DynamicEdges`` (``route_server/DynamicEdgesScorer/adjust_edges``):
+    close edges, reopen them, set their costs, from a third party (a fleet manager)."""
+
+    service_name: ClassVar[str] = "route_server/DynamicEdgesScorer/adjust_edges"
+    Request: TypeAlias = _DynamicEdgesRequest
+    Response: TypeAlias = _DynamicEdgesResponse

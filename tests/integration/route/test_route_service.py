@@ -15,7 +15,7 @@ import pytest
 
 from aiobt.msgs import OccupancyGrid, PoseStamped
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
-from aiobt.msgs.route_graph import RouteGraph, SetRouteGraph
+from aiobt.msgs.route_graph import DynamicEdges, RouteGraph, SetRouteGraph
 from aiobt.msgs.speed_limit import SpeedLimit
 from aiobt.msgs.std import Trigger
 from aiobt.testing.bus import ServiceProcess
@@ -53,17 +53,29 @@ async def test_routes_on_the_office_graph_and_error_codes(
 ) -> None:
     bus.latched_publisher("map", OccupancyGrid).put(occupancy_grid(load_map(OFFICE)))
     bus.publisher("pose", PoseStamped).put(PoseStamped.from_xy_yaw(2.0, 9.75, 0.0))
-    await start(spawn, bus, bus_settings, "--graph-filepath", "office")
+    scorers = "DistanceScorer,CostmapScorer,DynamicEdgesScorer"
+    await start(spawn, bus, bus_settings, "--graph-filepath", "office",
+                "--edge-cost-functions", scorers)  # fmt: skip
 
-    by_ids = await route(bus, ComputeRoute.Goal(start_id=1, goal_id=24))
+    by_ids = await route(bus, ComputeRoute.Goal(start_id=1, goal_id=22))
     assert by_ids.error_code == 0, by_ids.error_msg
     nodes = [n.nodeid for n in by_ids.route.nodes]
     assert nodes[0] == 1
-    assert nodes[-1] == 24
-    assert 7 in nodes or 17 in nodes
+    assert nodes[-1] == 22
+    assert 7 in nodes  # along the corridor
     xy = by_ids.path.xy_array()
     assert np.hypot(*np.diff(xy, axis=0).T).max() <= 0.05 + 1e-6  # Nav2's path_density
-    assert tuple(xy[-1]) == (19.0, 4.0)
+    assert tuple(xy[-1]) == (16.5, 7.0)
+
+    # a fleet manager closes the corridor east of node 5: the route goes by the middle room
+    corridor = [e.edgeid for e in by_ids.route.edges if e.start.x == 10.0 and e.end.x == 14.0]
+    assert corridor, [e.edgeid for e in by_ids.route.edges]
+    closing = DynamicEdges.Request(closed_edges=corridor)
+    assert (await bus.call(DynamicEdges.service_name, closing, DynamicEdges.Response)).success
+    around = await route(bus, ComputeRoute.Goal(start_id=1, goal_id=22))
+    assert around.error_code == 0, around.error_msg
+    assert 17 in [n.nodeid for n in around.route.nodes]
+    assert not set(corridor) & {e.edgeid for e in around.route.edges}
 
     goal = PoseStamped.from_xy_yaw(1.0, 18.3, 0.0)  # past node 29, in the open plan
     for _ in range(50):  # until the server has the pose

@@ -12,6 +12,7 @@ from aiobt_services.route.graph import Graph, GraphNode
 from aiobt_services.route.scorers import (
     CostmapScorer,
     DistanceScorer,
+    DynamicEdgesScorer,
     EdgeScorer,
     PenaltyScorer,
     make_scorer,
@@ -121,6 +122,19 @@ def test_costmap_scorer_closes_blocked_edges_and_scores_cost() -> None:
     blind = CostmapScorer(lambda: None)
     blind.prepare()
     assert blind.score(graph.edges[12]) is None  # no costmap: no edge, as Nav2
+
+
+def test_dynamic_edges_close_reopen_and_cost() -> None:
+    graph = square()
+    dynamic = DynamicEdgesScorer()
+    scorer = EdgeScorer([DistanceScorer(), dynamic])
+    dynamic.adjust(closed=[10, 14], opened=[], costs={})
+    with pytest.raises(RouteError, match="no route from node 1 to node 3"):
+        ids(graph, 1, 3, scorer)
+    dynamic.adjust(closed=[], opened=[14], costs={12: 100.0})
+    assert ids(graph, 1, 3, scorer) == [14, 16]
+    dynamic.adjust(closed=[], opened=[10], costs={16: 200.0})
+    assert ids(graph, 1, 3, scorer) == [10, 12]  # 8 + 100 against 8 + 200
 
 
 def test_scorers_by_name_with_nav2_parameters() -> None:
