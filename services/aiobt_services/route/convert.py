@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-from aiobt.msgs import Path
+from aiobt.msgs import Path, pose_fields
 from aiobt.msgs.geometry import Header, Point
 from aiobt.msgs.route import Route as RouteMsg
 from aiobt.msgs.route import RouteEdge, RouteNode
 from aiobt.msgs.route_graph import RouteGraph
-from aiobt_services.planner.actions import to_path
 
 from .dense import Poses
 from .graph import Graph, GraphEdge, GraphNode
@@ -50,4 +49,11 @@ def graph_msg(graph: Graph | None, stamp: float) -> RouteGraph:
 
 
 def path_msg(poses: Poses, stamp: float) -> Path:
-    return to_path([(x, y, yaw) for x, y, yaw in poses.tolist()], stamp)
+    """The dense path in ``map``, validated as one nested dict (as the planner builds its
+    paths: a fraction of building each pose's models one by one)."""
+    header = {"stamp": stamp, "frame_id": ROUTE_FRAME}
+    return Path.model_validate({
+        "header": header,
+        "poses": [{"header": header, "pose": pose_fields(x, y, yaw)}
+                  for x, y, yaw in poses.tolist()],
+    })  # fmt: skip

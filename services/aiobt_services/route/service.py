@@ -7,15 +7,15 @@ from __future__ import annotations
 import logging
 
 from aiobt.core.clock import Clock
+from aiobt.costmap.feed import RobotFeed
 from aiobt.costmap.world import FedCostmap
 from aiobt.msgs import OccupancyGrid
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
 from aiobt.msgs.route_graph import DynamicEdges, RouteGraph, SetRouteGraph
 from aiobt.msgs.speed_limit import SpeedLimit
 from aiobt.msgs.std import Trigger
-from aiobt.system.announce import announce
 from aiobt.transport import Bus
-from aiobt_services.planner.feed import RobotFeed
+from aiobt.transport.announce import announce
 
 from .actions import RouteActions
 from .convert import graph_msg
