@@ -21,11 +21,11 @@ import uuid
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
-from aiobt.system.catalog import SERVICE_NAMES
+from aiobt.system.catalog import SERVICES as CATALOG
 from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
 from aiobt.transport import Bus, BusSettings
 
-SERVICES = SERVICE_NAMES
+SERVICES = tuple(spec.name for spec in CATALOG if spec.enabled)  # what `aiobt up` runs
 SIM_TIME = ("controller", "behaviors", "navigator")  # the planner needs no clock
 
 
