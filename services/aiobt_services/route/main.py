@@ -33,6 +33,7 @@ from aiobt.transport import BusSettings, add_bus_arguments
 
 from .actions import RouteActions
 from .geojson import load_or_explain
+from .operations import OperationsManager, ReroutingService
 from .options import (
     add_route_arguments,
     check_plugins,
@@ -42,6 +43,7 @@ from .options import (
     tracker_params,
 )
 from .planning import RoutePlanner
+from .plugins import Wiring
 from .scorers import DynamicEdgesScorer
 from .service import RouteService
 
@@ -64,15 +66,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
     check_plugins(args)
     world = service.world
+    wiring = Wiring(world.snapshot, service.publish_speed_limit)
     graph, problem = load_or_explain(args.graph_filepath)
-    scorer = edge_scorer(args, world.snapshot)
-    dynamic = [s for s in scorer.scorers if isinstance(s, DynamicEdgesScorer)]
-    service.dynamic_edges = dynamic[0] if dynamic else None
+    scorer = edge_scorer(args, wiring)
+    service.dynamic_edges = next(
+        (s for s in scorer.scorers if isinstance(s, DynamicEdgesScorer)), None
+    )
     planner = RoutePlanner(graph, scorer, route_params(args), world.snapshot, problem)
-    manager, rerouting = operations(args, world.snapshot, service.publish_speed_limit)
-    service.rerouting = rerouting
-    return RouteActions(planner, manager, tracker_params(args), service.robot_position,
-                        service.clock)  # fmt: skip
+    made = operations(args, wiring)
+    service.rerouting = next((op for op in made if isinstance(op, ReroutingService)), None)
+    return RouteActions(planner, OperationsManager(made), tracker_params(args),
+                        service.robot_position, service.clock)  # fmt: skip
 
 
 async def serve(args: argparse.Namespace) -> None:

@@ -60,9 +60,9 @@ class AdjustSpeedLimit:
     absent) as the speed limit."""
 
     publish: Callable[[float], None]
-    name: str = "AdjustSpeedLimit"
+    name: str = field(default="AdjustSpeedLimit", init=False)
     speed_tag: str = "speed_limit"
-    process_type: ProcessType = "ON_STATUS_CHANGE"
+    process_type: ProcessType = field(default="ON_STATUS_CHANGE", init=False)
 
     def perform(self, event: Event) -> OperationResult:
         if event.edge_entered is not None:
@@ -74,9 +74,9 @@ class AdjustSpeedLimit:
 class ReroutingService:
     """A reroute asked for from outside (``route_server/ReroutingService/reroute``)."""
 
-    name: str = "ReroutingService"
-    process_type: ProcessType = "ON_QUERY"
-    requested: bool = False
+    name: str = field(default="ReroutingService", init=False)
+    process_type: ProcessType = field(default="ON_QUERY", init=False)
+    requested: bool = field(default=False, init=False)
 
     def perform(self, event: Event) -> OperationResult:
         asked, self.requested = self.requested, False
@@ -90,14 +90,14 @@ class CollisionMonitor:
     edge it lies on: reroute around it (``reroute_on_collision``) or fail the task."""
 
     costmap: Callable[[], CostGrid | None]
-    name: str = "CollisionMonitor"
+    name: str = field(default="CollisionMonitor", init=False)
     rate: float = 1.0
     max_cost: float = 253.0
     max_collision_dist: float = 5.0
     check_resolution: int = 1
     reroute_on_collision: bool = True
-    process_type: ProcessType = "ON_QUERY"
-    last_check: float = float("-inf")
+    process_type: ProcessType = field(default="ON_QUERY", init=False)
+    last_check: float = field(default=float("-inf"), init=False)
 
     def perform(self, event: Event) -> OperationResult:
         edge = event.edge_entered
@@ -198,3 +198,12 @@ class OperationsManager:
 def _with(event: Event, metadata: Metadata) -> Event:
     return Event(event.node, event.edge_entered, event.edge_exited, event.route, event.pose,
                  event.now, metadata)  # fmt: skip
+
+
+OPERATIONS: dict[str, type[RouteOperation]] = {
+    "AdjustSpeedLimit": AdjustSpeedLimit,
+    "ReroutingService": ReroutingService,
+    "CollisionMonitor": CollisionMonitor,
+}
+"""The route operations by Nav2's plugin ids (:func:`.plugins.make_plugin` builds them)."""
+DEFAULT_OPERATIONS = ("AdjustSpeedLimit", "ReroutingService", "CollisionMonitor")  # bringup's

@@ -4,29 +4,19 @@ underscores), and the server's parts built from them."""
 from __future__ import annotations
 
 import argparse
-import dataclasses
-from collections.abc import Callable
-from typing import Any
 
-from aiobt.costmap import CostGrid
 from aiobt.system.service import non_negative, positive
 
 from .dense import Smoothing
 from .graphs import graph_path
 from .intent import IntentParams
-from .operations import (
-    AdjustSpeedLimit,
-    CollisionMonitor,
-    OperationsManager,
-    ReroutingService,
-    RouteOperation,
-)
+from .operations import DEFAULT_OPERATIONS, OPERATIONS, RouteOperation
 from .planning import RouteParams
-from .scorers import DEFAULT_SCORERS, SCORERS, EdgeScorer, convert_param, make_scorer
+from .plugins import Wiring, make_plugin
+from .scorers import DEFAULT_SCORERS, SCORERS, EdgeScorer
 from .tracker import TrackerParams
 
-OPERATIONS = ("AdjustSpeedLimit", "ReroutingService", "CollisionMonitor")  # nav2_params.yaml
-COLLISION_MONITOR_DEFAULTS = {"max_collision_dist": "3.0"}  # nav2_params.yaml
+COLLISION_MONITOR_DEFAULTS = {"max_collision_dist": "3.0"}  # nav2_params.yaml (code: 5.0)
 
 
 def _names(text: str) -> list[str]:
@@ -64,7 +54,7 @@ def add_route_arguments(group: argparse._ArgumentGroup) -> None:
     add("--max-planning-time", type=positive, default=2.0, help="s, warned over (%(default)s)")
     add("--edge-cost-functions", type=_names, default=",".join(DEFAULT_SCORERS),
         help=f"comma-separated, of {', '.join(SCORERS)} (default: %(default)s)")  # fmt: skip
-    add("--operations", type=_names, default=",".join(OPERATIONS),
+    add("--operations", type=_names, default=",".join(DEFAULT_OPERATIONS),
         help=f"comma-separated, of {', '.join(OPERATIONS)} (default: %(default)s)")  # fmt: skip
     add("--param", type=_param, action="append", default=[], metavar="PLUGIN.NAME=VALUE",
         help="a scorer's or operation's parameter, e.g. CostmapScorer.weight=2.0")  # fmt: skip
@@ -111,39 +101,15 @@ def tracker_params(args: argparse.Namespace) -> TrackerParams:
                          args.tracker_update_rate, args.aggregate_blocked_ids)  # fmt: skip
 
 
-def edge_scorer(args: argparse.Namespace, costmap: Callable[[], CostGrid | None]) -> EdgeScorer:
-    return EdgeScorer([make_scorer(name, plugin_params(args, name), costmap)
-                       for name in args.edge_cost_functions])  # fmt: skip
+def edge_scorer(args: argparse.Namespace, wiring: Wiring) -> EdgeScorer:
+    return EdgeScorer([
+        make_plugin(SCORERS, "edge_cost_functions", name, plugin_params(args, name), wiring)
+        for name in args.edge_cost_functions
+    ])  # fmt: skip
 
 
-def operations(
-    args: argparse.Namespace,
-    costmap: Callable[[], CostGrid | None],
-    speed_limit: Callable[[float], None],
-) -> tuple[OperationsManager, ReroutingService | None]:
-    made: list[RouteOperation] = []
-    rerouting: ReroutingService | None = None
-    for name in args.operations:
-        params = plugin_params(args, name)
-        if name == "AdjustSpeedLimit":
-            made.append(AdjustSpeedLimit(speed_limit, **_typed(AdjustSpeedLimit, name, params)))
-        elif name == "ReroutingService":
-            rerouting = ReroutingService()
-            made.append(rerouting)
-        elif name == "CollisionMonitor":
-            made.append(CollisionMonitor(costmap, **_typed(CollisionMonitor, name, params)))
-        else:
-            raise ValueError(f"operations: unknown operation '{name}' (known: "
-                             f"{', '.join(OPERATIONS)})")  # fmt: skip
-    return OperationsManager(made), rerouting
-
-
-def _typed(kind: type, name: str, params: dict[str, str]) -> dict[str, Any]:
-    fields = {f.name: f.default for f in dataclasses.fields(kind)}
-    typed: dict[str, Any] = {}
-    for key, text in params.items():
-        if key not in fields or key in ("name", "process_type", "last_check", "costmap", "publish"):
-            raise ValueError(f"{name}.{key}: no such parameter")
-        default = fields[key]
-        typed[key] = convert_param(f"{name}.{key}", text, default)
-    return typed
+def operations(args: argparse.Namespace, wiring: Wiring) -> list[RouteOperation]:
+    return [
+        make_plugin(OPERATIONS, "operations", name, plugin_params(args, name), wiring)
+        for name in args.operations
+    ]

@@ -9,10 +9,9 @@ sums the scorers of ``edge_cost_functions``; one ``None`` closes the edge.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Protocol
 
 import numpy as np
 
@@ -139,41 +138,14 @@ class DynamicEdgesScorer:
         return self.costs.get(edge.edgeid, 0.0)
 
 
-SCORERS: dict[str, type[Any]] = {
+SCORERS: dict[str, type[Scorer]] = {
     "DistanceScorer": DistanceScorer,
     "PenaltyScorer": PenaltyScorer,
     "CostmapScorer": CostmapScorer,
     "DynamicEdgesScorer": DynamicEdgesScorer,
 }
+"""The edge scorers by Nav2's plugin ids (:func:`.plugins.make_plugin` builds them)."""
 DEFAULT_SCORERS = ("DistanceScorer", "CostmapScorer")  # nav2_bringup's nav2_params.yaml
-
-
-def make_scorer(name: str, params: dict[str, str], costmap: CostmapSource) -> Scorer:
-    """Scorer ``name`` with ``params`` (Nav2 parameter name -> text); ValueError naming
-    the scorer and parameter for an unknown one or a bad value."""
-    kind = SCORERS.get(name)
-    if kind is None:
-        raise ValueError(f"edge_cost_functions: unknown scorer '{name}' (known: "
-                         f"{', '.join(SCORERS)})")  # fmt: skip
-    known = {f.name: f for f in dataclasses.fields(kind) if f.init and f.name != "costmap"}
-    values: dict[str, Any] = {"costmap": costmap} if kind is CostmapScorer else {}
-    for key, text in params.items():
-        if key not in known:
-            raise ValueError(f"{name}.{key}: no such parameter (known: {', '.join(known)})")
-        values[key] = convert_param(f"{name}.{key}", text, known[key].default)
-    scorer: Scorer = kind(**values)
-    return scorer
-
-
-def convert_param(where: str, text: str, default: Any) -> Any:
-    try:
-        if isinstance(default, bool):
-            if text.lower() not in ("true", "false"):
-                raise ValueError("not true or false")
-            return text.lower() == "true"
-        return type(default)(text)
-    except ValueError as exc:
-        raise ValueError(f"{where}: bad value {text!r} ({exc})") from None
 
 
 class EdgeScorer:

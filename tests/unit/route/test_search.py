@@ -9,13 +9,15 @@ from aiobt.costmap import CostGrid, GridGeometry
 from aiobt_services.route.errors import RouteError
 from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.graph import Graph, GraphNode
+from aiobt_services.route.operations import OPERATIONS, AdjustSpeedLimit, CollisionMonitor
+from aiobt_services.route.plugins import Wiring, make_plugin
 from aiobt_services.route.scorers import (
+    SCORERS,
     CostmapScorer,
     DistanceScorer,
     DynamicEdgesScorer,
     EdgeScorer,
     PenaltyScorer,
-    make_scorer,
 )
 from aiobt_services.route.search import find_route
 
@@ -137,13 +139,34 @@ def test_dynamic_edges_close_reopen_and_cost() -> None:
     assert ids(graph, 1, 3, scorer) == [10, 12]  # 8 + 100 against 8 + 200
 
 
-def test_scorers_by_name_with_nav2_parameters() -> None:
-    scorer = make_scorer("CostmapScorer", {"weight": "2.5", "use_maximum": "false"}, lambda: None)
-    assert isinstance(scorer, CostmapScorer)
-    assert (scorer.weight, scorer.use_maximum, scorer.check_resolution) == (2.5, False, 2)
-    with pytest.raises(ValueError, match="unknown scorer 'TimeScorer'"):
-        make_scorer("TimeScorer", {}, lambda: None)
+def test_plugins_by_name_with_nav2_parameters_and_the_server_wired_in() -> None:
+    speed_limits: list[float] = []
+    grid = grid_with_wall()
+    wiring = Wiring(lambda: grid, speed_limits.append)
+
+    def scorer(name: str, **params: str) -> object:
+        return make_plugin(SCORERS, "edge_cost_functions", name, params, wiring)
+
+    costmap = scorer("CostmapScorer", weight="2.5", use_maximum="false")
+    assert isinstance(costmap, CostmapScorer)
+    assert (costmap.weight, costmap.use_maximum, costmap.check_resolution) == (2.5, False, 2)
+    costmap.prepare()
+    assert costmap._grid is grid  # the server's costmap, not a parameter
+    with pytest.raises(ValueError, match="edge_cost_functions: unknown plugin 'TimeScorer'"):
+        scorer("TimeScorer")
     with pytest.raises(ValueError, match=r"DistanceScorer.speed: no such parameter"):
-        make_scorer("DistanceScorer", {"speed": "1"}, lambda: None)
+        scorer("DistanceScorer", speed="1")
     with pytest.raises(ValueError, match=r"PenaltyScorer.weight: bad value 'x'"):
-        make_scorer("PenaltyScorer", {"weight": "x"}, lambda: None)
+        scorer("PenaltyScorer", weight="x")
+    with pytest.raises(ValueError, match=r"CostmapScorer.costmap: no such parameter"):
+        scorer("CostmapScorer", costmap="x")
+    params = {"max_collision_dist": "3.0", "reroute_on_collision": "false"}
+    monitor = make_plugin(OPERATIONS, "operations", "CollisionMonitor", params, wiring)
+    assert isinstance(monitor, CollisionMonitor)
+    assert (monitor.max_collision_dist, monitor.reroute_on_collision) == (3.0, False)
+    adjust = make_plugin(OPERATIONS, "operations", "AdjustSpeedLimit", {}, wiring)
+    assert isinstance(adjust, AdjustSpeedLimit)
+    adjust.publish(40.0)
+    assert speed_limits == [40.0]
+    with pytest.raises(ValueError, match=r"ReroutingService.requested: no such parameter"):
+        make_plugin(OPERATIONS, "operations", "ReroutingService", {"requested": "true"}, wiring)
