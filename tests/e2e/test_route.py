@@ -12,6 +12,7 @@ The module's stack adds ``aiobt route`` with the office graph to the usual servi
 
 from __future__ import annotations
 
+import logging
 import math
 import random
 from collections.abc import Iterator
@@ -39,6 +40,7 @@ NAV2_TREES = Path(__file__).resolve().parents[2] / "trees" / "nav2"
 ON_GRAPH = str(NAV2_TREES / "navigate_on_route_graph_w_recovery.xml")
 ROUTED_PLANNING = str(NAV2_TREES / "navigate_w_routing_global_planning_and_control_w_recovery.xml")
 GRAPH = load_graph(OFFICE)
+log = logging.getLogger("tests.e2e.test_route")
 ON_EDGE = 0.3  # m: the driven track's largest distance from the graph's edges
 SEED = 36
 GOALS = 10
@@ -127,6 +129,7 @@ async def test_ten_seeded_goals_along_the_graph(world: World, goals: ServerGoals
         assert done.state is GoalState.SUCCEEDED, ((x, y), done.result)
         world.assert_at(x, y)
         worst.append(off_graph_between(world.track, first, last))
+    log.info("largest distance from the graph per goal (m, at x, y): %s", worst)
     assert max(worst)[0] <= ON_EDGE, worst  # (distance, x, y) per goal
     assert goals.ended("compute_route", GoalState.SUCCEEDED) >= GOALS
 
