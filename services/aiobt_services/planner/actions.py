@@ -41,8 +41,11 @@ from .traversal import Budget
 
 log = logging.getLogger("aiobt_services.planner.actions")
 _SIMPLE = SimpleSmoother()
-SMOOTHERS: dict[str, Smoother] = {"": _SIMPLE, "simple_smoother": _SIMPLE, "SmoothPath": _SIMPLE}
-"""Smoother plugins by Nav2's ids ("" the default; ``SmoothPath`` is the id Nav2's trees use)."""
+SMOOTHERS: dict[str, Smoother] = {
+    "": _SIMPLE, "simple_smoother": _SIMPLE, "route_smoother": _SIMPLE, "SmoothPath": _SIMPLE
+}  # fmt: skip
+"""Smoother plugins by Nav2's ids ("" the default; ``SmoothPath`` is the id Nav2's trees use,
+``route_smoother`` nav2_params.yaml's for the route server's paths)."""
 T = TypeVar("T")
 TALLY_EVERY = 50  # plans between two log lines of searches run and reused
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import logging
 
 from aiobt.core.clock import Clock, SystemClock
+from aiobt.costmap.feed import RobotFeed
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -23,7 +24,6 @@ from aiobt.transport import Bus
 from aiobt.transport.announce import announce
 
 from .actions import PlannerActions
-from .feed import RobotFeed
 from .state import MAP_FRAMES, GlobalCostmap
 from .validity import invalid_poses, parse_footprint, pose_costs
 

@@ -32,6 +32,8 @@ from aiobt.msgs import (
     Path,
     PoseStamped,
 )
+from aiobt.msgs.remote_actions import ComputeRoute
+from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Publisher, Subscription
 from aiobt.transport.topics import declare_subscription
@@ -85,6 +87,9 @@ class FoxgloveBridge:
         plans = bus.keys.action(ComputePathToPose.name).any_result
         feedback = bus.keys.action(NavigateToPose.name).any_feedback
         add(self._watch(plans, ComputePathToPose.result_type(), self.on_plan))
+        routes = bus.keys.action(ComputeRoute.name).any_result
+        add(self._watch(routes, ComputeRoute.result_type(), self.on_route))
+        add(bus.subscribe("route_graph", RouteGraph, self.on_route_graph, latched=True))
         add(self._watch(feedback, NavigateToPose.feedback_type(), self.on_feedback))
         self.note(f"bridging namespace '{bus.namespace}'")
 
@@ -142,6 +147,13 @@ class FoxgloveBridge:
     def on_plan(self, result: Any) -> None:
         if result.error_code == 0 and result.path.poses:
             self.ch.plan.log(convert.poses_in_frame(result.path))
+
+    def on_route(self, result: Any) -> None:
+        if result.error_code == 0 and result.path.poses:
+            self.ch.route.log(convert.poses_in_frame(result.path))
+
+    def on_route_graph(self, msg: RouteGraph) -> None:
+        self.ch.route_graph.log(convert.route_graph(msg))
 
     def on_local_plan(self, msg: Path) -> None:
         """The controller's local plan; an empty one (its goal ended) clears the panel's."""

@@ -13,6 +13,8 @@ topic                 schema                       from (under the namespace ``n
 /tf                   foxglove.FrameTransforms     ``{ns}/pose`` and ``{ns}/odom``
 /robot                foxglove.SceneUpdate         the footprint, at every pose
 /plan                 foxglove.PosesInFrame        ``compute_path_to_pose`` results
+/route                foxglove.PosesInFrame        ``compute_route`` results (the route server)
+/route_graph          foxglove.SceneUpdate         ``{ns}/route_graph`` (latched): lanes, nodes
 /local_plan           foxglove.PosesInFrame        ``{ns}/local_plan`` (the controller)
 /local_costmap        foxglove.Grid                ``{ns}/local_costmap/costmap``
 /goal                 foxglove.PoseInFrame         ``{ns}/goal_pose`` and navigation goals
@@ -61,6 +63,8 @@ class Channels:
     tf: fc.FrameTransformsChannel
     robot: fc.SceneUpdateChannel
     plan: fc.PosesInFrameChannel
+    route: fc.PosesInFrameChannel
+    route_graph: fc.SceneUpdateChannel
     local_plan: fc.PosesInFrameChannel
     local_costmap: fc.GridChannel
     goal: fc.PoseInFrameChannel
@@ -81,6 +85,8 @@ class Channels:
             tf=fc.FrameTransformsChannel("/tf", context=c),
             robot=fc.SceneUpdateChannel("/robot", context=c),
             plan=fc.PosesInFrameChannel("/plan", context=c),
+            route=fc.PosesInFrameChannel("/route", context=c),
+            route_graph=fc.SceneUpdateChannel("/route_graph", context=c),
             local_plan=fc.PosesInFrameChannel("/local_plan", context=c),
             local_costmap=fc.GridChannel("/local_costmap", context=c),
             goal=fc.PoseInFrameChannel("/goal", context=c),

@@ -27,6 +27,7 @@ from aiobt.msgs import (
     decode,
 )
 from aiobt.msgs import Pose as AiobtPose
+from aiobt.msgs.route_graph import RouteGraph
 
 _INT8 = fm.PackedElementFieldNumericType.Int8
 _UINT8 = fm.PackedElementFieldNumericType.Uint8
@@ -248,3 +249,22 @@ def goal_from_json(payload: bytes) -> PoseStamped:
         header["frame_id"] = header["frame_id"] or "map"
         data = {**data, "header": header}
     return decode(PoseStamped, json.dumps(data), key="goal")
+
+
+def route_graph(msg: RouteGraph) -> fm.SceneUpdate:
+    """The route server's graph: every lane as a line, every node as a dot, in ``map``."""
+    green = fm.Color(r=0.3, g=0.75, b=0.35, a=1.0)
+    lanes = [fm.Point3(x=p.x, y=p.y) for e in msg.edges for p in (e.start, e.end)]
+    dots = [fm.Point3(x=n.position.x, y=n.position.y) for n in msg.nodes]
+    entity = fm.SceneEntity(
+        timestamp=timestamp(msg.header.stamp),
+        frame_id=msg.header.frame_id or "map",
+        id="route_graph",
+        lines=[
+            fm.LinePrimitive(type=fm.LinePrimitiveLineType.LineList, pose=pose(AiobtPose()),
+                             thickness=0.03, points=lanes, color=green),
+            fm.LinePrimitive(type=fm.LinePrimitiveLineType.LineList, pose=pose(AiobtPose()),
+                             thickness=0.15, points=[q for d in dots for q in (d, d)], color=green),
+        ],
+    )  # fmt: skip
+    return fm.SceneUpdate(entities=[entity])

@@ -108,7 +108,8 @@ class ComputeRouteError(IntEnum):
     INDETERMINANT_NODES_ON_GRAPH = 403
     TIMEOUT = 404
     NO_VALID_ROUTE = 405
-    INVALID_EDGE_SCORER_USE = 406
+    OPERATION_FAILED = 406  # ComputeAndTrackRoute only
+    INVALID_EDGE_SCORER_USE = 407
 
 
 class ComputeCoveragePathError(IntEnum):

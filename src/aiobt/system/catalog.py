@@ -21,6 +21,8 @@ class ServiceSpec:
     summary: str
     realtime_priority: int | None = None  # --realtime-priority given alone; None: no option
     simulation: bool = False  # it is the clock's source (takes --world and --speed, not --sim-time)
+    enabled: bool = True  # run by ``aiobt up`` unless its config says otherwise
+    world_flag: str | None = None  # the flag ``aiobt up`` gives its world to (not the robot's)
 
     @property
     def module(self) -> str:
@@ -38,6 +40,13 @@ SERVICES: tuple[ServiceSpec, ...] = (
     ServiceSpec("velocity_smoother", "Nav2's velocity smoother (with safety_chain)"),
     ServiceSpec("collision_monitor", "Nav2's collision monitor (with safety_chain)"),
     ServiceSpec("navigator", "the navigator: Nav2's bt_navigator over Zenoh", realtime_priority=60),
+    # Nav2's optional servers, off unless enabled (as Nav2's bringup leaves them out)
+    ServiceSpec(
+        "route",
+        "the route server: Nav2's nav2_route (routes on a graph)",
+        enabled=False,
+        world_flag="--graph-filepath",
+    ),
 )
 """In start order: the robot first (the map and the clock), the navigator last."""
 

@@ -30,9 +30,12 @@ def router_command(config: SystemConfig) -> list[str]:
 def service_command(name: str, config: SystemConfig) -> list[str]:
     """``name``'s sub-command and flags: the common bus flags, then its own, then the extras."""
     command = [name, "--connect", config.router.listen, "--namespace", config.namespace]
-    simulation = service(name).simulation
+    spec = service(name)
+    simulation = spec.simulation
     if simulation:
         command += ["--world", config.world, "--speed", f"{config.speed:g}"]
+    if spec.world_flag:  # e.g. the route server: the world's name picks its graph
+        command += [spec.world_flag, config.world]
     if config.uses_sim_time and not simulation:
         command.append("--sim-time")
     if config.safety_chain and name in ("controller", "behaviors"):

@@ -23,6 +23,7 @@
       velocity_smoother: {enabled: true, args: []}   # with safety_chain only
       collision_monitor: {enabled: true, args: []}   # with safety_chain only
       navigator:  {enabled: true, args: []}
+      route:      {enabled: false, args: []}   # Nav2's route server: off, as in Nav2
 
 Every key is optional; an unknown key or a value of the wrong type is a
 :class:`ConfigError` naming the file and the key.
@@ -39,7 +40,7 @@ from typing import Any
 
 import yaml
 
-from aiobt.system.catalog import SAFETY_CHAIN, SERVICE_NAMES
+from aiobt.system.catalog import SAFETY_CHAIN, SERVICE_NAMES, service
 from aiobt.transport.keys import check_name
 
 SERVICES = SERVICE_NAMES  # aiobt.system.catalog: the one list
@@ -81,7 +82,9 @@ class SystemConfig:
     router: RouterConfig = RouterConfig()
     restart: RestartConfig = RestartConfig()
     services: Mapping[str, ServiceConfig] = field(
-        default_factory=lambda: {name: ServiceConfig() for name in SERVICES}
+        default_factory=lambda: {
+            name: ServiceConfig(enabled=service(name).enabled) for name in SERVICES
+        }
     )
 
     @property
@@ -174,7 +177,7 @@ def _services(data: Mapping[str, Any], where: str) -> dict[str, ServiceConfig]:
         prefix = f"services.{name}."
         section = _section(data, name, where, "services.")
         _check_keys(section, ServiceConfig, where, prefix)
-        enabled = _typed(section, "enabled", bool, True, where, prefix)
+        enabled = _typed(section, "enabled", bool, service(name).enabled, where, prefix)
         services[name] = ServiceConfig(enabled, _args(section, where, prefix))
     return services
 

@@ -21,11 +21,13 @@ import uuid
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
-from aiobt.system.catalog import SAFETY_CHAIN, SERVICE_NAMES
+from aiobt.system.catalog import SAFETY_CHAIN
+from aiobt.system.catalog import SERVICES as CATALOG
 from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
 from aiobt.transport import Bus, BusSettings
 
-SERVICES = tuple(name for name in SERVICE_NAMES if name not in SAFETY_CHAIN)
+# what `aiobt up` runs by default (the safety chain with StackConfig.safety_chain)
+SERVICES = tuple(spec.name for spec in CATALOG if spec.enabled and spec.name not in SAFETY_CHAIN)
 SIM_TIME = ("controller", "behaviors", "navigator", *SAFETY_CHAIN)  # the planner needs no clock
 
 

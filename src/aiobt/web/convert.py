@@ -17,6 +17,7 @@ from aiobt.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
 from aiobt.costmap.inflation import InflationParams, inflate
 from aiobt.msgs import LaserScan, OccupancyGrid, Path, PoseStamped, Twist
 from aiobt.msgs.bt import BtSnapshot, BtTree
+from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 
 Json = dict[str, Any]
@@ -137,3 +138,14 @@ def navigation_payload(snapshot: BtSnapshot) -> Json:
         "stamp": snapshot.stamp,
         "goals": [pose_payload(goal) for goal in snapshot.goals],
     }
+
+
+def route_graph_payload(graph: RouteGraph) -> Json:
+    """The route server's graph: nodes ``[x, y, id]`` and lanes ``[x0, y0, x1, y1]``, a
+    two-way lane (two edges) once."""
+    lanes: dict[tuple[float, ...], list[float]] = {}
+    for edge in graph.edges:
+        a, b = (_mm(edge.start.x), _mm(edge.start.y)), (_mm(edge.end.x), _mm(edge.end.y))
+        lanes.setdefault((*min(a, b), *max(a, b)), [*a, *b])
+    nodes = [[_mm(n.position.x), _mm(n.position.y), n.nodeid] for n in graph.nodes]
+    return {"name": graph.name, "nodes": nodes, "edges": list(lanes.values())}

@@ -19,6 +19,8 @@ since the last flush and hands it to the :class:`Hub`. Streams:
                the collision monitor's polygons, the acting one marked
 ``plan``       the planner's latest path (``compute_path_to_pose`` and
                ``compute_path_through_poses`` results)
+``route``      the route server's latest dense path (``compute_route`` results)
+``route_graph`` ``{ns}/route_graph`` (latched): the route server's graph
 ``feedback``   navigate_to_pose / navigate_through_poses feedback
 ``tree``       ``{ns}/bt/tree``; ``status`` from ``bt/transitions`` and
 ``nav``        ``bt/snapshot`` (the navigation's state, and the goal it
@@ -49,6 +51,8 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
+from aiobt.msgs.remote_actions import ComputeRoute
+from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Subscription
 from aiobt.transport.topics import declare_subscription
@@ -96,6 +100,7 @@ class Sources:
             ("bt/snapshot", BtSnapshot, False),
             ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
             ("collision_monitor/polygons", CollisionPolygons, True),
+            ("route_graph", RouteGraph, True),
         ]  # fmt: skip
         for name, model, latched in topics:
             sub = self.bus.subscribe(
@@ -108,6 +113,8 @@ class Sources:
             self._watch(
                 self.bus.keys.action(planner.name).any_result, planner.result_type(), "plan"
             )
+        route_results = self.bus.keys.action(ComputeRoute.name).any_result
+        self._watch(route_results, ComputeRoute.result_type(), "route")
         for navigator in _NAVIGATORS:
             keys = self.bus.keys.action(navigator.name)
             self._watch(keys.any_feedback, navigator.feedback_type(), "feedback")
@@ -167,6 +174,11 @@ class Sources:
             self.hub.publish("nav", convert.navigation_payload(message))
         elif isinstance(message, ComputePathToPose.Result) and message.error_code == 0:
             self.hub.publish("plan", convert.path_points(message.path))
+        elif stream == "route" and isinstance(message, ComputeRoute.Result):
+            if message.error_code == 0:
+                self.hub.publish("route", convert.path_points(message.path))
+        elif isinstance(message, RouteGraph):
+            self.hub.publish("route_graph", convert.route_graph_payload(message), on_change=True)
         elif stream == "feedback":
             self.hub.publish("feedback", _feedback(message))
 

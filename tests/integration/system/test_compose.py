@@ -19,7 +19,7 @@ import pytest
 import yaml
 
 from aiobt.embed import connect
-from aiobt.system.catalog import SERVICE_NAMES
+from aiobt.system.catalog import SERVICES
 from aiobt.system.commands import service_command
 from aiobt.system.config import config_from_dict
 from aiobt.testing.bus import ServiceProcess, free_endpoint, port_of, spawn_service, wait_port
@@ -48,8 +48,9 @@ def _services(profile: str | None) -> dict[str, list[str]]:
 @pytest.mark.parametrize("profile", [None, "two-robots"])
 def test_every_service_runs_the_command_aiobt_up_runs(profile: str | None) -> None:
     services = _services(profile)
-    # every service of the one list (aiobt.system.catalog), once per robot
-    assert sorted(command[0] for command in services.values()) == sorted(SERVICE_NAMES)
+    # every service of the one list (aiobt.system.catalog) on by default, once per robot
+    on = sorted(spec.name for spec in SERVICES if spec.enabled)
+    assert sorted(command[0] for command in services.values()) == on
     for command in services.values():
         namespace = command[command.index("--namespace") + 1]
         config = config_from_dict(
@@ -58,6 +59,14 @@ def test_every_service_runs_the_command_aiobt_up_runs(profile: str | None) -> No
         assert command == service_command(command[0], config)
     namespaces = {c[c.index("--namespace") + 1] for c in services.values()}
     assert namespaces == ({"robot"} if profile is None else {"robot2"})
+
+
+@pytest.mark.parametrize("name", [spec.name for spec in SERVICES if not spec.enabled])
+def test_a_service_off_by_default_runs_under_its_own_profile(name: str) -> None:
+    spec = COMPOSE["services"][name]
+    assert spec["profiles"] == [name]
+    config = config_from_dict({"router": {"listen": ROUTER_IN_COMPOSE}}, "compose")
+    assert spec["command"] == service_command(name, config)
 
 
 def test_the_router_checks_passwords_and_no_credential_is_baked_in() -> None:

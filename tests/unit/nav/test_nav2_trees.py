@@ -17,8 +17,8 @@ PLACEHOLDERS = (UnimplementedNode, UnimplementedControl, UnimplementedDecorator)
 
 
 def test_the_four_trees_are_there() -> None:
-    # Nav2's four, and the navigator's own navigate_through_poses tree
-    assert len(TREES) == 5
+    # Nav2's six (two of them route trees), and the navigator's own navigate_through_poses tree
+    assert len(TREES) == 7
 
 
 @pytest.mark.parametrize("path", TREES, ids=lambda p: p.stem)

@@ -10,9 +10,9 @@ from typing import Any, cast
 import pytest
 
 from aiobt.core.clock import ManualClock
+from aiobt.costmap.feed import RobotFeed
 from aiobt.msgs import LaserScan, PoseStamped
 from aiobt.transport import Bus
-from aiobt_services.planner.feed import RobotFeed
 from aiobt_services.planner.state import POSES_KEPT, GlobalCostmap
 
 from .test_actions import world
@@ -86,7 +86,7 @@ async def attached(poll: float = 60.0) -> tuple[FakeBus, RobotFeed, GlobalCostma
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
     bus.live("scan").deliver(scan(5.0, 5.0, 5.0))
     assert await asyncio.wait_for(call, 1.0) == "first"
-    return bus, feed, feed._world
+    return bus, feed, cast(GlobalCostmap, feed._world)  # the planner's, given by world()
 
 
 def scan_at(stamp: float, *ranges: float) -> LaserScan:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import cast
 
 from aiobt.costmap import LETHAL
+from aiobt.costmap.world import FedCostmap
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapExceptRegion,
@@ -35,7 +36,7 @@ def see(grid: GlobalCostmap, *ranges: float) -> None:
     grid.on_scan(scan)
 
 
-def lethal(grid: GlobalCostmap, x: float, y: float) -> bool:
+def lethal(grid: FedCostmap, x: float, y: float) -> bool:
     """A lethal cell within one cell of (x, y) (a hit on a cell border lands either side)."""
     snapshot = grid.snapshot()
     assert snapshot is not None

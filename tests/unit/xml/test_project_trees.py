@@ -23,7 +23,7 @@ ALL_XML = sorted(TREES.rglob("*.xml"))
 
 def test_the_tree_folders_are_where_expected():
     assert NAV2_MODEL.is_file()
-    assert len(NAV2_TREES) == 5  # Nav2's four, and the navigator's through-poses tree
+    assert len(NAV2_TREES) == 7  # Nav2's six (two route trees), the navigator's through-poses tree
     assert (NAV2 / "NOTICE.md").is_file()  # Nav2's license attribution travels with them
 
 

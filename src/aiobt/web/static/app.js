@@ -7,7 +7,7 @@ const state = {
   scaleBar: null, zones: [],
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
-  goalsSent: 0, goalReply: null,
+  goalsSent: 0, goalReply: null, route: [], routeGraph: null,
 };
 window.aiobtState = state;
 
@@ -53,7 +53,8 @@ function receive(update) {
     state.poseUpdatesPerSecond = countRate(poseArrivals, now);
     canvas.dataset.robotX = update.pose.x; canvas.dataset.robotY = update.pose.y;
   }
-  for (const key of ["scan", "plan", "local", "footprint", "zones"]) {
+  if ("route_graph" in update) state.routeGraph = update.route_graph;
+  for (const key of ["scan", "plan", "route", "local", "footprint", "zones"]) {
     if (key in update) state[key] = update[key];
   }
   if ("map" in update) { state.map = update.map; layers.map = gridImage(update.map, mapColour); }
@@ -153,6 +154,13 @@ function arrow(pose, colour, radius) {
   ctx.beginPath(); ctx.moveTo(cx, cy);
   ctx.lineTo(cx + 1.6 * r * Math.cos(pose.yaw), cy - 1.6 * r * Math.sin(pose.yaw)); ctx.stroke();
 }
+function drawGraph(graph) { // the route server's lanes and nodes
+  for (const [x0, y0, x1, y1] of graph.edges) polyline([[x0, y0], [x1, y1]], "#81c784", 1.5);
+  ctx.fillStyle = "#388e3c";
+  for (const [x, y] of graph.nodes) {
+    const [cx, cy] = toCanvas(x, y); ctx.beginPath(); ctx.arc(cx, cy, 3, 0, 2 * Math.PI); ctx.fill();
+  }
+}
 function draw() {
   requestAnimationFrame(draw);
   if (!dirty || !state.map) return;
@@ -175,6 +183,8 @@ function draw() {
     ctx.fillStyle = "#e53935";
     for (const [x, y] of state.scan) { const [cx, cy] = toCanvas(x, y); ctx.fillRect(cx - 1.5, cy - 1.5, 3, 3); }
   }
+  if (document.getElementById("show-route-graph").checked && state.routeGraph) drawGraph(state.routeGraph);
+  polyline(state.route, "#2e7d32", 3);
   for (const zone of state.zones || []) { // the collision monitor's; the acting one red
     if (zone.acting) polyline(zone.points, "#d50000", 3.5);
     else polyline(zone.points, zone.action === "approach" ? "#2979ff" : "#ff9100", 1.5);

@@ -1,11 +1,12 @@
-"""The robot's pose and lidar, read while the planner has requests to serve.
+"""The robot's pose and lidar, read while a server (the planner, the route server) has
+requests to serve, into its global costmap (:class:`~aiobt.costmap.world.FedCostmap`).
 
 At a sim speed-up of 10 the robot sends 500 poses and 100 scans a wall second; a
 planner with nothing to plan has no use for them. A request that needs the robot
 (a plan, a smoothing, ``is_path_valid``, ``get_costs``, a clearing around the
 robot) attaches them if detached, waits (bounded by ``timeout`` wall s) for a
 first pose and a first scan, takes the newest of each, then runs; while attached,
-requests read the costmap as the periodic folds left it (:class:`GlobalCostmap`)
+requests read the costmap as the periodic folds left it (:class:`FedCostmap`)
 and wait for nothing. The streams stay ``linger`` robot s after the last request
 (a navigator replans every second or so, so they stay while it navigates).
 
@@ -30,11 +31,10 @@ from collections.abc import AsyncIterator, Awaitable, Callable
 from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock
+from aiobt.costmap.world import POSES_KEPT, FedCostmap
 from aiobt.msgs import LaserScan, PoseStamped
 from aiobt.transport import Bus, Latest
 from aiobt.transport.on_demand import LINGER, OnDemand
-
-from .state import POSES_KEPT, GlobalCostmap
 
 Req = TypeVar("Req")
 Resp = TypeVar("Resp")
@@ -49,7 +49,7 @@ class RobotFeed:
     def __init__(
         self,
         bus: Bus,
-        world: GlobalCostmap,
+        world: FedCostmap,
         clock: Clock,
         *,
         timeout: float = FEED_TIMEOUT,
@@ -57,9 +57,9 @@ class RobotFeed:
         poll: float = POLL,
     ) -> None:
         if not timeout > 0.0:
-            raise ValueError(f"planner feed: timeout must be > 0 wall s, got {timeout!r}")
+            raise ValueError(f"robot feed: timeout must be > 0 wall s, got {timeout!r}")
         if not poll > 0.0:
-            raise ValueError(f"planner feed: poll must be > 0 wall s, got {poll!r}")
+            raise ValueError(f"robot feed: poll must be > 0 wall s, got {poll!r}")
         self._bus = bus
         self._world = world
         self._timeout = timeout

@@ -1,0 +1,163 @@
+"""The ``compute_route`` and ``compute_and_track_route`` executes (Nav2's
+``RouteServer::processRouteRequest``), free of the bus: the robot's position,
+robot time and the feedback come in as callables, so tests drive them with fakes.
+
+ComputeRoute plans once and returns the route, the dense path and the planning
+time. ComputeAndTrackRoute plans, then tracks the robot along the route at
+``tracker_update_rate`` (robot time), running the operations and publishing
+feedback (at the start with ``rerouted`` set, at each node achieved and each
+operation that acted); an operation asking for a reroute plans again from the
+last node passed, without the blocked ids; the goal succeeds with the execution
+duration once the last node is achieved. Every failure is a result with Nav2's
+code and a message; a cancelled goal is not an error.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+from collections.abc import Callable
+from typing import Any
+
+from aiobt.core.clock import Clock
+from aiobt.msgs import Path
+from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
+
+from .convert import path_msg, route_msg
+from .errors import RouteError
+from .intent import ReroutingState, RouteRequest
+from .operations import OperationsManager, OperationsResult
+from .planning import RoutePlanner
+from .search import Route
+from .tracker import RouteTracker, TrackerParams
+from .vectors import XY
+
+log = logging.getLogger("aiobt_services.route.actions")
+MAP_FRAMES = ("", "map")
+RobotPosition = Callable[[], XY]  # raises LookupError without a pose
+Feedback = ComputeAndTrackRoute.Feedback
+
+
+def request_of(goal: ComputeRoute.Goal, robot: RobotPosition) -> RouteRequest:
+    """The goal in the route frame; TF_ERROR for a pose in another frame or no robot pose."""
+    if not goal.use_poses:
+        return RouteRequest(False, goal.start_id, goal.goal_id)
+    poses = [("goal", goal.goal)] + ([("start", goal.start)] if goal.use_start else [])
+    for what, pose in poses:
+        if pose.header.frame_id not in MAP_FRAMES:
+            raise RouteError("TF_ERROR", f"the {what} pose is in frame "
+                             f"'{pose.header.frame_id}'; the route frame is 'map'")  # fmt: skip
+    try:
+        start = (goal.start.x, goal.start.y) if goal.use_start else robot()
+    except LookupError as exc:
+        raise RouteError("TF_ERROR", f"no robot pose to start from: {exc}") from None
+    return RouteRequest(True, start=start, goal=(goal.goal.x, goal.goal.y))
+
+
+class RouteActions:
+    def __init__(
+        self,
+        planner: RoutePlanner,
+        operations: OperationsManager,
+        tracker: TrackerParams,
+        robot: RobotPosition,
+        clock: Clock,
+    ) -> None:
+        self.planner = planner
+        self.operations = operations
+        self.tracker = tracker
+        self.robot = robot
+        self.clock = clock
+
+    async def compute_route(self, goal: ComputeRoute.Goal, _handle: Any) -> Any:
+        began = time.monotonic()
+        try:
+            route, poses = self.planner.plan(request_of(goal, self.robot), ReroutingState())
+        except RouteError as exc:
+            return self._failed(ComputeRoute.Result, exc)
+        except Exception as exc:  # a bad request never takes the server down
+            log.exception("compute_route failed unexpectedly")
+            return self._failed(ComputeRoute.Result, RouteError("UNKNOWN", str(exc)))
+        stamp, took = self.clock.now(), time.monotonic() - began
+        log.info("route %s, cost %.2f", "-".join(str(n.nodeid) for n in route.nodes),
+                 route.route_cost)  # fmt: skip
+        if took > self.planner.params.max_planning_time:  # Nav2 warns, and returns it
+            log.warning("route took %.3f s, over max_planning_time", took)
+        return ComputeRoute.Result(
+            planning_time=took,
+            path=path_msg(poses, stamp),
+            route=route_msg(route, stamp),
+        )
+
+    async def compute_and_track_route(self, goal: ComputeAndTrackRoute.Goal, handle: Any) -> Any:
+        began = self.clock.now()
+        rerouting = ReroutingState()
+        try:
+            while True:
+                request = request_of(goal, self.robot)  # a reroute starts where the robot is
+                route, poses = self.planner.plan(request, rerouting)
+                stamp = self.clock.now()
+                if await self._track(route, path_msg(poses, stamp), rerouting, handle):
+                    return ComputeAndTrackRoute.Result(execution_duration=self.clock.now() - began)
+                log.info("rerouting from node %s, blocked ids %s", rerouting.start_id,
+                         rerouting.blocked_ids)  # fmt: skip
+        except RouteError as exc:
+            return self._failed(ComputeAndTrackRoute.Result, exc)
+        except Exception as exc:
+            log.exception("compute_and_track_route failed unexpectedly")
+            return self._failed(ComputeAndTrackRoute.Result, RouteError("UNKNOWN", str(exc)))
+
+    async def _track(
+        self, route: Route, path: Path, rerouting: ReroutingState, handle: Any
+    ) -> bool:
+        """Track ``route`` until its end (True) or a reroute is asked for (False)."""
+        tracker = RouteTracker(route, self.tracker, rerouting)
+        msg = route_msg(route, self.clock.now())
+
+        def feedback(rerouted: bool, ops: list[str]) -> None:
+            next_node, last, edge = tracker.next_node, tracker.last_node, tracker.current_edge
+            handle.publish_feedback(Feedback(
+                last_node_id=last.nodeid if last else 0,
+                next_node_id=next_node.nodeid if next_node else 0,
+                current_edge_id=edge.edgeid if edge else 0,
+                route=msg, path=path, operations_triggered=ops, rerouted=rerouted,
+            ))  # fmt: skip
+
+        feedback(True, [])
+        period = 1.0 / self.tracker.tracker_update_rate
+        while True:
+            position = self._position()
+            changed, completed = tracker.update(position)
+            ops = self.operations.process(changed, tracker, position, self.clock.now())
+            if completed:
+                feedback(False, ops.operations_triggered)
+                return True
+            if (changed or ops.operations_triggered) and tracker.current_edge is not None:
+                feedback(False, ops.operations_triggered)
+            if ops.reroute:
+                self._prepare_reroute(tracker, ops, rerouting, position)
+                return False
+            await self.clock.sleep(period)
+
+    def _position(self) -> XY:
+        try:
+            return self.robot()
+        except LookupError as exc:
+            raise RouteError("TF_ERROR", f"lost the robot pose while tracking: {exc}") from None
+
+    def _prepare_reroute(
+        self, tracker: RouteTracker, ops: OperationsResult, rerouting: ReroutingState, at: XY
+    ) -> None:
+        if self.tracker.aggregate_blocked_ids:
+            rerouting.blocked_ids.extend(ops.blocked_ids)
+        else:
+            rerouting.blocked_ids = list(ops.blocked_ids)
+        last = tracker.last_node
+        rerouting.start_id = last.nodeid if last is not None else None
+        rerouting.start_pose = at if last is not None else None
+        rerouting.curr_edge = tracker.current_edge
+
+    @staticmethod
+    def _failed(result: Any, exc: RouteError) -> Any:
+        log.warning("route request failed: %s (%s)", exc.message, exc.reason)
+        return result(error_code=exc.code, error_msg=exc.message)
