@@ -23,6 +23,7 @@ from typing import IO
 
 import zenoh
 
+from aiobt.transport.access_refusals import ACL_LOG_FILTER, TLS_LOG_FILTER, AccessRefusals
 from aiobt.transport.diagnose import clean
 
 # Zenoh's warnings and errors, and the two debug lines a refusal is made of
@@ -49,8 +50,10 @@ class Refusals:
         interval: float = 10.0,
         clock: Callable[[], float] = time.monotonic,
         forward_all: bool = False,
+        access: AccessRefusals | None = None,
     ) -> None:
         self.logger = logger
+        self.access = access  # TLS and access-control refusals, when the router has them
         self.forward_all = forward_all  # RUST_LOG chose the lines: pass them all on
         self.interval = interval
         self._clock = clock
@@ -62,6 +65,8 @@ class Refusals:
     def on_line(self, line: str) -> str | None:
         """Note ``line``; returns the line to pass on to stdout (cleaned), if any."""
         line = _ANSI.sub("", line).rstrip("\n")
+        if self.access is not None and self.access.on_line(line):
+            return None
         if accepted := _ACCEPTED.search(line):
             self._peer = accepted.group(1)
             return None
@@ -88,18 +93,21 @@ class Refusals:
         self._unsaid, self._said_at = 0, now
 
 
-def watch_refusals(logger: logging.Logger) -> Refusals:
+def watch_refusals(logger: logging.Logger, *, access_control: bool = False) -> Refusals:
     """Route Zenoh's log of this process through a :class:`Refusals` (call before
     opening the session; once per process: it takes over file descriptor 1 and
-    points ``sys.stdout`` at a copy of the original)."""
-    refusals = Refusals(logger, forward_all=bool(os.environ.get("RUST_LOG")))
+    points ``sys.stdout`` at a copy of the original). With ``access_control``,
+    access-control denials are read too (:mod:`access_refusals`)."""
+    access = AccessRefusals(logger)
+    refusals = Refusals(logger, forward_all=bool(os.environ.get("RUST_LOG")), access=access)
     read_fd, write_fd = os.pipe()
     original = os.dup(1)
     os.dup2(write_fd, 1)
     os.close(write_fd)
     out = os.fdopen(original, "w", buffering=1)
     sys.stdout = out
-    zenoh.init_log_from_env_or(ZENOH_LOG_FILTER)
+    log_filter = ZENOH_LOG_FILTER + f",{TLS_LOG_FILTER}"
+    zenoh.init_log_from_env_or(log_filter + f",{ACL_LOG_FILTER}" if access_control else log_filter)
     reader = os.fdopen(read_fd, "r", errors="replace")
     threading.Thread(target=_pump, args=(reader, out, refusals), daemon=True).start()
     return refusals
