@@ -61,7 +61,7 @@ def test_hosts_reach_their_neighbours_only_through_the_links_made() -> None:
 def test_addresses_outside_the_test_range_are_refused() -> None:
     with NetLab() as lab:
         a, b = lab.host("a"), lab.host("b")
-        with pytest.raises(ValueError, match="outside 198.18.0.0/15"):
+        with pytest.raises(ValueError, match=r"outside 198\.18\.0\.0/15"):
             lab.link(a, "10.0.0.1", b, "10.0.0.2")
 
 
