@@ -10,8 +10,11 @@ Zenoh (Rust) says it only in its log, in these lines (1.10):
   this router's certificate). Zenoh does not say the peer's address there;
 - ``zenoh::net::routing::interceptor::access_control`` (trace): ``ZID on
   Interface(lo)+CertCommonName(web)+... is unauthorized to Put (ingress) on
-  robot/cmd_vel``, then ``Using cached result: ZID is unauthorized to ...`` for every
-  later message; (info) ``ZID did not match any configured ACL subject``.
+  robot/cmd_vel`` for a message on a key not declared, and for each kind of message
+  when a declared key's permissions are cached (after ``ACL (ingress): caching
+  permissions for `KEY```: not reported, nothing was sent yet), then ``Using cached
+  result: ZID is unauthorized to ...`` for every message on a declared key; (info)
+  ``ZID did not match any configured ACL subject``.
 
 :class:`AccessRefusals` turns them into one warning per refusal, the first of a
 kind at once and then one counted line at most every ``interval`` seconds.
@@ -34,8 +37,8 @@ _ACCEPTED = re.compile(r"Accepted TLS connection on \S+: (\S+)\. Common Name: ([
 _BAD_CERT = re.compile(r"zenoh_link_tls::unicast: invalid peer certificate: (\w+)")
 _NO_CERT = re.compile(r"zenoh_link_tls::unicast: peer sent no certificates")
 _ALERT = re.compile(r"zenoh_link_tls::unicast: received fatal alert: (\w+)")
-_DENIED = re.compile(
-    r"access_control: (\w+) on \S*CertCommonName\(([^)]*)\)\S* is unauthorized to (.+?) "
+_DECIDED = re.compile(
+    r"access_control: (\w+) on \S*CertCommonName\(([^)]*)\)\S* is (un)?authorized to (.+?) "
     r"\((ingress|egress)\) on (\S+)"
 )
 _DENIED_CACHED = re.compile(
@@ -43,6 +46,9 @@ _DENIED_CACHED = re.compile(
     r"\((ingress|egress)\) on (\S+)"
 )
 _NO_SUBJECT = re.compile(r"access_control: (\w+) did not match any configured ACL subject")
+_CACHING = re.compile(
+    r"access_control: ACL \((ingress|egress)\): caching permissions for `([^`]*)`"
+)
 _ACCESS_LINE = re.compile(r"zenoh::net::routing::interceptor::access_control|zenoh_link_tls")
 
 _BAD_CERT_WORDS = {
@@ -71,6 +77,11 @@ class AccessRefusals:
     names: dict[str, str] = field(default_factory=dict)  # session id -> certificate name
     kinds: dict[tuple[str, ...], _Kind] = field(default_factory=dict)
     _last_peer: tuple[str, str] = ("an unknown address", "")
+    # a key's permissions being cached (flow, key): Zenoh then logs its verdict on each
+    # kind of message for that key once, sent or not: not reported; the fill ends at a
+    # kind seen twice or any other line
+    _filling: tuple[str, str] | None = None
+    _filled: set[str] = field(default_factory=set)
 
     @property
     def total(self) -> int:
@@ -82,10 +93,17 @@ class AccessRefusals:
             return False
         if accepted := _ACCEPTED.search(line):
             self._last_peer = (accepted.group(1), accepted.group(2))
-        elif denied := _DENIED.search(line):
-            zid, name, what, flow, key = denied.groups()
+        elif caching := _CACHING.search(line):
+            self._filling, self._filled = (caching.group(1), caching.group(2)), set()
+        elif decided := _DECIDED.search(line):
+            zid, name, refused, what, flow, key = decided.groups()
             self.names[zid] = name
-            self._denied(zid, what, flow, key)
+            if self._filling == (flow, key) and what not in self._filled:
+                self._filled.add(what)
+            else:
+                self._filling = None
+                if refused:
+                    self._denied(zid, what, flow, key)
         elif cached := _DENIED_CACHED.search(line):
             self._denied(*cached.groups())
         elif unknown := _NO_SUBJECT.search(line):

@@ -142,3 +142,28 @@ async def test_another_ca_is_refused_at_connect_with_a_clear_message(
     assert router.wait_for_output(
         "refused a TLS session: its certificate is not signed by this deployment's CA", 10.0
     ), router.output()
+
+
+async def test_a_latched_map_reaches_a_late_viewer_and_only_the_robot_s_counts(
+    certs: Path, secure_router: tuple[ServiceProcess, str]
+) -> None:
+    """The history of a latched topic lives under ``@adv`` keys, which no wildcard
+    matches: the rules name them, or a late subscriber never gets the map."""
+    from aiobt.msgs import OccupancyGrid
+
+    _, endpoint = secure_router
+    grid = OccupancyGrid.model_validate(
+        {"info": {"resolution": 0.1, "width": 2, "height": 1}, "data": [0, 100]}
+    )
+    async with as_(certs, "robot", endpoint) as robot, as_(certs, "planner", endpoint) as fake:
+        robot.latched_publisher("map", OccupancyGrid).put(grid)
+        fake_grid = OccupancyGrid.model_validate(
+            {"info": {"resolution": 0.1, "width": 3, "height": 1}, "data": [1, 1, 1]}
+        )
+        fake.latched_publisher("map", OccupancyGrid).put(fake_grid)
+        async with as_(certs, "web", endpoint) as web:  # joins after the puts
+            sub = web.subscribe("map", OccupancyGrid, latched=True, queue_size=10)
+            first = await sub.next(10.0)
+            assert first.info.width == 2  # the robot's
+            with pytest.raises(TimeoutError):
+                await sub.next(1.0)  # the planner's map never comes

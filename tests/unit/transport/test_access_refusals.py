@@ -53,6 +53,25 @@ def test_a_denial_names_the_certificate_the_message_and_the_key_rate_limited(
     assert refusals.total == 32
 
 
+def test_the_verdicts_logged_while_a_key_s_permissions_are_cached_are_not_reported(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    """Zenoh logs a verdict on every kind of message when it caches a declared key's
+    permissions, though none was sent: those are not denials; a real put after is."""
+    refusals = AccessRefusals(logging.getLogger("test.acl"))
+    caching = f"2026-11-28T22:55:46Z TRACE rx-1 {ACL}: ACL (ingress): caching permissions for "
+    kinds = ["Query", "Reply", "Put", "Delete", "Declare/Undeclare Subscriber"]
+    with caplog.at_level(logging.WARNING, logger="test.acl"):
+        refusals.on_line(caching + "`robot/cmd_vel` ...")
+        for kind in kinds:
+            assert refusals.on_line(DENIED.replace("Put", kind))
+        assert not caplog.records
+        refusals.on_line(DENIED)  # Put again: a message, not the fill
+    assert [r.getMessage() for r in caplog.records] == [
+        f"denied Put from web (session {ZID}) on robot/cmd_vel"
+    ]
+
+
 def test_tls_refusals_say_which_side_refused_and_why(caplog: pytest.LogCaptureFixture) -> None:
     refusals = AccessRefusals(logging.getLogger("test.acl"))
     tls = "2026-11-28T22:47:11Z  WARN acc-0 ThreadId(06) zenoh_link_tls::unicast: "
