@@ -6,7 +6,8 @@ session there; it runs this instead, with an identity of the deployment:
     python -m tests.netlab.scenario --connect tls/198.18.0.5:7447 \\
         --config certs/laptop.json5 navigate 3.0 9.75 0.0 --timeout 90
 
-- ``navigate X Y YAW``: a NavigateToPose goal; events ``accepted``, ``moving`` (the
+- ``navigate X Y YAW [--or X Y YAW]``: a NavigateToPose goal (of two, the one farther
+  from the robot); events ``accepted``, ``moving`` (the
   robot left its start), ``result`` (state, error code, where the robot is);
 - ``map``: the latched map arrives; event ``map`` with its size (and the robot's pose
   too, with ``--pose``: the base host has what its planner needs);
@@ -48,10 +49,25 @@ def say(event: str, **fields: Any) -> None:
     print(json.dumps({"event": event, **fields}), flush=True)
 
 
-async def navigate(bus: Bus, x: float, y: float, yaw: float, timeout: float) -> None:  # noqa: ASYNC109
+async def navigate(
+    bus: Bus,
+    x: float,
+    y: float,
+    yaw: float,
+    timeout: float,  # noqa: ASYNC109
+    other: list[float] | None,
+) -> None:
     track = RobotTrack(bus)
     start = await track.wait_for(lambda s: True, 30.0)
     say("pose", x=None if start is None else start.x, y=None if start is None else start.y)
+    if (
+        other
+        and start is not None
+        and math.hypot(start.x - x, start.y - y)
+        < math.hypot(start.x - other[0], start.y - other[1])
+    ):
+        x, y, yaw = other  # the farther of the two: a goal the robot must drive to
+    say("goal", x=x, y=y)
     client = bus.action_client("navigate_to_pose", NavigateToPose)
     running = await start_navigation(client, PoseStamped.from_xy_yaw(x, y, yaw))
     say("accepted")
@@ -174,7 +190,7 @@ async def main_async(args: argparse.Namespace) -> None:
     async with open_bus(BusSettings.from_args(args)) as bus:
         say("connected")
         if args.what == "navigate":
-            await navigate(bus, args.x, args.y, args.yaw, args.timeout)
+            await navigate(bus, args.x, args.y, args.yaw, args.timeout, args.other)
         elif args.what == "goals":
             await goals(bus, args.count, args.seed, args.timeout)
         elif args.what == "presence":
@@ -197,6 +213,10 @@ def main() -> None:
     for name in ("x", "y", "yaw"):
         nav.add_argument(name, type=float)
     nav.add_argument("--timeout", type=float, default=90.0)
+    nav.add_argument(
+        "--or", dest="other", type=float, nargs=3, metavar=("X", "Y", "YAW"),
+        help="another goal: the one farther from the robot is taken",
+    )  # fmt: skip
     many = sub.add_parser("goals")
     many.add_argument("count", type=int)
     many.add_argument("--seed", type=int, default=1)
