@@ -28,6 +28,7 @@ import yaml
 
 from aiobt.deploy.certs import CertPlan, write_certs
 from aiobt.deploy.zenoh_configs import write_config
+from aiobt.system import catalog
 from tests.netlab.control import ProxyControl
 from tests.netlab.hosts import HostProcess, NetLab
 
@@ -42,7 +43,7 @@ HOSTS = {
     "robot": ("robot", "controller", "behaviors"),
     "base": ("planner", "navigator"),
 }
-SERVICES = ("robot", "planner", "controller", "behaviors", "navigator")
+SERVICES = tuple(spec.name for spec in catalog.SERVICES)
 UP_TIMEOUT = 120.0  # s for each host's share to be up on 2 loaded cores
 DEFAULT_LEASE_MS = 1000  # deploy/*-host.yaml's
 # the lab's: on 2 cores shared with other work, a starved process must not be taken for

@@ -16,7 +16,7 @@ from tests.netlab.hosts import HostProcess
 pytestmark = [pytest.mark.e2e, pytest.mark.integration]
 START = (2.0, 9.75, 0.0)
 EAST = (8.0, 9.75, 0.0)  # 6 m along the corridor
-CMD_TIMEOUT = 0.5  # s: the robot's (services/robot/drive.py)
+CMD_TIMEOUT = 0.5  # s: the robot's (services/aiobt_services/robot/drive.py)
 DECELERATION = 0.5  # s for the base to come to rest once it stops obeying
 
 
@@ -53,8 +53,8 @@ def test_goals_arrive_across_100_ms_of_latency_with_30_ms_of_jitter(deployed: De
     last ends with a result. Known: the first plan after the planner was idle may end
     with 202 ("no robot pose ... received yet"): its on-demand feed waits 1 wall s for a
     first pose, and across this link the subscription takes about that long to bring one
-    (services/planner/feed.py, FEED_TIMEOUT). A goal after that, the planner's streams
-    attached, is reached."""
+    (services/aiobt_services/planner/feed.py, FEED_TIMEOUT). A goal after that, the
+    planner's streams attached, is reached."""
     deployed.proxy.latency(0.1, 0.03)
     run = deployed.scenario("laptop", "laptop", ["goals", "10", "--seed", "3", "--timeout", "150"])
     result = result_of(deployed, run, 250.0)

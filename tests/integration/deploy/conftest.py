@@ -9,7 +9,8 @@ import pytest
 
 from aiobt.deploy.certs import CertPlan, write_certs
 from aiobt.deploy.zenoh_configs import write_config
-from aiobt.testing.bus import ServiceProcess, free_port, running_router
+from aiobt.testing.bus import ServiceProcess, running_router
+from aiobt.transport.endpoints import free_port
 
 REPO = Path(__file__).resolve().parents[3]
 ACCESS_CONTROL = REPO / "deploy" / "access-control.json5"
