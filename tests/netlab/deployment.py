@@ -106,6 +106,15 @@ class Deployment:
              "--lease-ms", str(LAB_LEASE_MS), *args],
         )  # fmt: skip
 
+    def monitor(self) -> HostProcess:
+        """``aiobt monitor --plain`` on the laptop, as ``laptop``, on the base router."""
+        return self.lab.spawn(
+            self.lab.hosts["laptop"],
+            ["-m", "aiobt.cli.main", "monitor", "--plain", "--connect", self.base_endpoint,
+             "--namespace", NAMESPACE, "--config", str(self.certs / "laptop.json5"),
+             "--lease-ms", str(LAB_LEASE_MS)],
+        )  # fmt: skip
+
     def zenoh_cli(self, identity: str, args: Sequence[str]) -> HostProcess:
         """The ``zenoh`` command line on the laptop, connected to the base router."""
         zenoh = str(Path(sys.executable).parent / "zenoh")

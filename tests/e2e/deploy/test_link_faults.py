@@ -89,6 +89,7 @@ def test_a_5_s_stall_mid_goal_ends_with_a_result_and_the_next_goal_works(
 @pytest.mark.timeout(300)
 def test_a_10_s_cut_heals_by_itself_within_5_s(deployed: Deployment) -> None:
     presence = deployed.scenario("laptop", "laptop", ["presence", "robot/nodes/robot"])
+    monitor = deployed.monitor()
     assert presence.wait_for_output('"event": "alive"', 60.0), deployed.logs()
     cut = time.monotonic()
     deployed.proxy.cut()
@@ -104,8 +105,12 @@ def test_a_10_s_cut_heals_by_itself_within_5_s(deployed: Deployment) -> None:
     assert back[1] - restored <= 5.0, (
         f"reconnected {back[1] - restored:.1f} s after the link healed"
     )
+    seen = monitor.output().count("RUNNING")
     after = result_of(deployed, navigate(deployed, EAST, START), 200.0)
     assert after["state"] == "SUCCEEDED", (after, deployed.logs())
+    # the monitor opened before the cut carries on: it shows the navigation after it
+    assert monitor.running, monitor.output()
+    assert monitor.output().count("RUNNING") > seen, monitor.output()[-2000:]
 
 
 def _alive(process: HostProcess) -> list[float]:
