@@ -34,10 +34,13 @@ from tests.netlab.hosts import HostProcess, NetLab
 
 REPO = Path(__file__).resolve().parents[2]
 ACCESS_CONTROL = REPO / "deploy" / "access-control.json5"
+DOWNSAMPLING = REPO / "deploy" / "downsampling.json5"
+SHIPPED_INTERFACE = "wlan0"  # the interface towards the base host in DOWNSAMPLING
 ROBOT, LINK_ROBOT = "198.18.0.1", "198.18.0.2"
 BASE, LINK_BASE = "198.18.0.5", "198.18.0.6"
 LAPTOP, BASE_LAPTOP = "198.18.0.9", "198.18.0.10"
 PORT = 7447
+LOCAL = f"tls/127.0.0.1:{PORT}"  # where a host's own services reach its router
 NAMESPACE = "robot"
 HOSTS = {
     "robot": ("robot", "controller", "behaviors"),
@@ -62,15 +65,26 @@ def make_certs(directory: Path) -> Path:
     return directory
 
 
-def host_config(certs: Path, host: str, lease_ms: int = DEFAULT_LEASE_MS) -> dict[str, Any]:
-    """``aiobt up``'s config of one host's share (what docs/deployment.md writes)."""
+def host_config(
+    certs: Path,
+    host: str,
+    lease_ms: int = DEFAULT_LEASE_MS,
+    downsampling: Path = DOWNSAMPLING,
+) -> dict[str, Any]:
+    """``aiobt up``'s config of one host's share (what docs/deployment.md writes); the
+    robot host's router thins what it sends the base host (``downsampling``)."""
+    # the host's services on loopback (downsampling, by interface, passes them by); the
+    # other host's router, the laptop, on the host's address
     router: dict[str, Any] = {
-        "listen": f"tls/{ROBOT if host == 'robot' else BASE}:{PORT}",
+        "listen": LOCAL,
         "certs": str(certs),
         "host": host,
         "access_control": str(ACCESS_CONTROL),
-        "args": ["--lease-ms", str(lease_ms)],
-    }
+        "args": ["--listen", f"tls/{ROBOT if host == 'robot' else BASE}:{PORT}",
+                 "--lease-ms", str(lease_ms)],
+    }  # fmt: skip
+    if host == "robot":
+        router["args"] += ["--downsampling", str(downsampling)]
     if host == "base":
         router["connect"] = [f"tls/{LINK_BASE}:{PORT}"]
     services: dict[str, Any] = {name: {"enabled": name in HOSTS[host]} for name in SERVICES}
@@ -97,8 +111,8 @@ class Deployment:
 
     def scenario(self, host: str, identity: str, args: Sequence[str]) -> HostProcess:
         """``tests.netlab.scenario ARGS`` in ``host`` as ``identity``, on that host's router
-        (the laptop's: the base router)."""
-        endpoint = self.robot_endpoint if host == "robot" else self.base_endpoint
+        on loopback (the laptop's: the base router, at the base's address)."""
+        endpoint = self.base_endpoint if host == "laptop" else LOCAL
         return self.lab.spawn(
             self.lab.hosts[host],
             ["-m", "tests.netlab.scenario", "--connect", endpoint, "--namespace", NAMESPACE,
@@ -138,7 +152,7 @@ def deployment(tmp: Path, lease_ms: int = LAB_LEASE_MS) -> Iterator[Deployment]:
     namespaces); everything stopped and removed on exit."""
     with NetLab() as lab:
         robot, link, base, laptop = (lab.host(n) for n in ("robot", "link", "base", "laptop"))
-        lab.link(robot, ROBOT, link, LINK_ROBOT)
+        wan, _ = lab.link(robot, ROBOT, link, LINK_ROBOT)
         lab.link(base, BASE, link, LINK_BASE)
         lab.link(laptop, LAPTOP, base, BASE_LAPTOP)
         lab.run(laptop, "ip", "route", "add", "default", "via", BASE_LAPTOP)
@@ -151,10 +165,12 @@ def deployment(tmp: Path, lease_ms: int = LAB_LEASE_MS) -> Iterator[Deployment]:
         )  # fmt: skip
         if not proxy.wait_for_output("ready", 20.0):
             raise RuntimeError(f"the link proxy did not start:\n{proxy.output()}")
+        thinning = tmp / "downsampling.json5"  # the shipped rules, on the lab's interface
+        thinning.write_text(DOWNSAMPLING.read_text().replace(SHIPPED_INTERFACE, wan))
         ups = {}
         for name, host in (("robot", robot), ("base", base)):
             path = tmp / f"{name}.yaml"
-            path.write_text(yaml.safe_dump(host_config(certs, name, lease_ms)))
+            path.write_text(yaml.safe_dump(host_config(certs, name, lease_ms, thinning)))
             ups[name] = lab.spawn(host, ["-m", "aiobt.cli.main", "up", "--config", str(path),
                                          "--no-web", "--colour", "never"])  # fmt: skip
         yield Deployment(lab, certs, ProxyControl(control), ups)

@@ -104,8 +104,9 @@ class NetLab:
         self.run(host, "ip", "link", "set", "lo", "up")
         return host
 
-    def link(self, a: Host, a_address: str, b: Host, b_address: str) -> None:
-        """A veth pair between ``a`` and ``b`` with these /30 addresses (from TEST_NET)."""
+    def link(self, a: Host, a_address: str, b: Host, b_address: str) -> tuple[str, str]:
+        """A veth pair between ``a`` and ``b`` with these /30 addresses (from TEST_NET);
+        the names of its ends (``a``'s, ``b``'s)."""
         for address in (a_address, b_address):
             if ipaddress.ip_address(address) not in TEST_NET:
                 raise ValueError(f"{address} is outside {TEST_NET}, the range for tests")
@@ -119,6 +120,7 @@ class NetLab:
             self.run(host, "ip", "addr", "add", f"{address}/30", "dev", end)
             self.run(host, "ip", "link", "set", end, "up")
             host.addresses.append(address)
+        return a_end, b_end
 
     def run(self, host: Host, *command: str) -> str:
         """A short command inside ``host``; its output (an error names the command)."""

@@ -37,7 +37,7 @@ from aiobt.system.realtime import (
     add_realtime_argument,
     realtime_if_asked,
 )
-from aiobt.transport import _z, access_control
+from aiobt.transport import _z, access_control, downsampling
 from aiobt.transport.diagnose import clean
 from aiobt.transport.refusals import watch_refusals
 from aiobt.transport.settings import (
@@ -86,6 +86,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="Zenoh access-control rules (a JSON5 access_control section, e.g. "
         "deploy/access-control.json5); denials are logged",
     )
+    parser.add_argument(
+        "--downsampling",
+        metavar="FILE",
+        default=None,
+        help="Zenoh downsampling rules (a JSON5 downsampling section, e.g. "
+        "deploy/downsampling.json5: the robot's streams thinned towards another host)",
+    )
     add_realtime_argument(parser, ROUTER_PRIORITY)
 
 
@@ -107,6 +114,8 @@ def run(args: argparse.Namespace) -> int:
         config = settings.zenoh_config()
         if args.access_control:
             access_control.insert_rules(config, args.access_control)
+        if args.downsampling:
+            downsampling.insert_rules(config, args.downsampling)
     except BusConfigError as exc:
         log.error("%s", exc)
         return 2

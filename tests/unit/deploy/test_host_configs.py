@@ -28,6 +28,9 @@ def _as_in_the_lab(shipped: dict[str, Any], certs: Path) -> dict[str, Any]:
         loaded["router"]["connect"] = [f"tls/{deployment.LINK_BASE}:7447"]
     loaded["router"]["certs"] = str(certs)
     loaded["router"]["access_control"] = str(deployment.ACCESS_CONTROL)
+    args = loaded["router"]["args"]
+    if "--downsampling" in args:
+        args[args.index("--downsampling") + 1] = str(deployment.DOWNSAMPLING)
     return loaded
 
 
