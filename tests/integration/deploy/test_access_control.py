@@ -17,7 +17,7 @@ from pathlib import Path
 import pytest
 
 from aiobt.deploy.certs import CertPlan
-from aiobt.msgs import Msg, Odometry, PoseStamped, Twist
+from aiobt.msgs import Msg, OccupancyGrid, Odometry, PoseStamped, Twist
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings, BusUnavailable, open_bus, open_session
 
@@ -149,8 +149,6 @@ async def test_a_latched_map_reaches_a_late_viewer_and_only_the_robot_s_counts(
 ) -> None:
     """The history of a latched topic lives under ``@adv`` keys, which no wildcard
     matches: the rules name them, or a late subscriber never gets the map."""
-    from aiobt.msgs import OccupancyGrid
-
     _, endpoint = secure_router
     grid = OccupancyGrid.model_validate(
         {"info": {"resolution": 0.1, "width": 2, "height": 1}, "data": [0, 100]}

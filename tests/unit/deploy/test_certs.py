@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 from cryptography import x509
 from cryptography.hazmat.primitives.asymmetric import ec
+from cryptography.hazmat.primitives.serialization import load_pem_private_key
 from cryptography.x509.oid import ExtendedKeyUsageOID, NameOID
 
 from aiobt.cli.main import main
@@ -61,8 +62,6 @@ def test_the_ca_of_another_deployment_does_not_sign_these(tmp_path: Path) -> Non
 
 
 def test_keys_are_private_and_match_their_certificates(tmp_path: Path) -> None:
-    from cryptography.hazmat.primitives.serialization import load_pem_private_key
-
     write_certs(tmp_path, CertPlan())
     for name in [*EXPECTED, "ca"]:
         mode = stat.S_IMODE(key_path(tmp_path, name).stat().st_mode)

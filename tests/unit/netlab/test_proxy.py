@@ -6,6 +6,7 @@ import asyncio
 import contextlib
 import time
 from collections.abc import AsyncIterator
+from pathlib import Path
 
 import pytest
 
@@ -139,10 +140,7 @@ def test_bad_settings_are_refused_by_name() -> None:
     assert not apply(link, {"op": "stall"})["ok"]
 
 
-async def test_the_control_socket_drives_a_proxy(tmp_path: object, proxy: LinkProxy) -> None:
-    from pathlib import Path
-
-    assert isinstance(tmp_path, Path)
+async def test_the_control_socket_drives_a_proxy(tmp_path: Path, proxy: LinkProxy) -> None:
     socket_path = tmp_path / "link.sock"
     other = LinkProxy((LOOPBACK, 0), proxy.target)
     task = asyncio.create_task(serve(other, socket_path))
