@@ -12,6 +12,8 @@ source places they carry.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import logging
 import os
 import re
@@ -30,6 +32,7 @@ from aiobt.transport.diagnose import clean
 ZENOH_LOG_FILTER = (
     "warn,zenoh_link_tcp::unicast=debug,zenoh_transport::unicast::establishment::accept=debug"
 )
+_PIPE_SIZE = 1 << 20
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 _ACCEPTED = re.compile(r"Accepted TCP connection on \S+: (\S+)")
 _REFUSED = re.compile(r"establishment::accept: (\w+) extension - Recv \w+\. ([^.]+)\.")
@@ -101,6 +104,11 @@ def watch_refusals(logger: logging.Logger, *, access_control: bool = False) -> R
     access = AccessRefusals(logger)
     refusals = Refusals(logger, forward_all=bool(os.environ.get("RUST_LOG")), access=access)
     read_fd, write_fd = os.pipe()
+    # Zenoh writes its log from the threads that route messages: with access control, a
+    # line per message. A full pipe would block them until this process's reader runs;
+    # the largest pipe an unprivileged process may have (1 MiB on Linux) gives it seconds
+    with contextlib.suppress(OSError, AttributeError):
+        fcntl.fcntl(write_fd, fcntl.F_SETPIPE_SZ, _PIPE_SIZE)
     original = os.dup(1)
     os.dup2(write_fd, 1)
     os.close(write_fd)
