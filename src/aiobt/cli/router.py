@@ -87,6 +87,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "deploy/access-control.json5); denials are logged",
     )
     parser.add_argument(
+        "--no-denial-log",
+        action="store_true",
+        help="do not log what access control denies (Zenoh's log of it writes a line per "
+        "message routed: docs/deployment.md says what that costs)",
+    )
+    parser.add_argument(
         "--downsampling",
         metavar="FILE",
         default=None,
@@ -125,7 +131,8 @@ def run(args: argparse.Namespace) -> int:
     except RealtimePriorityError as exc:
         log.error("router: %s", exc)
         return 1
-    watch_refusals(log, access_control=access_control.enabled(config))
+    denials = access_control.enabled(config) and not args.no_denial_log
+    watch_refusals(log, access_control=denials)
     try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:

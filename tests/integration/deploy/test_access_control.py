@@ -18,10 +18,11 @@ import pytest
 
 from aiobt.deploy.certs import CertPlan
 from aiobt.msgs import Msg, OccupancyGrid, Odometry, PoseStamped, Twist
-from aiobt.testing.bus import ServiceProcess
+from aiobt.testing.bus import ServiceProcess, running_router
 from aiobt.transport import Bus, BusSettings, BusUnavailable, open_bus, open_session
+from aiobt.transport.endpoints import free_port
 
-from .conftest import make_certs
+from .conftest import ACCESS_CONTROL, make_certs
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(60)]
 CONTROLS = 5  # control puts that must arrive before a missing put counts as refused
@@ -165,3 +166,13 @@ async def test_a_latched_map_reaches_a_late_viewer_and_only_the_robot_s_counts(
             assert first.info.width == 2  # the robot's
             with pytest.raises(TimeoutError):
                 await sub.next(1.0)  # the planner's map never comes
+
+
+async def test_without_the_denial_log_the_rules_still_hold(certs: Path) -> None:
+    args = ["--config", str(certs / "router-robot.json5"), "--access-control",
+            str(ACCESS_CONTROL), "--no-denial-log"]  # fmt: skip
+    with running_router(f"tls/127.0.0.1:{free_port()}", args) as (router, endpoint):
+        assert router.wait_for_output("listening on", 10.0), router.output()
+        async with as_(certs, "robot", endpoint) as robot, as_(certs, "web", endpoint) as web:
+            assert not await put_reaches(robot, web, "cmd_vel", Twist.planar(0.3, 0.0))
+        assert "denied" not in router.output()
