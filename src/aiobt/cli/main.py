@@ -26,6 +26,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "nodes": ("aiobt.cli.nodes", "print the <TreeNodesModel> of every registered node"),
     "validate": ("aiobt.cli.validate", "load and check XML trees with every node, tick nothing"),
     "router": ("aiobt.cli.router", "run a Zenoh router in this process"),
+    "certs": ("aiobt.cli.certs", "a CA and a certificate per service and host (mutual TLS)"),
     "up": ("aiobt.cli.up", "the whole system on this machine: router and every service"),
     "status": ("aiobt.cli.status", "who is up: the router, each service and web view"),
     "navigate": ("aiobt.cli.navigate", "send a navigation goal and follow it to its end"),

@@ -3,10 +3,13 @@
     aiobt router --listen tcp/127.0.0.1:7447
     aiobt router --config router.json5   # e.g. with auth; still loopback only
     aiobt router --listen tcp/0.0.0.0:7447 --config router.json5   # every interface
+    aiobt router --listen tls/0.0.0.0:7447 --config certs/router-robot.json5 \
+        --access-control deploy/access-control.json5   # mutual TLS and access control
 
 Without --listen it listens where the config file says, else on 127.0.0.1:7447
 (never on every interface unless asked). Sessions it refuses (wrong user or
-password) are logged with the peer's address, rate-limited.
+password) are logged with the peer's address, rate-limited; so are TLS sessions
+refused for their certificate, and what the access-control rules deny to whom.
 
 Security (user/password, access control, TLS) is Zenoh configuration: pass a
 config file, see docs/transport.md. Runs until SIGINT/SIGTERM.
@@ -34,7 +37,7 @@ from aiobt.system.realtime import (
     add_realtime_argument,
     realtime_if_asked,
 )
-from aiobt.transport import _z
+from aiobt.transport import _z, access_control, downsampling
 from aiobt.transport.diagnose import clean
 from aiobt.transport.refusals import watch_refusals
 from aiobt.transport.settings import (
@@ -76,6 +79,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=1000,
         help="link lease: how fast a hung peer is noticed (default: %(default)s ms)",
     )
+    parser.add_argument(
+        "--access-control",
+        metavar="FILE",
+        default=None,
+        help="Zenoh access-control rules (a JSON5 access_control section, e.g. "
+        "deploy/access-control.json5); denials are logged",
+    )
+    parser.add_argument(
+        "--no-denial-log",
+        action="store_true",
+        help="do not log what access control denies (Zenoh's log of it writes a line per "
+        "message routed: docs/deployment.md says what that costs)",
+    )
+    parser.add_argument(
+        "--downsampling",
+        metavar="FILE",
+        default=None,
+        help="Zenoh downsampling rules (a JSON5 downsampling section, e.g. "
+        "deploy/downsampling.json5: the robot's streams thinned towards another host)",
+    )
     add_realtime_argument(parser, ROUTER_PRIORITY)
 
 
@@ -95,6 +118,10 @@ def run(args: argparse.Namespace) -> int:
     try:
         settings = settings_from_args(args)
         config = settings.zenoh_config()
+        if args.access_control:
+            access_control.insert_rules(config, args.access_control)
+        if args.downsampling:
+            downsampling.insert_rules(config, args.downsampling)
     except BusConfigError as exc:
         log.error("%s", exc)
         return 2
@@ -104,7 +131,8 @@ def run(args: argparse.Namespace) -> int:
     except RealtimePriorityError as exc:
         log.error("router: %s", exc)
         return 1
-    watch_refusals(log)
+    denials = access_control.enabled(config) and not args.no_denial_log
+    watch_refusals(log, access_control=denials)
     try:
         session = zenoh.open(config)
     except zenoh.ZError as exc:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import importlib.util
 import sys
+from pathlib import Path
 
 from aiobt.system.catalog import service
 from aiobt.system.config import SystemConfig
@@ -24,12 +25,29 @@ def available(name: str) -> bool:
 
 
 def router_command(config: SystemConfig) -> list[str]:
-    return ["router", "--listen", config.router.listen, *config.router.args]
+    """The router's: where it listens, the routers it joins, its certificate and rules."""
+    router = config.router
+    command = ["router", "--listen", router.listen]
+    for endpoint in router.connect:
+        command += ["--connect", endpoint]
+    if router.certs:
+        command += ["--config", identity_config(config, f"router-{router.host}")]
+    if router.access_control:
+        command += ["--access-control", router.access_control]
+    return command + list(router.args)
+
+
+def identity_config(config: SystemConfig, name: str) -> str:
+    """The Zenoh config file that makes a session present ``name``'s certificate."""
+    assert config.router.certs is not None
+    return str(Path(config.router.certs) / f"{name}.json5")
 
 
 def service_command(name: str, config: SystemConfig) -> list[str]:
     """``name``'s sub-command and flags: the common bus flags, then its own, then the extras."""
     command = [name, "--connect", config.router.listen, "--namespace", config.namespace]
+    if config.router.certs:
+        command += ["--config", identity_config(config, name)]
     spec = service(name)
     simulation = spec.simulation
     if simulation:

@@ -9,6 +9,10 @@
     router:
       listen: tcp/127.0.0.1:7447   # where the router listens and services connect
       start: true             # false: use a router that is already running there
+      connect: []             # other hosts' routers to join (one host's share of a deployment)
+      certs: null             # a directory of `aiobt certs`: mutual TLS for router and services
+      host: robot             # ... whose router certificate is router-<host>
+      access_control: null    # the router's access-control rules (deploy/access-control.json5)
       args: []                # extra flags of the router it starts
     restart:
       backoff: 0.5            # s before the first restart, doubled per crash ...
@@ -56,6 +60,10 @@ class RouterConfig:
     listen: str = DEFAULT_LISTEN
     start: bool = True
     args: tuple[str, ...] = ()
+    connect: tuple[str, ...] = ()
+    certs: str | None = None
+    host: str = "robot"
+    access_control: str | None = None
 
 
 @dataclass(slots=True, frozen=True)
@@ -150,7 +158,38 @@ def _router(data: Mapping[str, Any], where: str) -> RouterConfig:
     if not listen.startswith(("tcp/", "udp/", "tls/", "quic/", "ws/")):
         raise ConfigError(f"{where}: router.listen must be a Zenoh endpoint like {DEFAULT_LISTEN}")
     start = _typed(data, "start", bool, True, where, "router.")
-    return RouterConfig(listen, start, _args(data, where, "router."))
+    certs = _typed(data, "certs", str, None, where, "router.")
+    _check_certs(certs, listen, where)
+    return RouterConfig(
+        listen,
+        start,
+        _args(data, where, "router."),
+        connect=_endpoints(data, "connect", where),
+        certs=certs,
+        host=_typed(data, "host", str, "robot", where, "router."),
+        access_control=_typed(data, "access_control", str, None, where, "router."),
+    )
+
+
+def _check_certs(certs: str | None, listen: str, where: str) -> None:
+    if certs is None:
+        return
+    if not listen.startswith("tls/"):
+        raise ConfigError(f"{where}: router.certs needs a tls/ router.listen, got {listen}")
+    if not (Path(certs) / "ca.pem").is_file():
+        raise ConfigError(
+            f"{where}: router.certs {certs}: no ca.pem there (make them: aiobt certs {certs})"
+        )
+
+
+def _endpoints(data: Mapping[str, Any], key: str, where: str) -> tuple[str, ...]:
+    value = data.get(key, [])
+    value = [value] if isinstance(value, str) else value
+    if not isinstance(value, list) or not all(isinstance(e, str) and "/" in e for e in value):
+        raise ConfigError(
+            f"{where}: router.{key} must be a list of Zenoh endpoints like tls/HOST:7447"
+        )
+    return tuple(value)
 
 
 def _restart(data: Mapping[str, Any], where: str) -> RestartConfig:

@@ -19,7 +19,13 @@ from collections.abc import AsyncIterator, Callable
 from typing import Any
 from urllib.parse import urlsplit
 
-from aiobt.system.commands import available, process_argv, router_command, service_command
+from aiobt.system.commands import (
+    available,
+    identity_config,
+    process_argv,
+    router_command,
+    service_command,
+)
 from aiobt.system.config import SystemConfig
 from aiobt.system.supervisor import Child, Fatal, LogSink, Supervisor
 from aiobt.transport import Bus, BusConfigError, BusSettings, BusUnavailable, open_bus
@@ -138,6 +144,7 @@ async def _open_client(config: SystemConfig, supervisor: Supervisor) -> AsyncIte
         connect=(config.router.listen,),
         namespace=config.namespace,
         connect_timeout=ROUTER_TIMEOUT,
+        config_file=identity_config(config, "supervisor") if config.router.certs else None,
     )
     async with contextlib.AsyncExitStack() as stack:
         opening: asyncio.Future[Any] = asyncio.ensure_future(
@@ -158,7 +165,7 @@ async def _open_client(config: SystemConfig, supervisor: Supervisor) -> AsyncIte
 def _tcp_address(endpoint: str) -> tuple[str, int] | None:
     protocol, _, address = endpoint.partition("/")
     parts = urlsplit(f"//{address}")
-    if protocol != "tcp" or parts.port is None:
+    if protocol not in ("tcp", "tls") or parts.port is None:
         return None
     host = parts.hostname or "127.0.0.1"
     return ("127.0.0.1" if host in ("0.0.0.0", "::") else host), parts.port

@@ -11,6 +11,8 @@ from __future__ import annotations
 import re
 import socket
 
+from aiobt.transport.tls_check import TlsFiles, tls_problem
+
 _RUST_PLACE = re.compile(r"\s*\bat /\S+\.rs:\d+\.?")
 _KNOCK_TIMEOUT = 0.5  # s: loopback answers or refuses at once
 _IP_ENDPOINT = re.compile(r"^(?:tcp|tls|quic|ws)/\[?([^\]\s]+?)\]?:(\d+)(?:[?#].*)?$")
@@ -35,8 +37,15 @@ def port_answers(endpoint: str) -> bool | None:
         return False
 
 
-def open_failure(endpoints: list[str], error: str, took: float, handshake_limit: float) -> str:
-    """What went wrong opening a session that was to connect to ``endpoints``."""
+def open_failure(
+    endpoints: list[str],
+    error: str,
+    took: float,
+    handshake_limit: float,
+    tls: TlsFiles | None = None,
+) -> str:
+    """What went wrong opening a session that was to connect to ``endpoints`` (a TLS
+    endpoint's refusal is explained by :func:`tls_problem`, given the session's files)."""
     if not endpoints:
         return clean(error)
     reasons = []
@@ -51,6 +60,8 @@ def open_failure(endpoints: list[str], error: str, took: float, handshake_limit:
                 f"the router at {endpoint} did not complete the session handshake "
                 f"within {handshake_limit:.1f} s (hung or overloaded?)"
             )
+        elif tls is not None and (problem := tls_problem(endpoint, tls)) is not None:
+            reasons.append(problem)
         else:
             reasons.append(
                 f"the router at {endpoint} refused the session: check user and password "

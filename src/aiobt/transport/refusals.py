@@ -12,6 +12,8 @@ source places they carry.
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import logging
 import os
 import re
@@ -23,12 +25,14 @@ from typing import IO
 
 import zenoh
 
+from aiobt.transport.access_refusals import ACL_LOG_FILTER, TLS_LOG_FILTER, AccessRefusals
 from aiobt.transport.diagnose import clean
 
 # Zenoh's warnings and errors, and the two debug lines a refusal is made of
 ZENOH_LOG_FILTER = (
     "warn,zenoh_link_tcp::unicast=debug,zenoh_transport::unicast::establishment::accept=debug"
 )
+_PIPE_SIZE = 1 << 20
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 _ACCEPTED = re.compile(r"Accepted TCP connection on \S+: (\S+)")
 _REFUSED = re.compile(r"establishment::accept: (\w+) extension - Recv \w+\. ([^.]+)\.")
@@ -49,8 +53,10 @@ class Refusals:
         interval: float = 10.0,
         clock: Callable[[], float] = time.monotonic,
         forward_all: bool = False,
+        access: AccessRefusals | None = None,
     ) -> None:
         self.logger = logger
+        self.access = access  # TLS and access-control refusals, when the router has them
         self.forward_all = forward_all  # RUST_LOG chose the lines: pass them all on
         self.interval = interval
         self._clock = clock
@@ -62,6 +68,8 @@ class Refusals:
     def on_line(self, line: str) -> str | None:
         """Note ``line``; returns the line to pass on to stdout (cleaned), if any."""
         line = _ANSI.sub("", line).rstrip("\n")
+        if self.access is not None and self.access.on_line(line):
+            return None
         if accepted := _ACCEPTED.search(line):
             self._peer = accepted.group(1)
             return None
@@ -88,18 +96,26 @@ class Refusals:
         self._unsaid, self._said_at = 0, now
 
 
-def watch_refusals(logger: logging.Logger) -> Refusals:
+def watch_refusals(logger: logging.Logger, *, access_control: bool = False) -> Refusals:
     """Route Zenoh's log of this process through a :class:`Refusals` (call before
     opening the session; once per process: it takes over file descriptor 1 and
-    points ``sys.stdout`` at a copy of the original)."""
-    refusals = Refusals(logger, forward_all=bool(os.environ.get("RUST_LOG")))
+    points ``sys.stdout`` at a copy of the original). With ``access_control``,
+    access-control denials are read too (:mod:`access_refusals`)."""
+    access = AccessRefusals(logger)
+    refusals = Refusals(logger, forward_all=bool(os.environ.get("RUST_LOG")), access=access)
     read_fd, write_fd = os.pipe()
+    # Zenoh writes its log from the threads that route messages: with access control, a
+    # line per message. A full pipe would block them until this process's reader runs;
+    # the largest pipe an unprivileged process may have (1 MiB on Linux) gives it seconds
+    with contextlib.suppress(OSError, AttributeError):
+        fcntl.fcntl(write_fd, fcntl.F_SETPIPE_SZ, _PIPE_SIZE)
     original = os.dup(1)
     os.dup2(write_fd, 1)
     os.close(write_fd)
     out = os.fdopen(original, "w", buffering=1)
     sys.stdout = out
-    zenoh.init_log_from_env_or(ZENOH_LOG_FILTER)
+    log_filter = ZENOH_LOG_FILTER + f",{TLS_LOG_FILTER}"
+    zenoh.init_log_from_env_or(log_filter + f",{ACL_LOG_FILTER}" if access_control else log_filter)
     reader = os.fdopen(read_fd, "r", errors="replace")
     threading.Thread(target=_pump, args=(reader, out, refusals), daemon=True).start()
     return refusals

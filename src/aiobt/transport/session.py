@@ -16,6 +16,7 @@ from aiobt.transport.settings import (
     connect_endpoints,
     listen_endpoints,
 )
+from aiobt.transport.tls_check import TlsFiles
 
 log = logging.getLogger("aiobt.transport.session")
 _RETRY_DELAYS = (0.1, 0.2, 0.5, 1.0)
@@ -83,7 +84,8 @@ def _bound_open_timeout(config: zenoh.Config, seconds: float) -> None:
 
 def _why(config: zenoh.Config, exc: zenoh.ZError, took: float) -> str:
     limit = json.loads(config.get_json(OPEN_TIMEOUT_KEY)) / 1000.0
-    return diagnose.open_failure(connect_endpoints(config), str(exc), took, limit)
+    tls = TlsFiles.of(config)
+    return diagnose.open_failure(connect_endpoints(config), str(exc), took, limit, tls)
 
 
 def _listening(config: zenoh.Config) -> str:
