@@ -46,7 +46,10 @@ HOSTS = {
     "robot": ("robot", "controller", "behaviors"),
     "base": ("planner", "navigator"),
 }
-SERVICES = tuple(spec.name for spec in catalog.SERVICES)
+# the services `aiobt up` runs by default (the safety chain and route stay off in a share)
+SERVICES = tuple(
+    spec.name for spec in catalog.SERVICES if spec.enabled and spec.name not in catalog.SAFETY_CHAIN
+)
 UP_TIMEOUT = 120.0  # s for each host's share to be up on 2 loaded cores
 DEFAULT_LEASE_MS = 1000  # deploy/*-host.yaml's
 # the lab's: on 2 cores shared with other work, a starved process must not be taken for
