@@ -21,6 +21,12 @@ Spawn = Callable[[Sequence[str]], ServiceProcess]
 SPEED = "4"
 
 
+# the controller's and behaviours' own accuracy, measured against the truth (``{ns}/pose``):
+# the robot's odometry without its default error (slip, turn scale, noise), which a spin or a
+# drive measured by odometry would add (the robot's and localization's tests cover it)
+EXACT_ODOMETRY = ("--odom-noise", "0", "--slip", "0", "--odom-turn-scale", "0")
+
+
 async def start(
     spawn: Spawn,
     bus: Bus,
@@ -29,7 +35,7 @@ async def start(
     *extra: str,
     world: str = "small",
     speed: str = SPEED,
-    robot_args: Sequence[str] = (),
+    robot_args: Sequence[str] = EXACT_ODOMETRY,
     sim_time: bool = True,
 ) -> ServiceProcess:
     """The robot (``world``, ``speed``) and one of our services on sim time (or on the wall

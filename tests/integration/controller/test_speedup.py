@@ -20,7 +20,7 @@ from aiobt.msgs import DriveOnHeading as DriveOnHeadingAction
 from aiobt.msgs.sim import Ack, BumperEvent, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
 
-from .helpers import Spawn, path_through, start, yaw_error
+from .helpers import EXACT_ODOMETRY, Spawn, path_through, start, yaw_error
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 
@@ -81,7 +81,7 @@ async def test_box_spawned_on_the_path_stops_the_robot_short_at_10x(
         bus_settings,
         "controller",
         speed=SPEED,
-        robot_args=["--start", "-1.8", "0", "0"],
+        robot_args=["--start", "-1.8", "0", "0", *EXACT_ODOMETRY],
     )
     await speed.begin()
     client = bus.action_client("follow_path", FollowPath)
