@@ -11,23 +11,20 @@ and ``srv/is_path_valid``; holds the liveliness token ``{ns}/nodes/planner``.
 from __future__ import annotations
 
 import argparse
-import asyncio
 import logging
 
-from aiobt.core.clock import Clock, SystemClock
 from aiobt.costmap import InflationParams, ObstacleParams
 from aiobt.msgs import ComputeCoveragePath, ComputePathThroughPoses, ComputePathToPose, SmoothPath
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.heap import settle
 from aiobt.system.realtime import add_realtime_argument, realtime_if_asked
 from aiobt.system.service import (
-    make_clock,
     non_negative,
     open_bus_unless_stopped,
+    open_clock,
     positive,
     run_service,
     stop_on_signals,
-    unless_stopped,
 )
 from aiobt.transport import BusSettings, add_bus_arguments
 
@@ -126,13 +123,9 @@ async def serve(args: argparse.Namespace) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        clock: Clock = SystemClock()
-        if args.sim_time:
-            stopper = asyncio.create_task(stop.wait())
-            made = await unless_stopped(make_clock(bus, sim_time=True), stopper)
-            if made is None:
-                return
-            clock = made[0]
+        clock = await open_clock(bus, args.sim_time, stop)
+        if clock is None:
+            return
         PlannerService(bus, world, actions, sim_time=args.sim_time, clock=clock).start()
         settle()  # start-up's objects out of the collector's full passes (a request's tail)
         log.info("planner up on namespace '%s'%s", bus.namespace, realtime)

@@ -15,19 +15,16 @@ error. See docs/route.md.
 from __future__ import annotations
 
 import argparse
-import asyncio
 import logging
 
-from aiobt.core.clock import Clock, SystemClock
 from aiobt.costmap import InflationParams
 from aiobt.costmap.world import FedCostmap, WorldOptions
 from aiobt.system.service import (
-    make_clock,
     non_negative,
     open_bus_unless_stopped,
+    open_clock,
     run_service,
     stop_on_signals,
-    unless_stopped,
 )
 from aiobt.transport import BusSettings, add_bus_arguments
 
@@ -86,13 +83,9 @@ async def serve(args: argparse.Namespace) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        clock: Clock = SystemClock()
-        if args.sim_time:
-            stopper = asyncio.create_task(stop.wait())
-            made = await unless_stopped(make_clock(bus, sim_time=True), stopper)
-            if made is None:
-                return
-            clock = made[0]
+        clock = await open_clock(bus, args.sim_time, stop)
+        if clock is None:
+            return
         service = RouteService(bus, world, clock, sim_time=args.sim_time)
         service.start(build(args, service))
         log.info("route server up on namespace '%s'", bus.namespace)

@@ -150,6 +150,20 @@ async def serve_on_clock(
         await stopper
 
 
+async def open_clock(bus: Bus, sim_time: bool, stop: asyncio.Event) -> Clock | None:
+    """The wall clock, or (``sim_time``) the simulation's once it has started; None if
+    ``stop`` (SIGINT/SIGTERM) comes first. For a service that starts itself without
+    :func:`serve_on_clock`."""
+    if not sim_time:
+        return SystemClock()
+    stopper = asyncio.create_task(stop.wait())
+    try:
+        made = await unless_stopped(make_clock(bus, sim_time=True), stopper)
+    finally:
+        stopper.cancel()
+    return None if made is None else made[0]
+
+
 async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower | None]:
     """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp),
     listened to only while held: by a sleeper, a goal, a clearing call (see
