@@ -11,6 +11,7 @@ from aiobt.costmap.checker import CollisionChecker
 from aiobt.geometry import FloatArray, PlanarPath, Pose2D, Velocity
 
 from .errors import no_valid_control
+from .speed_limit import SpeedLimit
 
 NO_TRAJECTORY: FloatArray = np.zeros((0, 3))
 NO_TRAJECTORY.setflags(write=False)
@@ -37,6 +38,10 @@ class Controller(Protocol):
     def set_plan(self, path: PlanarPath) -> None: ...
 
     def reset(self) -> None: ...
+
+    def set_speed_limit(self, limit: SpeedLimit) -> None:
+        """Nav2's ``setSpeedLimit``: from now on, the top speed under ``limit``."""
+        ...
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity: ...
 

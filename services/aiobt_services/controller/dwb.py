@@ -28,6 +28,7 @@ from aiobt.geometry import (
 
 from .base import ControlContext, PlanFollower
 from .errors import no_valid_control
+from .speed_limit import SpeedLimit
 from .tracking import project_onto_path, search_stop
 
 
@@ -54,12 +55,20 @@ class DWBParams:
 class DWBController(PlanFollower):
     """Dynamic-window sampling controller scored by path, goal and obstacle critics."""
 
-    __slots__ = ("params",)
+    __slots__ = ("_base", "params")
     name = "DWB"
 
     def __init__(self, params: DWBParams | None = None) -> None:
         super().__init__()
         self.params = params or DWBParams()
+        self._base = (self.params.max_vel_x, self.params.max_vel_theta)
+
+    def set_speed_limit(self, limit: SpeedLimit) -> None:
+        """Nav2's ``KinematicsHandler::setSpeedLimit``: the velocity limits scaled together,
+        so the trajectories keep their shape (an absolute limit above the maximum: none)."""
+        ratio = limit.ratio(self._base[0])
+        self.params.max_vel_x = self._base[0] * ratio
+        self.params.max_vel_theta = self._base[1] * ratio
 
     def compute_velocity(self, pose: Pose2D, speed: Velocity, ctx: ControlContext) -> Velocity:
         path = self._require_path()
@@ -99,10 +108,14 @@ class DWBController(PlanFollower):
     def _samples(self, speed: Velocity, dt: float) -> tuple[FloatArray, FloatArray]:
         p = self.params
         window = max(dt, 0.1)
-        v_lo = max(p.min_vel_x, speed.v - p.acc_lim_x * window)
-        v_hi = min(p.max_vel_x, max(speed.v + p.acc_lim_x * window, v_lo))
-        w_lo = max(-p.max_vel_theta, speed.w - p.acc_lim_theta * window)
-        w_hi = min(p.max_vel_theta, speed.w + p.acc_lim_theta * window)
+        # Nav2's OneDVelocityIterator clamps the current speed into the limits first, so a
+        # robot faster than a new speed limit samples under it at once
+        v_now = min(max(speed.v, p.min_vel_x), p.max_vel_x)
+        w_now = min(max(speed.w, -p.max_vel_theta), p.max_vel_theta)
+        v_lo = max(p.min_vel_x, v_now - p.acc_lim_x * window)
+        v_hi = min(p.max_vel_x, max(v_now + p.acc_lim_x * window, v_lo))
+        w_lo = max(-p.max_vel_theta, w_now - p.acc_lim_theta * window)
+        w_hi = min(p.max_vel_theta, w_now + p.acc_lim_theta * window)
         grid_v, grid_w = np.meshgrid(
             np.linspace(v_lo, v_hi, p.vx_samples), np.linspace(w_lo, w_hi, p.vtheta_samples)
         )

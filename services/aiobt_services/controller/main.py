@@ -6,7 +6,8 @@ pure pursuit, ``DWB`` = sampling; goal checkers ``general_goal_checker``,
 ``{ns}/srv/local_costmap/clear_{entirely,except,around}_local_costmap``;
 publishes ``{ns}/cmd_vel``, ``{ns}/tracking_feedback``, and while observed
 ``{ns}/local_plan`` and ``{ns}/local_costmap/costmap``; reads
-``{ns}/odom``, ``{ns}/pose`` and ``{ns}/scan``.
+``{ns}/odom``, ``{ns}/pose``, ``{ns}/scan`` and ``{ns}/speed_limit`` (Nav2's
+``SpeedLimit``: every controller's top speed, as ``setSpeedLimit``).
 """
 
 from __future__ import annotations
@@ -76,6 +77,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         action="store_false",
         help="the local costmap does not read the lidar (tests of the collision monitor)",
     )
+    add(
+        "--speed-limit-topic",
+        default="speed_limit",
+        help="Nav2's speed_limit_topic: SpeedLimit messages every controller obeys "
+        "(default: %(default)s)",
+    )
     add_realtime_argument(group, realtime_priority("controller"))
 
 
@@ -100,6 +107,7 @@ async def serve(args: argparse.Namespace) -> None:
             robot_time=args.sim_time,
             cmd_vel_topic=args.cmd_vel_topic,
             obstacle_layer=args.obstacle_layer,
+            speed_limit_topic=args.speed_limit_topic,
         )
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 

@@ -30,6 +30,7 @@ from aiobt.robot.latency import holding_time
 
 from .base import ControlContext, PlanFollower
 from .errors import no_valid_control
+from .speed_limit import SpeedLimit
 from .tracking import project_onto_path, remaining_length, search_stop
 
 
@@ -64,13 +65,18 @@ class RPPParams:
 class RegulatedPurePursuit(PlanFollower):
     """The ``FollowPath`` controller id."""
 
-    __slots__ = ("_last_w", "params")
+    __slots__ = ("_base_linear_vel", "_last_w", "params")
     name = "RegulatedPurePursuit"
 
     def __init__(self, params: RPPParams | None = None) -> None:
         super().__init__()
         self.params = params or RPPParams()
+        self._base_linear_vel = self.params.desired_linear_vel
         self._last_w = 0.0
+
+    def set_speed_limit(self, limit: SpeedLimit) -> None:
+        """Nav2's ``setSpeedLimit``: the top speed under ``limit`` (none: as configured)."""
+        self.params.desired_linear_vel = limit.replaced(self._base_linear_vel)
 
     def reset(self) -> None:
         super().reset()

@@ -29,6 +29,7 @@ from aiobt.msgs import (
     Path,
     Twist,
 )
+from aiobt.msgs.speed_limit import SpeedLimit as SpeedLimitMsg
 from aiobt.robot.tracker import RobotTracker, sleep_bounded, twist_of
 from aiobt.transport import Bus, GoalHandle, Publisher
 from aiobt.transport.on_demand import OnDemand
@@ -37,6 +38,7 @@ from .cycle_stats import CycleSchedule, CycleStats
 from .errors import ControllerError
 from .observed import LocalView
 from .session import ControllerConfig, FollowPathSession, FollowRequest, StepResult
+from .speed_limit import NONE, SpeedLimit
 from .wire import TrackingFeedbackMsg, tracking_feedback_msg
 
 log = logging.getLogger("aiobt_services.controller.service")
@@ -68,6 +70,7 @@ class ServiceOptions:
     robot_time: bool = False  # the clock follows the robot's (--sim-time): leads by stamps
     cmd_vel_topic: str = "cmd_vel"  # cmd_vel_nav: through the velocity smoother
     obstacle_layer: bool = True  # False: the local costmap ignores the lidar (tests)
+    speed_limit_topic: str = "speed_limit"  # Nav2's speed_limit_topic
 
 
 class ControllerService:
@@ -96,6 +99,8 @@ class ControllerService:
         self._cmd: Publisher[Twist] | None = None
         self._tracking: Publisher[TrackingFeedbackMsg] | None = None
         self._view: LocalView | None = None
+        self.speed_limit = NONE
+        self._session: FollowPathSession | None = None
 
     def start(self) -> None:
         # reliable: a stop must not drop
@@ -111,6 +116,17 @@ class ControllerService:
             FollowPath.name, FollowPath, self.execute, preemption="replace", clock=self.clock
         )
         self._serve_clearing()
+        self.bus.subscribe(
+            self.options.speed_limit_topic, SpeedLimitMsg, self.on_speed_limit, queue_size=1
+        )
+
+    def on_speed_limit(self, msg: SpeedLimitMsg) -> None:
+        """Nav2's ``speedLimitCallback``: every controller takes the limit, the running
+        goal's at once."""
+        self.speed_limit = SpeedLimit(msg.speed_limit, msg.percentage)
+        log.info("speed limit: %s", self.speed_limit)
+        if self._session is not None:
+            self._session.set_speed_limit(self.speed_limit)
 
     # -- follow_path ------------------------------------------------------------------------
     async def execute(self, goal: FollowPath.Goal, handle: Handle) -> FollowPath.Result:
@@ -142,14 +158,16 @@ class ControllerService:
 
     async def _run(self, session: FollowPathSession, handle: Handle) -> FollowPath.Result:
         stats = CycleStats(self.config.control_period)
+        self._session = session
         try:
             return await self._loop(session, handle, stats)
         finally:
+            self._session = None
             log.info("follow_path: goal %s: %s", handle.goal_id, stats.summary())
 
     def _open(self, request: FollowRequest) -> FollowPathSession:
         checker = self._checker_for(request.path.frame_id)
-        return FollowPathSession(request, self.config, self.clock.now(), checker)
+        return FollowPathSession(request, self.config, self.clock.now(), checker, self.speed_limit)
 
     def _checker_for(self, frame: str) -> CollisionChecker:
         return CollisionChecker(self.costmap if frame == "map" else self._shift)

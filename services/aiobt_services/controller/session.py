@@ -21,6 +21,7 @@ from .checkers import CheckerRegistry, GoalChecker, ProgressChecker, default_che
 from .dwb import DWBController
 from .errors import ControllerError
 from .rpp import RegulatedPurePursuit
+from .speed_limit import NONE, SpeedLimit
 from .tracking import TrackingFeedback, project_onto_path, search_stop, tracking_feedback
 
 TRACKING_SEARCH_DISTANCE = 2.0  # m along the path from the last foot point
@@ -102,7 +103,7 @@ class FollowPathSession:
 
     __slots__ = (
         "_collision", "_config", "_controller", "_failing_since", "_goal_checker",
-        "_ids", "_progress", "_request", "_started", "_track_segment",
+        "_ids", "_progress", "_request", "_speed_limit", "_started", "_track_segment",
     )  # fmt: skip
 
     def __init__(
@@ -111,9 +112,11 @@ class FollowPathSession:
         config: ControllerConfig,
         now: float,
         collision: CollisionChecker | None,
+        speed_limit: SpeedLimit = NONE,
     ) -> None:
         self._config = config
         self._collision = collision
+        self._speed_limit = speed_limit
         self._started = now
         self._failing_since: float | None = None
         self._ids = ("", "", "")
@@ -122,6 +125,12 @@ class FollowPathSession:
     @property
     def request(self) -> FollowRequest:
         return self._request
+
+    def set_speed_limit(self, limit: SpeedLimit) -> None:
+        """The limit now in force (``{ns}/speed_limit``), kept for a controller the next
+        request may switch to."""
+        self._speed_limit = limit
+        self._controller.set_speed_limit(limit)
 
     def replace(self, request: FollowRequest, now: float) -> None:
         """Take over a new path (preemption) without stopping; raises on a bad request."""
@@ -147,6 +156,7 @@ class FollowPathSession:
         validate_path(request.path, cfg.known_frames)
         if ids[0] != self._ids[0]:
             self._controller: Controller = cfg.controllers[ids[0]]()
+            self._controller.set_speed_limit(self._speed_limit)
         if ids[1] != self._ids[1]:
             self._goal_checker: GoalChecker = cfg.checkers.goal_checkers[ids[1]]()
         if ids[2] != self._ids[2]:

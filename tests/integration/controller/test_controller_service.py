@@ -271,3 +271,43 @@ async def test_robot_stopped_mid_goal_is_a_stale_pose_on_the_wall_clock(
     assert result.error_code == FollowPathError.TF_ERROR
     assert "robot pose in frame 'map' is stale: nothing new from the robot" in result.error_msg
     assert "pose_timeout 0.50 s" in result.error_msg
+
+
+async def test_speed_limit_caps_the_running_goal_and_the_next_until_lifted(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    from aiobt.msgs.speed_limit import SpeedLimit
+    from aiobt.testing.navwatch import wait_until
+
+    speeds: list[float] = []
+    changed = asyncio.Event()
+
+    def on_twist(twist: Twist) -> None:
+        speeds.append(twist.linear.x)
+        changed.set()
+
+    def seen(since: int, low: float, high: float) -> bool:
+        return any(low < v <= high for v in speeds[since:])
+
+    bus.subscribe("cmd_vel", Twist, on_twist)
+    limits = bus.publisher("speed_limit", SpeedLimit, reliable=True)
+    await start(spawn, bus, bus_settings, "controller")
+    out = await _follow(bus, path_through([(0.0, 0.0), (2.0, 0.0)]))
+    assert await wait_until(changed, lambda: seen(0, 0.4, 1.0), 20.0), speeds
+    limits.put(SpeedLimit(percentage=True, speed_limit=40.0))  # 40 % of 0.5 m/s
+    asked = len(speeds)
+    assert await wait_until(changed, lambda: seen(asked, 0.0, 0.2), 5.0), speeds[asked:]
+    limited = next(i for i in range(asked, len(speeds)) if 0.0 < speeds[i] <= 0.2)
+    await out.result(timeout=40.0)
+    assert out.status is GoalState.SUCCEEDED
+    assert max(speeds[limited:]) <= 0.2 + 1e-6
+    # the limit stays for the next goal, until a 0 (Nav2's NO_SPEED_LIMIT) lifts it
+    back_from = len(speeds)
+    back = await _follow(bus, path_through([(2.0, 0.0), (1.5, -0.5), (0.0, -0.5)]))
+    assert await wait_until(changed, lambda: seen(back_from, 0.15, 0.2), 20.0)
+    assert max(speeds[back_from:]) <= 0.2 + 1e-6
+    limits.put(SpeedLimit(percentage=True, speed_limit=0.0))
+    lifted = len(speeds)
+    assert await wait_until(changed, lambda: seen(lifted, 0.4, 1.0), 20.0)  # mid-goal
+    await back.result(timeout=40.0)
+    assert back.status is GoalState.SUCCEEDED
