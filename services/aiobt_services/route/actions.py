@@ -5,10 +5,11 @@ robot time and the feedback come in as callables, so tests drive them with fakes
 ComputeRoute plans once and returns the route, the dense path and the planning
 time. ComputeAndTrackRoute plans, then tracks the robot along the route at
 ``tracker_update_rate`` (robot time), running the operations and publishing
-feedback (at the start with ``rerouted`` set, at each node achieved and each
-operation that acted); an operation asking for a reroute plans again from the
-last node passed, without the blocked ids; the goal succeeds with the execution
-duration once the last node is achieved. Every failure is a result with Nav2's
+feedback (at the start with ``rerouted`` set, at each node achieved and in every
+cycle an operation ran: the query operations run, and are named, every cycle, as in
+Nav2); an operation asking for a reroute plans again from the last node passed,
+without the blocked ids; a newer goal takes the tracking over; the goal succeeds
+with the execution duration once the last node is achieved. Every failure is a result with Nav2's
 code and a message; a cancelled goal is not an error.
 """
 
@@ -90,17 +91,24 @@ class RouteActions:
         )
 
     async def compute_and_track_route(self, goal: ComputeAndTrackRoute.Goal, handle: Any) -> Any:
+        """Served with preemption "replace": a newer goal takes the tracking over, as Nav2's
+        ``accept_pending_goal`` (rerouting state reset, execution time kept)."""
         began = self.clock.now()
         rerouting = ReroutingState()
         try:
             while True:
+                newer = handle.take_new_goal()
+                if newer is not None:
+                    log.info("computing a new route to the preempting goal")
+                    goal, rerouting = newer, ReroutingState()
                 request = request_of(goal, self.robot)  # a reroute starts where the robot is
                 route, poses = self.planner.plan(request, rerouting)
                 stamp = self.clock.now()
                 if await self._track(route, path_msg(poses, stamp), rerouting, handle):
                     return ComputeAndTrackRoute.Result(execution_duration=self.clock.now() - began)
-                log.info("rerouting from node %s, blocked ids %s", rerouting.start_id,
-                         rerouting.blocked_ids)  # fmt: skip
+                if not handle.preempt_requested:
+                    log.info("rerouting from node %s, blocked ids %s", rerouting.start_id,
+                             rerouting.blocked_ids)  # fmt: skip
         except RouteError as exc:
             return self._failed(ComputeAndTrackRoute.Result, exc)
         except Exception as exc:
@@ -110,7 +118,8 @@ class RouteActions:
     async def _track(
         self, route: Route, path: Path, rerouting: ReroutingState, handle: Any
     ) -> bool:
-        """Track ``route`` until its end (True) or a reroute is asked for (False)."""
+        """Track ``route`` until its end (True), or until a reroute is asked for or a newer
+        goal preempts this one (False)."""
         tracker = RouteTracker(route, self.tracker, rerouting)
         msg = route_msg(route, self.clock.now())
 
@@ -125,7 +134,7 @@ class RouteActions:
 
         feedback(True, [])
         period = 1.0 / self.tracker.tracker_update_rate
-        while True:
+        while not handle.preempt_requested:
             position = self._position()
             changed, completed = tracker.update(position)
             ops = self.operations.process(changed, tracker, position, self.clock.now())
@@ -138,6 +147,7 @@ class RouteActions:
                 self._prepare_reroute(tracker, ops, rerouting, position)
                 return False
             await self.clock.sleep(period)
+        return False
 
     def _position(self) -> XY:
         try:

@@ -177,10 +177,8 @@ class OperationsManager:
                 result.add(served.name, served.perform(_with(event, op.metadata)))
             for change in self.on_change:
                 result.add(change.name, change.perform(event))
-        for query in self.on_query:
-            outcome = query.perform(event)
-            if outcome.reroute or outcome.blocked_ids:
-                result.add(query.name, outcome)
+        for query in self.on_query:  # every cycle, and named every cycle, as Nav2 does
+            result.add(query.name, query.perform(event))
         return result
 
     @staticmethod

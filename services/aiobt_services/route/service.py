@@ -63,7 +63,8 @@ class RouteService:
         bus.subscribe("map", OccupancyGrid, self.world.on_map, latched=True)
         bus.action_server(ComputeRoute.name, ComputeRoute, feed.action(actions.compute_route))
         bus.action_server(ComputeAndTrackRoute.name, ComputeAndTrackRoute,
-                          feed.action(actions.compute_and_track_route))  # fmt: skip
+                          feed.action(actions.compute_and_track_route),
+                          preemption="replace", clock=self.clock)  # fmt: skip
         if self.rerouting is not None:
             bus.serve(REROUTE_SERVICE, Trigger.Request, Trigger.Response, self.reroute)
         if self.dynamic_edges is not None:

@@ -22,11 +22,26 @@ from .helpers import square
 
 
 class Handle:
+    """The goal handle: feedback kept; :meth:`preempt` queues a newer goal."""
+
     def __init__(self) -> None:
         self.feedback: list[Any] = []
+        self.newer: list[Any] = []
 
     def publish_feedback(self, feedback: Any) -> None:
         self.feedback.append(feedback)
+
+    def preempt(self, goal: Any) -> None:
+        self.newer.append(goal)
+
+    @property
+    def preempt_requested(self) -> bool:
+        return bool(self.newer)
+
+    def take_new_goal(self) -> Any:
+        newest = self.newer[-1] if self.newer else None
+        self.newer.clear()
+        return newest
 
 
 class Robot:
@@ -114,7 +129,8 @@ async def test_no_robot_pose_is_a_tf_error() -> None:
 
 async def drive_along(actions: RouteActions, robot: Robot, goal: Any, handle: Handle,
                       block: Any = None) -> Any:  # fmt: skip
-    """Run the tracking goal; the robot follows the newest feedback path, 0.1 m a tick."""
+    """Run the tracking goal; the robot follows the newest feedback path, 0.1 m a tick;
+    ``block(at)`` is called after each tick."""
     clock = actions.clock
     assert isinstance(clock, ManualClock)
     task = asyncio.ensure_future(actions.compute_and_track_route(goal, handle))
@@ -180,3 +196,38 @@ async def test_a_blocked_edge_ahead_reroutes_the_other_way_round() -> None:
     assert edges_after[-1] in (12, 16)
     assert robot.at is not None
     assert np.hypot(robot.at[0] - 4, robot.at[1] - 4) < 1.0
+
+
+async def test_a_newer_goal_takes_the_tracking_over() -> None:
+    robot = Robot(0.0, 0.0)
+    actions = make(robot)
+    handle = Handle()
+    sent: list[Any] = []
+
+    def preempt_on_the_way(at: tuple[float, float]) -> None:
+        if np.hypot(*at) > 1.0 and not sent:  # once, 1 m along the first route
+            sent.append(ComputeAndTrackRoute.Goal(use_poses=True, goal=pose(4.0, 0.0)))
+            handle.preempt(sent[0])
+
+    goal = ComputeAndTrackRoute.Goal(start_id=1, goal_id=3)
+    result = await drive_along(actions, robot, goal, handle, preempt_on_the_way)
+    assert result.error_code == 0, result.error_msg
+    planned = [f.route for f in handle.feedback if f.rerouted]
+    # the newer goal's route ends at node 2 (its start node pruned when the robot is
+    # already on the way from it, as Nav2's goal intent extractor does)
+    assert planned[0].nodes[0].nodeid == 1
+    assert [r.nodes[-1].nodeid for r in planned] == [3, 2]
+    assert robot.at is not None
+    assert np.hypot(robot.at[0] - 4.0, robot.at[1]) < 1.0  # it ended at node 2 (4, 0)
+
+
+async def test_query_operations_are_named_in_every_cycle_s_feedback() -> None:
+    robot = Robot(0.0, 0.0)
+    grid = CostGrid(GridGeometry(100, 100, 0.1, -1.0, -1.0), np.zeros((100, 100), np.uint8))
+    handle = Handle()
+    goal = ComputeAndTrackRoute.Goal(start_id=1, goal_id=3)
+    result = await drive_along(make(robot, grid), robot, goal, handle)
+    assert result.error_code == 0
+    cycles = [f for f in handle.feedback if not f.rerouted]
+    assert len(cycles) > 20  # one per tracker cycle, not only at the nodes
+    assert all(f.operations_triggered == ["CollisionMonitor"] for f in cycles)

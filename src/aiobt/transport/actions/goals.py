@@ -161,6 +161,12 @@ class GoalHandle(Generic[G, R, F]):
     def publish_feedback(self, feedback: F) -> None:
         self._publish(self.goal_id, feedback)
 
+    @property
+    def preempt_requested(self) -> bool:
+        """A newer goal waits to take this execution over (Nav2's ``is_preempt_requested``);
+        :meth:`take_new_goal` takes it."""
+        return self._queue is not None and not self._queue.empty()
+
     def take_new_goal(self) -> G | None:
         """The newest goal that took this execution over since the last call, if any."""
         newest: G | None = None
