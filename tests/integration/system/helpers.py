@@ -11,34 +11,27 @@ import sys
 import threading
 import time
 from pathlib import Path
+from typing import IO
 
 WAIT = 90.0  # s for the whole system to come up on a loaded 2-core machine
 
 
-class SystemProcess:
-    """``python -m aiobt.cli.main ARGS`` with stdout read line by line on a thread."""
+class OutputLines:
+    """A process's output read line by line on a thread: :attr:`lines` so far."""
 
-    def __init__(self, args: list[str], cwd: Path | None = None) -> None:
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "aiobt.cli.main", *args],
-            stdout=subprocess.PIPE,
-            stderr=subprocess.PIPE,
-            text=True,
-            cwd=cwd,
-            env={**os.environ, "NO_COLOR": "1"},
-        )
+    def __init__(self, stream: IO[str]) -> None:
         self.lines: list[str] = []
         self._queue: queue.Queue[str | None] = queue.Queue()
-        threading.Thread(target=self._pump, daemon=True).start()
+        threading.Thread(target=self._pump, args=(stream,), daemon=True).start()
 
-    def _pump(self) -> None:
-        assert self.proc.stdout is not None
-        for line in self.proc.stdout:
+    def _pump(self, stream: IO[str]) -> None:
+        for line in stream:
             self._queue.put(line.rstrip("\n"))
         self._queue.put(None)
 
-    def wait_line(self, text: str, timeout: float = WAIT) -> str:
-        """The first output line containing ``text``; AssertionError after ``timeout``."""
+    def first(self, text: str, timeout: float) -> str | None:
+        """The first line holding ``text``, waiting up to ``timeout`` s for it; None if the
+        output ends or the time passes first."""
         deadline = time.monotonic() + timeout
         for line in self.lines:
             if text in line:
@@ -53,7 +46,44 @@ class SystemProcess:
             self.lines.append(got)
             if text in got:
                 return got
-        raise AssertionError(f"no line with {text!r} in:\n" + "\n".join(self.lines[-60:]))
+        return None
+
+    def drain(self) -> list[str]:
+        """:attr:`lines` with every line read so far."""
+        while True:
+            try:
+                got = self._queue.get_nowait()
+            except queue.Empty:
+                return self.lines
+            if got is not None:
+                self.lines.append(got)
+
+
+class SystemProcess:
+    """``python -m aiobt.cli.main ARGS`` with stdout read line by line on a thread."""
+
+    def __init__(self, args: list[str], cwd: Path | None = None) -> None:
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "aiobt.cli.main", *args],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            cwd=cwd,
+            env={**os.environ, "NO_COLOR": "1"},
+        )
+        assert self.proc.stdout is not None
+        self.output = OutputLines(self.proc.stdout)
+
+    @property
+    def lines(self) -> list[str]:
+        return self.output.lines
+
+    def wait_line(self, text: str, timeout: float = WAIT) -> str:
+        """The first output line containing ``text``; AssertionError after ``timeout``."""
+        line = self.output.first(text, timeout)
+        if line is None:
+            raise AssertionError(f"no line with {text!r} in:\n" + "\n".join(self.lines[-60:]))
+        return line
 
     def stop(self, sig: int = signal.SIGTERM, timeout: float = 10.0) -> tuple[int, float]:
         """Send ``sig``; (exit code, seconds until exit)."""

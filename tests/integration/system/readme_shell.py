@@ -13,15 +13,14 @@ by its id) and killed if still there when the test leaves it.
 from __future__ import annotations
 
 import os
-import queue
 import re
 import signal
 import subprocess
-import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from tests.integration.system.helpers import OutputLines
 from tests.unit.cli.test_readme import _blocks
 
 WAIT = 120.0  # s for a command or a line of output (a loaded 2-core machine)
@@ -91,33 +90,15 @@ class Terminal:
             ["bash", "-c", command], cwd=cwd, env=env, text=True, start_new_session=True,
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
         )  # fmt: skip
-        self.lines: list[str] = []
-        self._queue: queue.Queue[str | None] = queue.Queue()
-        threading.Thread(target=self._pump, daemon=True).start()
-
-    def _pump(self) -> None:
         assert self.proc.stdout is not None
-        for line in self.proc.stdout:
-            self._queue.put(line.rstrip("\n"))
-        self._queue.put(None)
+        self.output = OutputLines(self.proc.stdout)
 
     def wait_for(self, text: str, timeout: float = WAIT) -> str:
         """The first line holding ``text``; AssertionError (with the output) after ``timeout``."""
-        for line in self.lines:
-            if text in line:
-                return line
-        deadline = time.monotonic() + timeout
-        while (left := deadline - time.monotonic()) > 0:
-            try:
-                got = self._queue.get(timeout=left)
-            except queue.Empty:
-                break
-            if got is None:
-                break
-            self.lines.append(got)
-            if text in got:
-                return got
-        raise AssertionError(f"{self.command}: no line with {text!r} in:\n{self.text()}")
+        line = self.output.first(text, timeout)
+        if line is None:
+            raise AssertionError(f"{self.command}: no line with {text!r} in:\n{self.text()}")
+        return line
 
     def interrupt(self, within: float = 10.0) -> int:
         """Ctrl-C: SIGINT to its process group; its exit code (AssertionError if it takes
@@ -130,14 +111,7 @@ class Terminal:
         return code
 
     def text(self) -> str:
-        while True:
-            try:
-                got = self._queue.get_nowait()
-            except queue.Empty:
-                break
-            if got is not None:
-                self.lines.append(got)
-        return "\n".join(self.lines[-80:])
+        return "\n".join(self.output.drain()[-80:])
 
     def __enter__(self) -> Terminal:
         return self
