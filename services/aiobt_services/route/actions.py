@@ -21,25 +21,26 @@ from collections.abc import Callable
 from typing import Any
 
 from aiobt.core.clock import Clock
+from aiobt.geometry import XYYaw
 from aiobt.msgs import Path
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
 
 from .convert import path_msg, route_msg
 from .errors import RouteError
-from .intent import ReroutingState, RouteRequest
+from .intent import ReroutingState
 from .operations import OperationsManager, OperationsResult
 from .planning import RoutePlanner
+from .request import RouteRequest
 from .search import Route
 from .tracker import RouteTracker, TrackerParams
-from .vectors import XY
 
 log = logging.getLogger("aiobt_services.route.actions")
 MAP_FRAMES = ("", "map")
-RobotPosition = Callable[[], XY]  # raises LookupError without a pose
+RobotPose = Callable[[], XYYaw]  # raises LookupError without a pose
 Feedback = ComputeAndTrackRoute.Feedback
 
 
-def request_of(goal: ComputeRoute.Goal, robot: RobotPosition) -> RouteRequest:
+def request_of(goal: ComputeRoute.Goal, robot: RobotPose) -> RouteRequest:
     """The goal in the route frame; TF_ERROR for a pose in another frame or no robot pose."""
     if not goal.use_poses:
         return RouteRequest(False, goal.start_id, goal.goal_id)
@@ -49,10 +50,11 @@ def request_of(goal: ComputeRoute.Goal, robot: RobotPosition) -> RouteRequest:
             raise RouteError("TF_ERROR", f"the {what} pose is in frame "
                              f"'{pose.header.frame_id}'; the route frame is 'map'")  # fmt: skip
     try:
-        start = (goal.start.x, goal.start.y) if goal.use_start else robot()
+        start = (goal.start.x, goal.start.y, goal.start.yaw) if goal.use_start else robot()
     except LookupError as exc:
         raise RouteError("TF_ERROR", f"no robot pose to start from: {exc}") from None
-    return RouteRequest(True, start=start, goal=(goal.goal.x, goal.goal.y))
+    return RouteRequest(True, start=start[:2], goal=(goal.goal.x, goal.goal.y),
+                        start_yaw=start[2], goal_yaw=goal.goal.yaw)  # fmt: skip
 
 
 class RouteActions:
@@ -61,7 +63,7 @@ class RouteActions:
         planner: RoutePlanner,
         operations: OperationsManager,
         tracker: TrackerParams,
-        robot: RobotPosition,
+        robot: RobotPose,
         clock: Clock,
     ) -> None:
         self.planner = planner
@@ -135,28 +137,29 @@ class RouteActions:
         feedback(True, [])
         period = 1.0 / self.tracker.tracker_update_rate
         while not handle.preempt_requested:
-            position = self._position()
+            pose = self._pose()
+            position = pose[:2]
             changed, completed = tracker.update(position)
-            ops = self.operations.process(changed, tracker, position, self.clock.now())
+            ops = await self.operations.process(changed, tracker, position, self.clock.now())
             if completed:
                 feedback(False, ops.operations_triggered)
                 return True
             if (changed or ops.operations_triggered) and tracker.current_edge is not None:
                 feedback(False, ops.operations_triggered)
             if ops.reroute:
-                self._prepare_reroute(tracker, ops, rerouting, position)
+                self._prepare_reroute(tracker, ops, rerouting, pose)
                 return False
             await self.clock.sleep(period)
         return False
 
-    def _position(self) -> XY:
+    def _pose(self) -> XYYaw:
         try:
             return self.robot()
         except LookupError as exc:
             raise RouteError("TF_ERROR", f"lost the robot pose while tracking: {exc}") from None
 
     def _prepare_reroute(
-        self, tracker: RouteTracker, ops: OperationsResult, rerouting: ReroutingState, at: XY
+        self, tracker: RouteTracker, ops: OperationsResult, rerouting: ReroutingState, at: XYYaw
     ) -> None:
         if self.tracker.aggregate_blocked_ids:
             rerouting.blocked_ids.extend(ops.blocked_ids)
@@ -164,7 +167,8 @@ class RouteActions:
             rerouting.blocked_ids = list(ops.blocked_ids)
         last = tracker.last_node
         rerouting.start_id = last.nodeid if last is not None else None
-        rerouting.start_pose = at if last is not None else None
+        rerouting.start_pose = at[:2] if last is not None else None
+        rerouting.start_yaw = at[2]
         rerouting.curr_edge = tracker.current_edge
 
     @staticmethod

@@ -55,6 +55,15 @@ class GraphEdge:
         return math.hypot(self.end.x - self.start.x, self.end.y - self.start.y)
 
 
+def metadata_float(holder: GraphNode | GraphEdge, tag: str, default: float) -> float:
+    """Metadata ``tag`` as a number (Nav2's ``getValue<float>``); ``default`` if absent or
+    not a number."""
+    value = holder.metadata.get(tag, default)
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return default
+    return float(value)
+
+
 class Graph:
     """Nodes and edges by id; ``xy`` is an ``(n, 2)`` array of node coordinates in
     node order (``nodes``)."""

@@ -17,6 +17,7 @@ from aiobt.costmap import CostGrid
 from .errors import RouteError
 from .graph import Graph, GraphEdge, GraphNode
 from .reach import reachable_first, sight_blocked
+from .request import RouteRequest
 from .search import Route
 from .vectors import XY, closest_point, distance, normalized_dot
 
@@ -34,17 +35,6 @@ class IntentParams:
     max_nn_search_iterations: int = 10000
 
 
-@dataclass(frozen=True, slots=True)
-class RouteRequest:
-    """A ComputeRoute / ComputeAndTrackRoute goal, in the route frame."""
-
-    use_poses: bool
-    start_id: int = 0
-    goal_id: int = 0
-    start: XY = (0.0, 0.0)  # the request's start pose, or the robot's
-    goal: XY = (0.0, 0.0)
-
-
 @dataclass(slots=True)
 class ReroutingState:
     """What a reroute carries over (Nav2's ``ReroutingState``)."""
@@ -52,6 +42,7 @@ class ReroutingState:
     blocked_ids: list[int] = field(default_factory=list)
     start_id: int | None = None  # the last node passed, to route from
     start_pose: XY | None = None
+    start_yaw: float = 0.0  # the robot's heading at start_pose
     curr_edge: GraphEdge | None = None  # the edge the robot was on
     closest_pt_on_edge: XY = (0.0, 0.0)
     first_time: bool = True

@@ -7,7 +7,8 @@ CollisionMonitor read; serves the actions ``compute_route`` and
 ``compute_and_track_route`` and the services ``srv/route_server/set_route_graph``,
 ``srv/route_server/ReroutingService/reroute`` and (with the DynamicEdgesScorer)
 ``srv/route_server/DynamicEdgesScorer/adjust_edges``; publishes ``{ns}/speed_limit``
-(AdjustSpeedLimit) and ``{ns}/route_graph`` (latched); holds ``{ns}/nodes/route``. A
+(AdjustSpeedLimit) and ``{ns}/route_graph`` (latched); calls ``{ns}/srv/<service_name>``
+(std_srvs/Trigger) where the graph asks for a TriggerEvent; holds ``{ns}/nodes/route``. A
 graph that does not load is logged and every request fails NO_VALID_GRAPH with that
 error. See docs/route.md.
 """
@@ -63,7 +64,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
     check_plugins(args)
     world = service.world
-    wiring = Wiring(world.snapshot, service.publish_speed_limit)
+    wiring = Wiring(world.snapshot, service.publish_speed_limit, service.call_trigger)
     graph, problem = load_or_explain(args.graph_filepath)
     scorer = edge_scorer(args, wiring)
     service.dynamic_edges = next(
@@ -73,7 +74,7 @@ def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
     made = operations(args, wiring)
     service.rerouting = next((op for op in made if isinstance(op, ReroutingService)), None)
     return RouteActions(planner, OperationsManager(made), tracker_params(args),
-                        service.robot_position, service.clock)  # fmt: skip
+                        service.robot_pose, service.clock)  # fmt: skip
 
 
 async def serve(args: argparse.Namespace) -> None:

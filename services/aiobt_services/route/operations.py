@@ -1,57 +1,39 @@
-"""Nav2's route operations and their manager (``OperationsManager``).
+"""Nav2's route operations, their manager (``OperationsManager``) and the registry of
+every operation (:mod:`.time_marker`'s and :mod:`.trigger_event`'s too).
 
 Operations run while a route is tracked: those the graph names at a node
-(``NODE``) or edge (``ON_ENTER``/``ON_EXIT``) when the robot achieves that node;
-``AdjustSpeedLimit`` at every node achieved (status change); ``CollisionMonitor``
-and ``ReroutingService`` at every tracker update (query). One may ask for a
-reroute, with ids to block. A graph operation no loaded operation serves is
-OPERATION_FAILED, as in Nav2.
+(``NODE``) or edge (``ON_ENTER``/``ON_EXIT``) when the robot achieves that node,
+by the operation's name (``TriggerEvent``); ``AdjustSpeedLimit`` and ``TimeMarker``
+at every node achieved (status change); ``CollisionMonitor`` and
+``ReroutingService`` at every tracker update (query). One may ask for a reroute,
+with ids to block. A graph operation no loaded operation serves is
+OPERATION_FAILED, as in Nav2. ``perform`` is a coroutine, so that an operation may
+wait on a service (TriggerEvent) while the tracking waits for it, as Nav2's does.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Literal, Protocol
+from typing import Protocol
 
 from aiobt.costmap import NO_INFORMATION, CostGrid, points_cost
 from aiobt.costmap.collision import segment_points
 
 from .errors import RouteError
-from .graph import GraphEdge, GraphNode, Metadata, Operation, Trigger
-from .scorers import metadata_float
-from .search import Route
+from .graph import GraphEdge, GraphNode, Metadata, Operation, Trigger, metadata_float
+from .operation_event import Event, OperationResult, ProcessType
+from .time_marker import TimeMarker
 from .tracker import RouteTracker
+from .trigger_event import TriggerEvent
 from .vectors import XY, closest_point, distance
-
-ProcessType = Literal["ON_GRAPH", "ON_STATUS_CHANGE", "ON_QUERY"]
-
-
-@dataclass(frozen=True, slots=True)
-class Event:
-    """What an operation sees: the node achieved, edges entered and exited, the route,
-    the robot's position and robot time, and the graph operation's metadata."""
-
-    node: GraphNode | None
-    edge_entered: GraphEdge | None
-    edge_exited: GraphEdge | None
-    route: Route
-    pose: XY
-    now: float
-    metadata: Metadata = field(default_factory=dict)
-
-
-@dataclass(slots=True)
-class OperationResult:
-    reroute: bool = False
-    blocked_ids: list[int] = field(default_factory=list)
 
 
 class RouteOperation(Protocol):
     name: str
     process_type: ProcessType
 
-    def perform(self, event: Event) -> OperationResult: ...
+    async def perform(self, event: Event) -> OperationResult: ...
 
 
 @dataclass(slots=True)
@@ -60,11 +42,11 @@ class AdjustSpeedLimit:
     absent) as the speed limit."""
 
     publish: Callable[[float], None]
-    name: str = field(default="AdjustSpeedLimit", init=False)
+    name: str = "AdjustSpeedLimit"  # the name it is loaded under
     speed_tag: str = "speed_limit"
     process_type: ProcessType = field(default="ON_STATUS_CHANGE", init=False)
 
-    def perform(self, event: Event) -> OperationResult:
+    async def perform(self, event: Event) -> OperationResult:
         if event.edge_entered is not None:
             self.publish(metadata_float(event.edge_entered, self.speed_tag, 100.0))
         return OperationResult()
@@ -74,11 +56,11 @@ class AdjustSpeedLimit:
 class ReroutingService:
     """A reroute asked for from outside (``route_server/ReroutingService/reroute``)."""
 
-    name: str = field(default="ReroutingService", init=False)
+    name: str = "ReroutingService"  # the name it is loaded under
     process_type: ProcessType = field(default="ON_QUERY", init=False)
     requested: bool = field(default=False, init=False)
 
-    def perform(self, event: Event) -> OperationResult:
+    async def perform(self, event: Event) -> OperationResult:
         asked, self.requested = self.requested, False
         return OperationResult(reroute=asked)
 
@@ -90,7 +72,7 @@ class CollisionMonitor:
     edge it lies on: reroute around it (``reroute_on_collision``) or fail the task."""
 
     costmap: Callable[[], CostGrid | None]
-    name: str = field(default="CollisionMonitor", init=False)
+    name: str = "CollisionMonitor"  # the name it is loaded under
     rate: float = 1.0
     max_cost: float = 253.0
     max_collision_dist: float = 5.0
@@ -99,7 +81,7 @@ class CollisionMonitor:
     process_type: ProcessType = field(default="ON_QUERY", init=False)
     last_check: float = field(default=float("-inf"), init=False)
 
-    def perform(self, event: Event) -> OperationResult:
+    async def perform(self, event: Event) -> OperationResult:
         edge = event.edge_entered
         if edge is None or event.now - self.last_check < 1.0 / self.rate:
             return OperationResult()
@@ -162,7 +144,7 @@ class OperationsManager:
         self.on_change = [op for op in operations if op.process_type == "ON_STATUS_CHANGE"]
         self.on_query = [op for op in operations if op.process_type == "ON_QUERY"]
 
-    def process(
+    async def process(
         self, status_change: bool, tracker: RouteTracker, pose: XY, now: float
     ) -> OperationsResult:
         event = Event(tracker.last_node, tracker.current_edge, tracker.edge_exited,
@@ -174,11 +156,11 @@ class OperationsManager:
                 if served is None:
                     problem = f"operation '{op.type}' asked for by the graph is not loaded"
                     raise RouteError("OPERATION_FAILED", problem)
-                result.add(served.name, served.perform(_with(event, op.metadata)))
+                result.add(served.name, await served.perform(_with(event, op.metadata)))
             for change in self.on_change:
-                result.add(change.name, change.perform(event))
+                result.add(change.name, await change.perform(event))
         for query in self.on_query:  # every cycle, and named every cycle, as Nav2 does
-            result.add(query.name, query.perform(event))
+            result.add(query.name, await query.perform(event))
         return result
 
     @staticmethod
@@ -202,6 +184,8 @@ OPERATIONS: dict[str, type[RouteOperation]] = {
     "AdjustSpeedLimit": AdjustSpeedLimit,
     "ReroutingService": ReroutingService,
     "CollisionMonitor": CollisionMonitor,
+    "TimeMarker": TimeMarker,
+    "TriggerEvent": TriggerEvent,
 }
 """The route operations by Nav2's plugin ids (:func:`.plugins.make_plugin` builds them)."""
 DEFAULT_OPERATIONS = ("AdjustSpeedLimit", "ReroutingService", "CollisionMonitor")  # bringup's

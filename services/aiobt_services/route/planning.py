@@ -15,7 +15,8 @@ from aiobt.costmap import CostGrid
 from .dense import Poses, Smoothing, densify
 from .errors import RouteError
 from .graph import Graph
-from .intent import IntentParams, ReroutingState, RouteRequest, find_ends, prune
+from .intent import IntentParams, ReroutingState, find_ends, prune
+from .request import RouteRequest
 from .scorers import EdgeScorer
 from .search import Route, find_route
 
@@ -64,9 +65,11 @@ class RoutePlanner:
             if rerouted is None:
                 raise RouteError("UNKNOWN", f"reroute start node {rerouting.start_id} is gone")
             start = rerouted
-            request = replace(request, start=rerouting.start_pose or request.start)
+            if rerouting.start_pose is not None:  # Nav2's overrideStart: the robot's pose
+                request = replace(request, start=rerouting.start_pose,
+                                  start_yaw=rerouting.start_yaw)  # fmt: skip
         route = find_route(graph, start, goal, self.scorer, rerouting.blocked_ids,
-                           self.params.max_iterations)  # fmt: skip
+                           self.params.max_iterations, request)  # fmt: skip
         route = prune(route, request, self.params.intent, rerouting)
         poses = densify(route, rerouting, self.params.path_density, self.params.smoothing)
         return route, poses

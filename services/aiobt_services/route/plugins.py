@@ -2,19 +2,28 @@
 typed on :class:`.scorers.Scorer`) and route operations (:data:`.operations.OPERATIONS`,
 typed on :class:`.operations.RouteOperation`), each a dataclass whose fields are its
 Nav2 parameters. :func:`make_plugin` builds one from ``PLUGIN.NAME=VALUE`` texts, and
-gives it what the server wires in (the costmap, the speed-limit publisher) by field name.
+gives it what the server wires in (the costmap, the speed-limit publisher, the
+Trigger-service caller, and the name it is loaded under) by field name.
+
+As in Nav2, a name in ``edge_cost_functions`` or ``operations`` is the plugin's own
+type unless its ``plugin`` parameter names another (``OpenDoor.plugin=TriggerEvent``,
+Nav2's ``nav2_route::`` prefix allowed): so one type may be loaded under several names.
+A plugin with an ``EXTRA_PARAMS`` field takes the numeric parameters it does not name
+(the SemanticScorer's cost per class) into that dict.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from aiobt.costmap import CostGrid
+from aiobt.msgs.std import Trigger
 
 P = TypeVar("P")
+NAV2_PREFIX = "nav2_route::"
 
 
 @dataclass(frozen=True, slots=True)
@@ -23,9 +32,11 @@ class Wiring:
 
     costmap: Callable[[], CostGrid | None]
     publish: Callable[[float], None]  # the speed limit, percent
+    call_trigger: Callable[[str, float], Awaitable[Trigger.Response]]  # service, timeout s
 
     def values(self) -> dict[str, Any]:
-        return {"costmap": self.costmap, "publish": self.publish}
+        return {"costmap": self.costmap, "publish": self.publish,
+                "call_trigger": self.call_trigger}  # fmt: skip
 
 
 def make_plugin(
@@ -33,29 +44,43 @@ def make_plugin(
 ) -> P:
     """Plugin ``name`` of ``registry`` (``kind`` names the list in errors) with ``params``;
     ValueError naming the plugin and parameter for an unknown one or a bad value."""
-    plugin = registry.get(name)
+    params = dict(params)
+    plugin_type = params.pop("plugin", name).removeprefix(NAV2_PREFIX)
+    plugin = registry.get(plugin_type)
     if plugin is None:
-        raise ValueError(f"{kind}: unknown plugin '{name}' (known: {', '.join(registry)})")
+        given = f"'{name}'" if plugin_type == name else f"'{plugin_type}' ({name}.plugin)"
+        raise ValueError(f"{kind}: unknown plugin {given} (known: {', '.join(registry)})")
     assert dataclasses.is_dataclass(plugin)
-    wired = wiring.values()
+    wired = wiring.values() | {"name": name}
     fields = {f.name: f for f in dataclasses.fields(plugin) if f.init}
     values = {key: wired[key] for key in fields if key in wired}
-    settable = [key for key in fields if key not in wired]
+    extra: str | None = getattr(plugin, "EXTRA_PARAMS", None)
+    settable = [key for key in fields if key not in wired and key != extra]
+    extras: dict[str, float] = {}
     for key, text in params.items():
-        if key not in settable:
+        if key in settable:
+            values[key] = convert_param(f"{name}.{key}", text, fields[key].default)
+        elif extra is not None:
+            extras[key] = convert_param(f"{name}.{key}", text, 0.0)
+        else:
             raise ValueError(f"{name}.{key}: no such parameter (known: {', '.join(settable)})")
-        values[key] = convert_param(f"{name}.{key}", text, fields[key].default)
+    if extra is not None:
+        values[extra] = extras
     made: P = plugin(**values)
     return made
 
 
 def convert_param(where: str, text: str, default: Any) -> Any:
-    """``text`` as the type of ``default`` (true/false for a bool)."""
+    """``text`` as the type of ``default`` (true/false for a bool; a list of names,
+    comma-separated, optionally in brackets and quotes, for a tuple)."""
     try:
         if isinstance(default, bool):
             if text.lower() not in ("true", "false"):
                 raise ValueError("not true or false")
             return text.lower() == "true"
+        if isinstance(default, tuple):
+            names = (part.strip().strip("'\"") for part in text.strip().strip("[]").split(","))
+            return tuple(part for part in names if part)
         return type(default)(text)
     except ValueError as exc:
         raise ValueError(f"{where}: bad value {text!r} ({exc})") from None

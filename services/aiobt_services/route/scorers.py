@@ -1,10 +1,13 @@
-"""Nav2's edge scorers: ``DistanceScorer``, ``PenaltyScorer``, ``CostmapScorer``,
-``DynamicEdgesScorer``.
+"""Nav2's edge scorers: the ``Scorer`` protocol, ``DistanceScorer``, ``PenaltyScorer``,
+``CostmapScorer``, ``DynamicEdgesScorer``, and the registry of every scorer (those of
+:mod:`.metadata_scorers` and :mod:`.orientation_scorers` too).
 
 A scorer gives an edge a cost, or ``None`` when the edge may not be used now
-(Nav2's ``score`` returning false). Parameters carry Nav2's names and defaults
-(the code's: ``CostmapScorer.check_resolution`` is 2). :class:`EdgeScorer`
-sums the scorers of ``edge_cost_functions``; one ``None`` closes the edge.
+(Nav2's ``score`` returning false), seeing, as Nav2's ``score(edge, route_request,
+edge_type, cost)``, the request and whether the edge leaves the search's start or
+reaches its goal. Parameters carry Nav2's names and defaults (the code's:
+``CostmapScorer.check_resolution`` is 2). :class:`EdgeScorer` sums the scorers of
+``edge_cost_functions``; one ``None`` closes the edge.
 """
 
 from __future__ import annotations
@@ -17,7 +20,10 @@ import numpy as np
 
 from aiobt.costmap import CostGrid, line_cells
 
-from .graph import GraphEdge
+from .graph import GraphEdge, metadata_float
+from .metadata_scorers import SemanticScorer, TimeScorer
+from .orientation_scorers import GoalOrientationScorer, StartPoseOrientationScorer
+from .request import EdgeType, RouteRequest
 
 UNKNOWN_COST = 255
 CostmapSource = Callable[[], CostGrid | None]
@@ -25,16 +31,9 @@ CostmapSource = Callable[[], CostGrid | None]
 
 class Scorer(Protocol):
     def prepare(self) -> None: ...
-    def score(self, edge: GraphEdge) -> float | None: ...
-
-
-def metadata_float(edge: GraphEdge, tag: str, default: float) -> float:
-    """Edge metadata ``tag`` as a number (Nav2's ``getValue<float>``); ``default`` if
-    absent or not a number."""
-    value = edge.metadata.get(tag, default)
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        return default
-    return float(value)
+    def score(
+        self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType
+    ) -> float | None: ...
 
 
 @dataclass(slots=True)
@@ -48,7 +47,7 @@ class DistanceScorer:
     def prepare(self) -> None:
         return None
 
-    def score(self, edge: GraphEdge) -> float | None:
+    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
         speed = metadata_float(edge, self.speed_tag, 1.0)
         if speed <= 0.0:
             return None  # a zero speed limit: the edge cannot be driven
@@ -65,7 +64,7 @@ class PenaltyScorer:
     def prepare(self) -> None:
         return None
 
-    def score(self, edge: GraphEdge) -> float | None:
+    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
         return self.weight * metadata_float(edge, self.penalty_tag, 0.0)
 
 
@@ -95,7 +94,7 @@ class CostmapScorer:
     def prepare(self) -> None:
         self._grid = self.costmap()
 
-    def score(self, edge: GraphEdge) -> float | None:
+    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
         grid = self._grid
         if grid is None:
             return None
@@ -132,7 +131,7 @@ class DynamicEdgesScorer:
     def prepare(self) -> None:
         return None
 
-    def score(self, edge: GraphEdge) -> float | None:
+    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
         if edge.edgeid in self.closed:
             return None
         return self.costs.get(edge.edgeid, 0.0)
@@ -143,6 +142,10 @@ SCORERS: dict[str, type[Scorer]] = {
     "PenaltyScorer": PenaltyScorer,
     "CostmapScorer": CostmapScorer,
     "DynamicEdgesScorer": DynamicEdgesScorer,
+    "TimeScorer": TimeScorer,
+    "SemanticScorer": SemanticScorer,
+    "StartPoseOrientationScorer": StartPoseOrientationScorer,
+    "GoalOrientationScorer": GoalOrientationScorer,
 }
 """The edge scorers by Nav2's plugin ids (:func:`.plugins.make_plugin` builds them)."""
 DEFAULT_SCORERS = ("DistanceScorer", "CostmapScorer")  # nav2_bringup's nav2_params.yaml
@@ -161,10 +164,10 @@ class EdgeScorer:
         for scorer in self.scorers:
             scorer.prepare()
 
-    def score(self, edge: GraphEdge) -> float | None:
+    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
         total = 0.0
         for scorer in self.scorers:
-            cost = scorer.score(edge)
+            cost = scorer.score(edge, request, edge_type)
             if cost is None:
                 return None
             total += cost

@@ -1,9 +1,11 @@
 """Nav2's route search (``RoutePlanner``): Dijkstra over the graph's directed edges.
 
 An edge is skipped when its id or its end node's id is blocked, or when the
-scorers close it. An edge the scorers may not score (``overridable`` false) or
-any edge when no scorer is set costs its file ``cost``, which must be > 0
-(NO_VALID_GRAPH otherwise, as Nav2). No route: NO_VALID_ROUTE; more than
+scorers close it. The scorers see the request and the edge's type: START for an
+edge leaving the start node, else END for one reaching the goal node, else NONE.
+An edge the scorers may not score (``overridable`` false) or any edge when no
+scorer is set costs its file ``cost``, which must be > 0 (NO_VALID_GRAPH
+otherwise, as Nav2). No route: NO_VALID_ROUTE; more than
 ``max_iterations`` expansions: TIMEOUT.
 """
 
@@ -17,6 +19,7 @@ from dataclasses import dataclass, field
 
 from .errors import RouteError
 from .graph import Graph, GraphEdge, GraphNode
+from .request import BY_IDS, EdgeType, RouteRequest
 from .scorers import EdgeScorer
 
 
@@ -35,13 +38,22 @@ class Route:
         return [self.start_node, *(edge.end for edge in self.edges)]
 
 
-def edge_cost(edge: GraphEdge, scorer: EdgeScorer) -> float | None:
+def edge_cost(
+    edge: GraphEdge, scorer: EdgeScorer, request: RouteRequest, edge_type: EdgeType
+) -> float | None:
     if not edge.overridable or len(scorer) == 0:
         if edge.cost <= 0.0:
             raise RouteError("NO_VALID_GRAPH", f"edge {edge.edgeid} has no cost of its own "
                              "(cost > 0) and no scorer may score it")  # fmt: skip
         return edge.cost
-    return scorer.score(edge)
+    return scorer.score(edge, request, edge_type)
+
+
+def edge_type(edge: GraphEdge, start: GraphNode, goal: GraphNode) -> EdgeType:
+    """Nav2's ``classifyEdge``: START before END, so a start-to-goal edge is START."""
+    if edge.start is start:
+        return "START"
+    return "END" if edge.end is goal else "NONE"
 
 
 def find_route(
@@ -51,9 +63,10 @@ def find_route(
     scorer: EdgeScorer,
     blocked: Collection[int] = (),
     max_iterations: int = 0,
+    request: RouteRequest = BY_IDS,
 ) -> Route:
     """The cheapest route from ``start`` to ``goal`` (a single-node route when they are
-    the same node). ``max_iterations`` <= 0 means no limit, as in Nav2."""
+    the same node) for ``request``. ``max_iterations`` <= 0 means no limit, as in Nav2."""
     if len(graph) == 0:
         raise RouteError("NO_VALID_GRAPH", "the route graph is empty")
     if start is goal:
@@ -75,7 +88,7 @@ def find_route(
         for edge in node.edges:
             if edge.edgeid in blocked or edge.end.nodeid in blocked:
                 continue
-            step = edge_cost(edge, scorer)
+            step = edge_cost(edge, scorer, request, edge_type(edge, start, goal))
             if step is None:
                 continue
             total = cost + step

@@ -9,6 +9,7 @@ import logging
 from aiobt.core.clock import Clock
 from aiobt.costmap.feed import RobotFeed
 from aiobt.costmap.world import FedCostmap
+from aiobt.geometry import XYYaw
 from aiobt.msgs import OccupancyGrid
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
 from aiobt.msgs.route_graph import DynamicEdges, RouteGraph, SetRouteGraph
@@ -24,7 +25,6 @@ from .graphs import graph_path
 from .operations import ReroutingService
 from .planning import RoutePlanner
 from .scorers import DynamicEdgesScorer
-from .vectors import XY
 
 log = logging.getLogger("aiobt_services.route.service")
 SERVER = "route_server"
@@ -35,7 +35,7 @@ GRAPH_TOPIC = "route_graph"
 
 class RouteService:
     """The route server on ``bus``; ``actions`` is built by :func:`main.build` on
-    ``world`` (fed here) and on this service's :meth:`robot_position`."""
+    ``world`` (fed here) and on this service's :meth:`robot_pose`."""
 
     def __init__(self, bus: Bus, world: FedCostmap, clock: Clock, *, sim_time: bool) -> None:
         self.bus = bus
@@ -49,11 +49,16 @@ class RouteService:
         self.graphs = bus.latched_publisher(GRAPH_TOPIC, RouteGraph)
         self.planner: RoutePlanner | None = None  # the actions' (set by start)
 
-    def robot_position(self) -> XY:
+    def robot_pose(self) -> XYYaw:
         """The newest robot pose in ``map`` (LookupError before one came)."""
         self.feed.read()
-        x, y, _ = self.world.require_pose()
-        return (x, y)
+        return self.world.require_pose()
+
+    async def call_trigger(self, service: str, timeout: float) -> Trigger.Response:  # noqa: ASYNC109
+        """The TriggerEvent operation's call: ``{ns}/srv/<service>`` (a ROS-style leading
+        or trailing '/' dropped), std_srvs/Trigger, waiting ``timeout`` s at most."""
+        name = service.strip("/")
+        return await self.bus.call(name, Trigger.Request(), Trigger.Response, timeout)
 
     def publish_speed_limit(self, percent: float) -> None:
         self.speed_limits.put(SpeedLimit(percentage=True, speed_limit=percent))

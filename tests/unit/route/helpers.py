@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from aiobt.msgs.std import Trigger
 from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.graph import Graph
 
@@ -42,3 +43,19 @@ def line(*xs: float) -> Graph:
     nodes = [node(i + 1, x, 0.0) for i, x in enumerate(xs)]
     edges = [edge(101 + i, i + 1, i + 2) for i in range(len(xs) - 1)]
     return parse_graph(text(*nodes, *edges), "line.geojson")
+
+
+class Triggers:
+    """The server's std_srvs/Trigger caller, faked: the calls made (service, timeout);
+    each answers ``response``, or raises ``fail``."""
+
+    def __init__(self, fail: Exception | None = None, response: Trigger.Response | None = None):
+        self.calls: list[tuple[str, float]] = []
+        self.fail = fail
+        self.response = response or Trigger.Response(success=True, message="done")
+
+    async def __call__(self, service: str, wait: float) -> Trigger.Response:
+        self.calls.append((service, wait))
+        if self.fail is not None:
+            raise self.fail
+        return self.response

@@ -47,13 +47,14 @@ class Handle:
 class Robot:
     """A robot at ``at``; the test moves it."""
 
-    def __init__(self, x: float, y: float) -> None:
+    def __init__(self, x: float, y: float, yaw: float = 0.0) -> None:
         self.at: tuple[float, float] | None = (x, y)
+        self.yaw = yaw
 
-    def __call__(self) -> tuple[float, float]:
+    def __call__(self) -> tuple[float, float, float]:
         if self.at is None:
             raise LookupError("no pose")
-        return self.at
+        return (*self.at, self.yaw)
 
 
 def make(robot: Robot, grid: CostGrid | None = None, graph: bool = True) -> RouteActions:
@@ -140,7 +141,7 @@ async def drive_along(actions: RouteActions, robot: Robot, goal: Any, handle: Ha
             return task.result()
         path = handle.feedback[-1].path.poses
         xy = np.array([(p.x, p.y) for p in path])
-        here = np.asarray(robot())
+        here = np.asarray(robot()[:2])
         nearest = int(np.argmin(np.hypot(*(xy - here).T)))
         target = xy[min(nearest + 1, len(xy) - 1)]
         step = target - here

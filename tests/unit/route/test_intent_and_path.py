@@ -10,13 +10,8 @@ import pytest
 from aiobt.costmap import CostGrid, GridGeometry
 from aiobt_services.route.dense import densify, interpolate
 from aiobt_services.route.errors import RouteError
-from aiobt_services.route.intent import (
-    IntentParams,
-    ReroutingState,
-    RouteRequest,
-    find_ends,
-    prune,
-)
+from aiobt_services.route.intent import IntentParams, ReroutingState, find_ends, prune
+from aiobt_services.route.request import RouteRequest
 from aiobt_services.route.scorers import DistanceScorer, EdgeScorer
 from aiobt_services.route.search import Route, find_route
 

@@ -10,12 +10,11 @@ from aiobt.costmap import CostGrid, GridGeometry
 from aiobt_services.route.errors import RouteError
 from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.intent import ReroutingState
+from aiobt_services.route.operation_event import OperationResult, ProcessType
 from aiobt_services.route.operations import (
     AdjustSpeedLimit,
     CollisionMonitor,
-    OperationResult,
     OperationsManager,
-    ProcessType,
     ReroutingService,
 )
 from aiobt_services.route.scorers import DistanceScorer, EdgeScorer
@@ -37,14 +36,14 @@ def straight(**edge_props: object) -> Route:
                     edge(12, 2, 3, **edge_props))  # fmt: skip
 
 
-def test_speed_limit_from_each_edge_entered() -> None:
+async def test_speed_limit_from_each_edge_entered() -> None:
     limits: list[float] = []
     manager = OperationsManager([AdjustSpeedLimit(limits.append)])
     route = straight(metadata={"speed_limit": 40.0})
     tracker = RouteTracker(route, TrackerParams(), ReroutingState())
     for x in (0.0, 1.0, 3.5, 4.0, 6.0):
         changed, _ = tracker.update((x, 0.0))
-        result = manager.process(changed, tracker, (x, 0.0), 0.0)
+        result = await manager.process(changed, tracker, (x, 0.0), 0.0)
         assert result.operations_triggered == (["AdjustSpeedLimit"] if changed else [])
     assert limits == [100.0, 40.0]  # edge 11 has none: no limit (100 %); edge 12 says 40 %
 
@@ -56,40 +55,40 @@ def grid_blocked_at(x: float) -> CostGrid:
     return CostGrid(GridGeometry(200, 40, 0.05, 0.0, -1.0), costs)
 
 
-def test_collision_ahead_blocks_that_edge_within_range_and_rate() -> None:
+async def test_collision_ahead_blocks_that_edge_within_range_and_rate() -> None:
     route = straight()
     grid = grid_blocked_at(6.0)  # on edge 12
     monitor = CollisionMonitor(lambda: grid, max_collision_dist=3.0)
     manager = OperationsManager([monitor])
     tracker = RouteTracker(route, TrackerParams(), ReroutingState())
     tracker.update((0.0, 0.0))
-    assert not manager.process(False, tracker, (1.0, 0.0), now=0.0).reroute  # 5 m away
-    assert not manager.process(False, tracker, (3.5, 0.0), now=0.5).reroute  # not due (1 Hz)
-    result = manager.process(False, tracker, (3.5, 0.0), now=1.0)  # 2.5 m ahead, across edges
+    assert not (await manager.process(False, tracker, (1.0, 0.0), now=0.0)).reroute  # 5 m away
+    assert not (await manager.process(False, tracker, (3.5, 0.0), now=0.5)).reroute  # not due
+    result = await manager.process(False, tracker, (3.5, 0.0), now=1.0)  # 2.5 m ahead, across edges
     assert result.reroute
     assert result.blocked_ids == [12]
     assert result.operations_triggered == ["CollisionMonitor"]
 
 
-def test_collision_without_rerouting_fails_the_task() -> None:
+async def test_collision_without_rerouting_fails_the_task() -> None:
     grid = grid_blocked_at(2.0)
     monitor = CollisionMonitor(lambda: grid, reroute_on_collision=False)
     tracker = RouteTracker(straight(), TrackerParams(), ReroutingState())
     tracker.update((0.0, 0.0))
     with pytest.raises(RouteError) as caught:
-        OperationsManager([monitor]).process(False, tracker, (0.5, 0.0), now=5.0)
+        await OperationsManager([monitor]).process(False, tracker, (0.5, 0.0), now=5.0)
     assert caught.value.reason == "OPERATION_FAILED"
     assert caught.value.code == 406
 
 
-def test_graph_operations_run_by_name_and_an_unknown_one_fails() -> None:
+async def test_graph_operations_run_by_name_and_an_unknown_one_fails() -> None:
     seen: list[dict[str, object]] = []
 
     class OpenDoor:
         name = "open_door"
         process_type: ProcessType = "ON_GRAPH"
 
-        def perform(self, event: object) -> OperationResult:
+        async def perform(self, event: object) -> OperationResult:
             seen.append(event.metadata)  # type: ignore[attr-defined]
             return OperationResult()
 
@@ -99,21 +98,21 @@ def test_graph_operations_run_by_name_and_an_unknown_one_fails() -> None:
     manager = OperationsManager([OpenDoor()])
     for x in (0.0, 2.0, 4.0):
         changed, _ = tracker.update((x, 0.0))
-        manager.process(changed, tracker, (x, 0.0), 0.0)
+        await manager.process(changed, tracker, (x, 0.0), 0.0)
     assert seen == [{"door_id": 54}]
     tracker = RouteTracker(route, TrackerParams(), ReroutingState())
     for x in (0.0, 2.0):
         tracker.update((x, 0.0))
     tracker.update((4.0, 0.0))
     with pytest.raises(RouteError, match="operation 'open_door'"):
-        OperationsManager([]).process(True, tracker, (4.0, 0.0), 0.0)
+        await OperationsManager([]).process(True, tracker, (4.0, 0.0), 0.0)
 
 
-def test_rerouting_service_asks_once() -> None:
+async def test_rerouting_service_asks_once() -> None:
     service = ReroutingService()
     tracker = RouteTracker(straight(), TrackerParams(), ReroutingState())
     manager = OperationsManager([service])
-    assert not manager.process(False, tracker, (0.0, 0.0), 0.0).reroute
+    assert not (await manager.process(False, tracker, (0.0, 0.0), 0.0)).reroute
     service.requested = True
-    assert manager.process(False, tracker, (0.0, 0.0), 0.0).reroute
-    assert not manager.process(False, tracker, (0.0, 0.0), 0.0).reroute
+    assert (await manager.process(False, tracker, (0.0, 0.0), 0.0)).reroute
+    assert not (await manager.process(False, tracker, (0.0, 0.0), 0.0)).reroute

@@ -11,6 +11,7 @@ from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.graph import Graph, GraphNode
 from aiobt_services.route.operations import OPERATIONS, AdjustSpeedLimit, CollisionMonitor
 from aiobt_services.route.plugins import Wiring, make_plugin
+from aiobt_services.route.request import BY_IDS
 from aiobt_services.route.scorers import (
     SCORERS,
     CostmapScorer,
@@ -21,7 +22,7 @@ from aiobt_services.route.scorers import (
 )
 from aiobt_services.route.search import find_route
 
-from .helpers import edge, node, square, text, two_way
+from .helpers import Triggers, edge, node, square, text, two_way
 
 DISTANCE = EdgeScorer([DistanceScorer()])
 
@@ -115,15 +116,17 @@ def test_costmap_scorer_closes_blocked_edges_and_scores_cost() -> None:
                              *two_way(12, 3, 4), *two_way(14, 4, 5)))  # fmt: skip
     scorer = CostmapScorer(lambda: grid)
     scorer.prepare()
-    assert scorer.score(graph.edges[10]) is None  # through the wall
-    assert scorer.score(graph.edges[12]) == pytest.approx(100 / 253)  # the worst cell
-    assert scorer.score(graph.edges[14]) is None  # off the map
+    assert scorer.score(graph.edges[10], BY_IDS, "NONE") is None  # through the wall
+    assert scorer.score(graph.edges[12], BY_IDS, "NONE") == pytest.approx(
+        100 / 253
+    )  # the worst cell
+    assert scorer.score(graph.edges[14], BY_IDS, "NONE") is None  # off the map
     mean = CostmapScorer(lambda: grid, use_maximum=False, check_resolution=1)
     mean.prepare()
-    assert 0.0 < (mean.score(graph.edges[12]) or 0.0) < 100 / 253 / 10
+    assert 0.0 < (mean.score(graph.edges[12], BY_IDS, "NONE") or 0.0) < 100 / 253 / 10
     blind = CostmapScorer(lambda: None)
     blind.prepare()
-    assert blind.score(graph.edges[12]) is None  # no costmap: no edge, as Nav2
+    assert blind.score(graph.edges[12], BY_IDS, "NONE") is None  # no costmap: no edge, as Nav2
 
 
 def test_dynamic_edges_close_reopen_and_cost() -> None:
@@ -142,7 +145,7 @@ def test_dynamic_edges_close_reopen_and_cost() -> None:
 def test_plugins_by_name_with_nav2_parameters_and_the_server_wired_in() -> None:
     speed_limits: list[float] = []
     grid = grid_with_wall()
-    wiring = Wiring(lambda: grid, speed_limits.append)
+    wiring = Wiring(lambda: grid, speed_limits.append, Triggers())
 
     def scorer(name: str, **params: str) -> object:
         return make_plugin(SCORERS, "edge_cost_functions", name, params, wiring)
@@ -152,8 +155,8 @@ def test_plugins_by_name_with_nav2_parameters_and_the_server_wired_in() -> None:
     assert (costmap.weight, costmap.use_maximum, costmap.check_resolution) == (2.5, False, 2)
     costmap.prepare()
     assert costmap._grid is grid  # the server's costmap, not a parameter
-    with pytest.raises(ValueError, match="edge_cost_functions: unknown plugin 'TimeScorer'"):
-        scorer("TimeScorer")
+    with pytest.raises(ValueError, match="edge_cost_functions: unknown plugin 'LaneScorer'"):
+        scorer("LaneScorer")
     with pytest.raises(ValueError, match=r"DistanceScorer.speed: no such parameter"):
         scorer("DistanceScorer", speed="1")
     with pytest.raises(ValueError, match=r"PenaltyScorer.weight: bad value 'x'"):
