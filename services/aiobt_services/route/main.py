@@ -34,6 +34,7 @@ from .geojson import load_or_explain
 from .operations import OperationsManager, ReroutingService
 from .options import (
     add_route_arguments,
+    args_problem,
     check_plugins,
     edge_scorer,
     operations,
@@ -94,4 +95,9 @@ async def serve(args: argparse.Namespace) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """2 for a bad plugin or parameter (named in the log, before the bus is opened)."""
+    problem = args_problem(args)
+    if problem is not None:
+        log.error("route: %s", problem)
+        return 2
     return run_service(serve(args), log, "route")

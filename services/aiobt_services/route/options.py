@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 
+from aiobt.msgs.std import Trigger
 from aiobt.system.service import non_negative, positive
 
 from .dense import Smoothing
@@ -113,3 +114,25 @@ def operations(args: argparse.Namespace, wiring: Wiring) -> list[RouteOperation]
         make_plugin(OPERATIONS, "operations", name, plugin_params(args, name), wiring)
         for name in args.operations
     ]
+
+
+async def _not_wired(service: str, _timeout: float) -> Trigger.Response:
+    raise RuntimeError(f"service {service}: not wired (the parameters are being checked)")
+
+
+INERT = Wiring(lambda: None, lambda _percent: None, _not_wired)
+"""A wiring that does nothing, for :func:`args_problem` to build the plugins with."""
+
+
+def args_problem(args: argparse.Namespace) -> str | None:
+    """The first bad plugin or parameter of ``args`` (each plugin built once, with
+    :data:`INERT`, which has no effect), or None: checked before the server starts."""
+    try:
+        check_plugins(args)
+        edge_scorer(args, INERT)
+        operations(args, INERT)
+        route_params(args)
+        tracker_params(args)
+    except ValueError as exc:
+        return str(exc)
+    return None

@@ -50,6 +50,18 @@ def make_plugin(
     if plugin is None:
         given = f"'{name}'" if plugin_type == name else f"'{plugin_type}' ({name}.plugin)"
         raise ValueError(f"{kind}: unknown plugin {given} (known: {', '.join(registry)})")
+    try:
+        made: P = plugin(**_values(plugin, name, params, wiring))
+    except ValueError as exc:
+        if plugin_type == name:
+            raise
+        raise ValueError(f"{name} (a {plugin_type}): {exc}") from None
+    return made
+
+
+def _values(plugin: type, name: str, params: dict[str, str], wiring: Wiring) -> dict[str, Any]:
+    """The dataclass ``plugin``'s arguments: what is wired by field name, and ``params``
+    as their fields' types (into its ``EXTRA_PARAMS`` dict those it does not name)."""
     assert dataclasses.is_dataclass(plugin)
     wired = wiring.values() | {"name": name}
     fields = {f.name: f for f in dataclasses.fields(plugin) if f.init}
@@ -66,8 +78,7 @@ def make_plugin(
             raise ValueError(f"{name}.{key}: no such parameter (known: {', '.join(settable)})")
     if extra is not None:
         values[extra] = extras
-    made: P = plugin(**values)
-    return made
+    return values
 
 
 def convert_param(where: str, text: str, default: Any) -> Any:

@@ -11,13 +11,19 @@ from typing import Any
 import pytest
 
 from aiobt.msgs.std import Trigger
+from aiobt_services.route import main
 from aiobt_services.route.errors import RouteError
 from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.graph import Graph
 from aiobt_services.route.intent import ReroutingState
 from aiobt_services.route.metadata_scorers import TimeScorer
 from aiobt_services.route.operations import OperationsManager, RouteOperation
-from aiobt_services.route.options import add_route_arguments, check_plugins, operations
+from aiobt_services.route.options import (
+    add_route_arguments,
+    args_problem,
+    check_plugins,
+    operations,
+)
 from aiobt_services.route.plugins import Wiring
 from aiobt_services.route.scorers import EdgeScorer
 from aiobt_services.route.search import Route, find_route
@@ -173,3 +179,17 @@ def test_bad_operation_parameters_are_named(argv: list[str], error: str) -> None
     wiring = Wiring(lambda: None, lambda _: None, Triggers())
     with pytest.raises(ValueError, match=re.escape(error)):
         operations(parse(*argv), wiring)
+
+
+def test_a_bad_plugin_parameter_stops_the_server_before_the_bus(
+    caplog: pytest.LogCaptureFixture,
+) -> None:
+    parser = argparse.ArgumentParser()
+    main.add_arguments(parser)
+    good = parser.parse_args(["--operations", "OpenDoor", "--param",
+                              "OpenDoor.plugin=TriggerEvent"])  # fmt: skip
+    assert args_problem(good) is None
+    bad = parser.parse_args(["--connect", "tcp/127.0.0.1:1", "--edge-cost-functions",
+                             "TimeScorer", "--param", "TimeScorer.max_vel=-1"])  # fmt: skip
+    assert main.run(bad) == 2  # at once: no bus is tried (no router listens on port 1)
+    assert "route: TimeScorer.max_vel must be > 0 m/s, got -1.0" in caplog.text

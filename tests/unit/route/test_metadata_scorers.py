@@ -94,6 +94,11 @@ def test_semantic_scorer_parameter_errors_name_the_parameter() -> None:
     with pytest.raises(ValueError, match=r"SemanticScorer.Test: bad value 'high'"):
         scorer("SemanticScorer", semantic_classes="Test", Test="high")
     assert score(scorer("SemanticScorer"), one_edge(metadata={"class": "x"})) == 0.0  # no classes
+    with pytest.raises(ValueError, match=r"^Rooms \(a SemanticScorer\): SemanticScorer.kitchen: "
+                       "no cost given"):  # fmt: skip
+        scorer("Rooms", plugin="nav2_route::SemanticScorer", semantic_classes="kitchen")
+    rooms = scorer("Rooms", plugin="SemanticScorer", semantic_classes="kitchen", kitchen="2")
+    assert score(rooms, one_edge(metadata={"class": "kitchen"})) == 2.0
 
 
 def test_time_and_semantic_scorers_steer_the_search() -> None:
