@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 from aiobt.geometry import wrap_angle
 
@@ -25,15 +26,10 @@ def _heading_error(edge: GraphEdge, heading: float) -> float:
     return abs(wrap_angle(heading - direction))
 
 
-def _score(scorer: _Orientation, edge: GraphEdge, heading: float) -> float | None:
-    error = _heading_error(edge, heading)
-    if scorer.use_orientation_threshold and error > scorer.orientation_tolerance:
-        return None
-    return scorer.orientation_weight * error
-
-
 @dataclass(slots=True)
 class _Orientation:
+    EDGE: ClassVar[EdgeType]  # the edges it scores; the pose it scores them against
+
     orientation_tolerance: float = math.pi / 2.0
     orientation_weight: float = 1.0
     use_orientation_threshold: bool = False
@@ -41,24 +37,28 @@ class _Orientation:
     def prepare(self) -> None:
         return None
 
+    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
+        pose = "start" if self.EDGE == "START" else "goal"
+        if not request.use_poses:
+            raise RouteError("INVALID_EDGE_SCORER_USE", f"{type(self).__name__} needs a {pose} "
+                             "pose: the request is by node ids")  # fmt: skip
+        if edge_type != self.EDGE:
+            return 0.0
+        error = _heading_error(edge, request.start_yaw if pose == "start" else request.goal_yaw)
+        if self.use_orientation_threshold and error > self.orientation_tolerance:
+            return None
+        return self.orientation_weight * error
+
 
 @dataclass(slots=True)
 class StartPoseOrientationScorer(_Orientation):
     """An edge leaving the start node, against the start pose's heading."""
 
-    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
-        if not request.use_poses:
-            raise RouteError("INVALID_EDGE_SCORER_USE", "StartPoseOrientationScorer needs "
-                             "a start pose: the request is by node ids")  # fmt: skip
-        return _score(self, edge, request.start_yaw) if edge_type == "START" else 0.0
+    EDGE: ClassVar[EdgeType] = "START"
 
 
 @dataclass(slots=True)
 class GoalOrientationScorer(_Orientation):
     """An edge reaching the goal node, against the goal pose's heading."""
 
-    def score(self, edge: GraphEdge, request: RouteRequest, edge_type: EdgeType) -> float | None:
-        if not request.use_poses:
-            raise RouteError("INVALID_EDGE_SCORER_USE", "GoalOrientationScorer needs a goal "
-                             "pose: the request is by node ids")  # fmt: skip
-        return _score(self, edge, request.goal_yaw) if edge_type == "END" else 0.0
+    EDGE: ClassVar[EdgeType] = "END"

@@ -5,7 +5,6 @@ where the graph asks, and the times the robot took then price the next route."""
 from __future__ import annotations
 
 import asyncio
-import json
 from pathlib import Path
 from typing import Any
 
@@ -19,28 +18,13 @@ from aiobt_services.robot.convert import occupancy_grid
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.worlds import OFFICE
 
-from .test_route_service import Spawn, route, start
+from .test_route_service import Spawn, corridor_graph, route, start
 
 pytestmark = pytest.mark.integration
 
-
-def door_graph(path: Path) -> Path:
-    """1 (2, 9.75) -> 2 (6, 9.75) -> 3 (10, 9.75); entering edge 12 opens door 1."""
-
-    def point(i: int, x: float) -> dict[str, Any]:
-        return {"type": "Feature", "properties": {"id": i},
-                "geometry": {"type": "Point", "coordinates": [x, 9.75]}}  # fmt: skip
-
-    def line(i: int, a: int, b: int, **props: Any) -> dict[str, Any]:
-        return {"type": "Feature", "properties": {"id": i, "startid": a, "endid": b, **props},
-                "geometry": {"type": "LineString", "coordinates": []}}  # fmt: skip
-
-    door = {"door1": {"type": "OpenDoor", "trigger": "ON_ENTER",
-                      "metadata": {"service_name": "/doors/door1"}}}  # fmt: skip
-    features = [point(1, 2.0), point(2, 6.0), point(3, 10.0), line(11, 1, 2),
-                line(12, 2, 3, operations=door)]  # fmt: skip
-    path.write_text(json.dumps({"type": "FeatureCollection", "features": features}))
-    return path
+DOOR = {"door1": {"type": "OpenDoor", "trigger": "ON_ENTER",
+                  "metadata": {"service_name": "/doors/door1"}}}  # fmt: skip
+"""Edge 12's graph operation: entering it opens door 1."""
 
 
 async def test_a_door_opened_on_the_way_and_the_times_taken_price_the_next_route(
@@ -56,7 +40,8 @@ async def test_a_door_opened_on_the_way_and_the_times_taken_price_the_next_route
         return Trigger.Response(success=True, message="door 1 open")
 
     bus.serve("doors/door1", Trigger.Request, Trigger.Response, open_door)
-    await start(spawn, bus, bus_settings, "--graph-filepath", str(door_graph(tmp_path / "d.json")),
+    graph = corridor_graph(tmp_path / "d.json", operations=DOOR)
+    await start(spawn, bus, bus_settings, "--graph-filepath", str(graph),
                 "--edge-cost-functions", "TimeScorer", "--operations", "TimeMarker,OpenDoor",
                 "--param", "OpenDoor.plugin=nav2_route::TriggerEvent")  # fmt: skip
     before = await route(bus, ComputeRoute.Goal(start_id=1, goal_id=3))

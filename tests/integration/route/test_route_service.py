@@ -142,8 +142,9 @@ async def test_a_graph_that_does_not_load_fails_requests_and_the_server_runs(
     assert again.error_code == Codes.NO_VALID_GRAPH
 
 
-def corridor_graph(path: Path) -> Path:
-    """1 (2, 9.75) -> 2 (6, 9.75) -> 3 (10, 9.75), edge 12 with a 50 % speed limit."""
+def corridor_graph(path: Path, **edge_12: Any) -> Path:
+    """1 (2, 9.75) -> 2 (6, 9.75) -> 3 (10, 9.75), edge 12 with a 50 % speed limit (and
+    ``edge_12``'s properties)."""
 
     def point(i: int, x: float) -> dict[str, Any]:
         return {"type": "Feature", "properties": {"id": i},
@@ -154,7 +155,7 @@ def corridor_graph(path: Path) -> Path:
                 "geometry": {"type": "LineString", "coordinates": []}}  # fmt: skip
 
     features = [point(1, 2.0), point(2, 6.0), point(3, 10.0), line(11, 1, 2),
-                line(12, 2, 3, metadata={"speed_limit": 50.0})]  # fmt: skip
+                line(12, 2, 3, metadata={"speed_limit": 50.0}, **edge_12)]  # fmt: skip
     path.write_text(json.dumps({"type": "FeatureCollection", "features": features}))
     return path
 
