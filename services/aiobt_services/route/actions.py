@@ -1,5 +1,5 @@
 """The ``compute_route`` and ``compute_and_track_route`` executes (Nav2's
-``RouteServer::processRouteRequest``), free of the bus: the robot's position,
+``RouteServer::processRouteRequest``), free of the bus: the robot's pose,
 robot time and the feedback come in as callables, so tests drive them with fakes.
 
 ComputeRoute plans once and returns the route, the dense path and the planning
