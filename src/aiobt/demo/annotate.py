@@ -11,13 +11,15 @@ Colour = tuple[int, int, int]
 PLAN, TRAIL, GOAL, RECOVERY, OBSTACLE, START = (
     (40, 90, 220), (220, 40, 40), (20, 150, 60), (245, 140, 0), (140, 60, 170), (0, 0, 0)
 )  # fmt: skip
+TRUTH = (0, 190, 200)  # the simulation's track, drawn wide under the estimate's
 WALL, UNKNOWN, COST = (0, 0, 0), (180, 180, 180), (120, 170, 255)
 _TITLE, _TEXT = ImageFont.load_default(size=20), ImageFont.load_default(size=14)
 HEADER = 62  # px above the map: title and summary
 _ROW = 22  # px per legend row
 LEGEND: tuple[tuple[str, Colour, str], ...] = (
     ("line", PLAN, "planned path"),
-    ("line", TRAIL, "driven"),
+    ("line", TRAIL, "driven: the pose estimate ({ns}/pose)"),
+    ("wide", TRUTH, "driven: the truth (the simulation's)"),
     ("start", START, "start"),
     ("ring", GOAL, "goal k, ring: 0.25 m tolerance"),
     ("dot", OBSTACLE, "filled: goal not reached"),
@@ -49,8 +51,8 @@ def framed(image: Image.Image, title: str, summary: str) -> Image.Image:
 
 def _swatch(draw: ImageDraw.ImageDraw, kind: str, colour: Colour, at: tuple[int, int]) -> None:
     x, y = at
-    if kind == "line":
-        draw.line((x, y + 7, x + 18, y + 7), fill=colour, width=3)
+    if kind in ("line", "wide"):
+        draw.line((x, y + 7, x + 18, y + 7), fill=colour, width=3 if kind == "line" else 7)
     elif kind in ("ring", "dot"):
         fill = colour if kind == "dot" else None
         draw.ellipse((x + 2, y, x + 16, y + 14), outline=GOAL, width=3, fill=fill)

@@ -15,6 +15,7 @@ from aiobt.demo.record import Leg, Record
 from aiobt.embed import Feedback, RobotClient, pose
 from aiobt.msgs import ComputePathToPose, OccupancyGrid, PoseStamped
 from aiobt.transport import ActionError
+from aiobt.transport.keys import SIM_POSE
 
 # the small world (5 m x 5 m, a wall at y = 1.2 from x = -2 to -1)
 PATROL = (
@@ -42,6 +43,8 @@ class Patrol:
     def attach(self) -> None:
         self.robot.bus.subscribe("map", OccupancyGrid, self.record.on_map, latched=True)
         self.robot.bus.subscribe("pose", PoseStamped, self._on_pose)
+        # the picture may read the truth (a viewer; no navigation service does)
+        self.robot.bus.subscribe(SIM_POSE, PoseStamped, self.record.on_truth)
 
     def _on_pose(self, msg: PoseStamped) -> None:
         self._heading = msg.yaw

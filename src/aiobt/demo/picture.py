@@ -1,5 +1,6 @@
-"""The demo's PNG: map, inflated costmap, planned paths, driven trajectory, start, goals
-with their tolerance, recoveries; a title, a summary, a scale bar and a legend
+"""The demo's PNG: map, inflated costmap, planned paths, the driven tracks (the pose
+estimate's, and the simulation's truth wide under it), start, goals with their
+tolerance, recoveries; a title, a summary, a scale bar and a legend
 (:mod:`aiobt.demo.annotate`)."""
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from aiobt.demo.annotate import (
     OBSTACLE,
     PLAN,
     TRAIL,
+    TRUTH,
     UNKNOWN,
     WALL,
     cross,
@@ -68,6 +70,8 @@ def render(
     for leg in record.legs:
         if len(leg.plan) > 1:
             draw.line([to_px(p) for p in leg.plan], fill=PLAN, width=2)
+    if len(record.truth) > 1:  # wide, under the estimate: where they agree both show
+        draw.line([to_px(p) for p in record.truth], fill=TRUTH, width=9, joint="curve")
     if len(record.trajectory) > 1:
         draw.line([to_px(p) for p in record.trajectory], fill=TRAIL, width=3)
     if record.trajectory:

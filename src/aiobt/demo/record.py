@@ -1,4 +1,5 @@
-"""What the demo keeps for its picture and its summary: map, trajectory, plans, recoveries."""
+"""What the demo keeps for its picture and its summary: map, the two tracks (the pose
+estimate's and, in the simulation, the truth's), plans, recoveries."""
 
 from __future__ import annotations
 
@@ -27,7 +28,8 @@ class Leg:
 @dataclass(slots=True)
 class Record:
     map: OccupancyGrid | None = None
-    trajectory: list[XY] = field(default_factory=list)
+    trajectory: list[XY] = field(default_factory=list)  # the estimate's: {ns}/pose
+    truth: list[XY] = field(default_factory=list)  # the simulation's: {ns}/sim/pose
     legs: list[Leg] = field(default_factory=list)
     recoveries: list[XY] = field(default_factory=list)
     # boxes put in the robot's way: x, y, yaw, size along, size across
@@ -37,10 +39,17 @@ class Record:
         self.map = grid
 
     def on_pose(self, pose: PoseStamped) -> None:
-        here = (pose.x, pose.y)
-        if not self.trajectory or math.dist(self.trajectory[-1], here) >= _STEP:
-            self.trajectory.append(here)
+        _extend(self.trajectory, pose)
+
+    def on_truth(self, pose: PoseStamped) -> None:
+        _extend(self.truth, pose)
 
     @property
     def position(self) -> XY:
         return self.trajectory[-1] if self.trajectory else (0.0, 0.0)
+
+
+def _extend(track: list[XY], pose: PoseStamped) -> None:
+    here = (pose.x, pose.y)
+    if not track or math.dist(track[-1], here) >= _STEP:
+        track.append(here)

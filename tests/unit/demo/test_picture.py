@@ -1,4 +1,5 @@
-"""The demo's picture: title, summary, start, goals with their tolerance, scale and legend."""
+"""The demo's picture: title, summary, start, goals with their tolerance, the estimate's
+and the truth's tracks, scale and legend."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from aiobt.demo.annotate import GOAL, HEADER, START, nice_length
+from aiobt.demo.annotate import GOAL, HEADER, START, TRAIL, TRUTH, nice_length
 from aiobt.demo.picture import GOAL_TOLERANCE, SCALE, render, summary
 from aiobt.demo.record import Leg, Record
 from aiobt.msgs import OccupancyGrid
@@ -50,6 +51,41 @@ def test_the_picture_frames_the_map_and_marks_start_and_goal_tolerance() -> None
     col, row = at(2.0 + GOAL_TOLERANCE, 2.0)
     ring = pixels[row - 2 : row + 3, col - 2 : col + 3].reshape(-1, 3)
     assert any(tuple(p) == GOAL for p in ring)  # the tolerance ring, 0.25 m out
+
+
+def _pixel(x: float, y: float) -> tuple[int, int]:
+    """Map metres -> picture pixel (col, row) of a 100 x 100 cell map."""
+    side = 100 * SCALE
+    return round(x / RESOLUTION * SCALE), HEADER + side - round(y / RESOLUTION * SCALE)
+
+
+def _colours_near(pixels: np.ndarray, x: float, y: float, reach: int = 1) -> set[tuple[int, ...]]:
+    col, row = _pixel(x, y)
+    patch = pixels[row - reach : row + reach + 1, col - reach : col + reach + 1]
+    return {tuple(int(v) for v in p) for p in patch.reshape(-1, 3)}
+
+
+def test_the_estimate_and_the_truth_are_both_drawn_where_they_part_and_where_they_agree() -> None:
+    drawn = record()
+    drawn.trajectory = [(1.0, 3.0), (3.0, 3.0), (4.0, 4.0)]  # the estimate: y = 3 first
+    drawn.truth = [(1.0, 3.0), (3.0, 3.0), (4.0, 2.0)]  # the truth parts from it at x = 3
+    pixels = np.asarray(Image.open(io.BytesIO(render(drawn))).convert("RGB"))
+    assert TRAIL in _colours_near(pixels, 3.8, 3.8)  # the estimate alone
+    assert TRUTH not in _colours_near(pixels, 3.8, 3.8, reach=3)
+    assert TRUTH in _colours_near(pixels, 3.8, 2.2)  # the truth alone
+    assert TRAIL not in _colours_near(pixels, 3.8, 2.2, reach=3)
+    together = _colours_near(pixels, 2.0, 3.0, reach=4)  # the estimate on the wide truth
+    assert {TRAIL, TRUTH} <= together
+    legend = pixels[HEADER + 100 * SCALE :]
+    assert (legend == TRUTH).all(axis=2).sum() > 50  # its swatch in the legend
+    assert (legend == TRAIL).all(axis=2).sum() > 20
+
+
+def test_without_a_truth_only_the_estimate_is_drawn_on_the_map() -> None:
+    pixels = np.asarray(Image.open(io.BytesIO(render(record()))).convert("RGB"))
+    on_map = pixels[HEADER : HEADER + 100 * SCALE]
+    assert not (on_map == TRUTH).all(axis=2).any()
+    assert (on_map == TRAIL).all(axis=2).sum() > 100
 
 
 def test_the_scale_bar_is_1_2_or_5_times_a_power_of_ten() -> None:
