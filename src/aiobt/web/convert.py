@@ -15,7 +15,15 @@ import numpy as np
 
 from aiobt.costmap.grid import LETHAL, NO_INFORMATION, GridGeometry
 from aiobt.costmap.inflation import InflationParams, inflate
-from aiobt.msgs import LaserScan, OccupancyGrid, Path, PoseStamped, Twist
+from aiobt.msgs import (
+    LaserScan,
+    OccupancyGrid,
+    ParticleCloud,
+    Path,
+    PoseStamped,
+    PoseWithCovarianceStamped,
+    Twist,
+)
 from aiobt.msgs.bt import BtSnapshot, BtTree
 from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
@@ -64,6 +72,22 @@ def costmap_payload(grid: OccupancyGrid, params: InflationParams) -> Json:
 
 def pose_payload(pose: PoseStamped) -> Json:
     return {"x": _mm(pose.x), "y": _mm(pose.y), "yaw": _mm(pose.yaw), "stamp": pose.header.stamp}
+
+
+def estimate_payload(estimate: PoseWithCovarianceStamped) -> Json:
+    """The localization's ``amcl_pose``: the pose, and its covariance in the plane as
+    ``[xx, xy, yy, yaw_yaw]`` (m^2, rad^2) for the page's uncertainty ellipse."""
+    cov = estimate.pose.covariance
+    payload = pose_payload(estimate.as_pose_stamped())
+    payload["covariance"] = [round(cov[i], 6) for i in (0, 1, 7, 35)]
+    return payload
+
+
+def particles_payload(cloud: ParticleCloud) -> list[list[float]]:
+    """The localization's particles as ``[x, y, yaw]`` (as the service thins them)."""
+    return [
+        [_mm(p.pose.position.x), _mm(p.pose.position.y), _mm(p.pose.yaw)] for p in cloud.particles
+    ]
 
 
 def scan_points(scan: LaserScan, pose: PoseStamped) -> list[list[float]]:

@@ -31,7 +31,12 @@ from aiobt.web.sources import Sources
 
 log = logging.getLogger("aiobt.web.server")
 STATIC = resources.files("aiobt.web") / "static"
-_FILES = {"/": "index.html", "/app.js": "app.js", "/style.css": "style.css"}
+_FILES = {
+    "/": "index.html",
+    "/app.js": "app.js",
+    "/localization.js": "localization.js",
+    "/style.css": "style.css",
+}
 Handler = Callable[[web.Request], Awaitable[web.Response]]
 _TYPES = {".html": "text/html", ".js": "text/javascript", ".css": "text/css"}
 

@@ -8,6 +8,11 @@ since the last flush and hands it to the :class:`Hub`. Streams:
 ``map``        ``{ns}/map`` (latched), sent when it changes
 ``costmap``    the map inflated as the planner's global costmap, with it
 ``pose``       ``{ns}/pose``
+``truth``      ``{ns}/sim/pose``: the simulation's truth, beside the estimate (a
+               viewer may read it; no navigation service does)
+``amcl_pose``  ``{ns}/amcl_pose`` (latched): the localization's estimate with
+               its covariance
+``particles``  ``{ns}/particle_cloud``: the localization's particles (map frame)
 ``scan``       ``{ns}/scan``, as map-frame points seen from the latest pose
 ``local``      ``{ns}/cmd_vel`` driven for 1.5 s from the pose (where the
                current command alone takes the robot)
@@ -46,8 +51,10 @@ from aiobt.msgs import (
     NavigateThroughPoses,
     NavigateToPose,
     OccupancyGrid,
+    ParticleCloud,
     Path,
     PoseStamped,
+    PoseWithCovarianceStamped,
     Twist,
 )
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
@@ -55,6 +62,7 @@ from aiobt.msgs.remote_actions import ComputeRoute
 from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Subscription
+from aiobt.transport.keys import SIM_POSE
 from aiobt.transport.topics import declare_subscription
 from aiobt.web import convert
 from aiobt.web.coalesce import Hub, Latest
@@ -87,7 +95,7 @@ class Sources:
         self.tree = TreeStatus()
         self._robot = _Robot()
         self._tree_changed = False
-        self._skipped_frames: set[str] = set()
+        self._skipped_frames: set[tuple[str, str]] = set()
         self._subs: list[Subscription[Any]] = []
         self._goal_pub = bus.publisher("goal_pose", PoseStamped, reliable=True)
 
@@ -101,6 +109,8 @@ class Sources:
             ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
             ("collision_monitor/polygons", CollisionPolygons, True),
             ("route_graph", RouteGraph, True),
+            (SIM_POSE, PoseStamped, False), ("particle_cloud", ParticleCloud, False),
+            ("amcl_pose", PoseWithCovarianceStamped, True),
         ]  # fmt: skip
         for name, model, latched in topics:
             sub = self.bus.subscribe(
@@ -163,6 +173,14 @@ class Sources:
         elif stream == "pose" and isinstance(message, PoseStamped):
             robot.pose = message
             self.hub.publish("pose", convert.pose_payload(message))
+        elif stream == SIM_POSE and isinstance(message, PoseStamped):
+            self.hub.publish("truth", convert.pose_payload(message))
+        elif isinstance(message, ParticleCloud):
+            if self._in_map_frame("particle_cloud", message.header.frame_id):
+                self.hub.publish("particles", convert.particles_payload(message))
+        elif isinstance(message, PoseWithCovarianceStamped):
+            if self._in_map_frame("amcl_pose", message.header.frame_id):
+                self.hub.publish("amcl_pose", convert.estimate_payload(message))
         elif isinstance(message, LaserScan) and robot.pose is not None:
             self.hub.publish("scan", convert.scan_points(message, robot.pose))
         elif isinstance(message, Twist):
@@ -190,13 +208,18 @@ class Sources:
         self.hub.publish("costmap", convert.costmap_payload(grid, self.inflation), on_change=True)
 
     def _on_local_plan(self, path: Path) -> None:
-        frame = path.header.frame_id
-        if frame != "map":  # the page draws in the map frame; a plan in odom would drift
-            if frame not in self._skipped_frames:
-                self._skipped_frames.add(frame)
-                log.warning("local_plan in frame %r not shown (map-frame plans only)", frame)
-            return
-        self.hub.publish("local_plan", convert.path_points(path))
+        if self._in_map_frame("local_plan", path.header.frame_id):
+            self.hub.publish("local_plan", convert.path_points(path))
+
+    def _in_map_frame(self, stream: str, frame: str) -> bool:
+        """The page draws in the map frame (a plan in odom would drift): any other frame
+        is said once per stream and frame, and not drawn."""
+        if frame == "map":
+            return True
+        if (stream, frame) not in self._skipped_frames:
+            self._skipped_frames.add((stream, frame))
+            log.warning("%s in frame %r not shown (map-frame only)", stream, frame)
+        return False
 
     def _publish_local(self) -> None:
         if self._robot.pose is not None:

@@ -8,6 +8,7 @@ const state = {
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
   goalsSent: 0, goalReply: null, route: [], routeGraph: null,
+  particles: [], truth: null, amclPose: null, drawn: { particles: 0, truth: 0 },
 };
 window.aiobtState = state;
 
@@ -54,6 +55,10 @@ function receive(update) {
     canvas.dataset.robotX = update.pose.x; canvas.dataset.robotY = update.pose.y;
   }
   if ("route_graph" in update) state.routeGraph = update.route_graph;
+  if ("particles" in update) state.particles = update.particles;
+  if ("amcl_pose" in update) state.amclPose = update.amcl_pose;
+  if ("truth" in update) state.truth = update.truth;
+  if ("truth" in update || "pose" in update) showTruthError();
   for (const key of ["scan", "plan", "route", "local", "footprint", "zones"]) {
     if (key in update) state[key] = update[key];
   }
@@ -193,7 +198,12 @@ function draw() {
   polyline(state.local, "#00a86b", 3);
   polyline(state.localPlan, "#e6007a", 3);
   drawGoals();
+  if (document.getElementById("show-particles").checked) {
+    drawParticles(state.particles);
+    if (state.amclPose) drawEllipse(state.amclPose);
+  }
   if (state.robot) arrow(state.robot, "#ff9800", state.footprint.radius);
+  if (state.truth) drawTruth(state.truth);
   drawScaleBar();
 }
 // the navigator's goal (however it was sent): purple while driven to, grey once ended;
