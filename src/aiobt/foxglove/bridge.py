@@ -29,13 +29,16 @@ from aiobt.msgs import (
     NavigateToPose,
     OccupancyGrid,
     Odometry,
+    ParticleCloud,
     Path,
     PoseStamped,
+    PoseWithCovarianceStamped,
 )
 from aiobt.msgs.remote_actions import ComputeRoute
 from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Publisher, Subscription
+from aiobt.transport.keys import SIM_POSE
 from aiobt.transport.topics import declare_subscription
 
 log = logging.getLogger("aiobt.foxglove.bridge")
@@ -45,7 +48,11 @@ DEFAULT_COSTMAP_PERIOD = 1.0  # s of robot time between costmap updates
 
 
 class FoxgloveBridge:
-    """Feeds ``channels`` from ``bus``; :meth:`close` ends the subscriptions."""
+    """Feeds ``channels`` from ``bus``; :meth:`close` ends the subscriptions.
+
+    ``truth``: bridge the simulation's truth (``{ns}/sim/pose``) too. A viewer may read
+    it; the navigator's own recording (in a navigation service) does not.
+    """
 
     def __init__(
         self,
@@ -54,12 +61,14 @@ class FoxgloveBridge:
         footprint_radius: float = DEFAULT_FOOTPRINT_RADIUS,
         costmap_period: float = DEFAULT_COSTMAP_PERIOD,
         forwards_goals: bool = True,
+        truth: bool = True,
     ) -> None:
         if not footprint_radius > 0.0 or not math.isfinite(footprint_radius):
             raise ValueError(f"footprint radius must be > 0 m, not {footprint_radius!r}")
         self.bus = bus
         self.ch = Channels.create(context)
         self.radius = footprint_radius
+        self.truth = truth
         # declared up front: a put right after a publisher's declaration may be lost
         self.goals: Publisher[PoseStamped] | None = None
         if forwards_goals:
@@ -84,6 +93,11 @@ class FoxgloveBridge:
         add(bus.subscribe("bt/transitions", BtTransitions, self.on_transitions))
         add(bus.subscribe("collision_monitor/polygons", CollisionPolygons, self.on_zones,
                           latched=True, queue_size=1))  # fmt: skip
+        add(bus.subscribe("particle_cloud", ParticleCloud, self.on_particles, queue_size=2))
+        add(bus.subscribe("amcl_pose", PoseWithCovarianceStamped, self.on_amcl_pose,
+                          latched=True, queue_size=1))  # fmt: skip
+        if self.truth:
+            add(bus.subscribe(SIM_POSE, PoseStamped, self.on_truth, queue_size=2))
         plans = bus.keys.action(ComputePathToPose.name).any_result
         feedback = bus.keys.action(NavigateToPose.name).any_feedback
         add(self._watch(plans, ComputePathToPose.result_type(), self.on_plan))
@@ -127,6 +141,15 @@ class FoxgloveBridge:
         self.ch.pose.log(convert.pose_in_frame(msg))
         self.ch.robot.log(convert.footprint(msg.header.stamp, self.radius))
         self._transforms()
+
+    def on_particles(self, msg: ParticleCloud) -> None:
+        self.ch.particles.log(convert.particle_cloud(msg))
+
+    def on_amcl_pose(self, msg: PoseWithCovarianceStamped) -> None:
+        self.ch.amcl_pose.log(convert.pose_in_frame(msg.as_pose_stamped()))
+
+    def on_truth(self, msg: PoseStamped) -> None:
+        self.ch.truth.log(convert.pose_in_frame(msg))
 
     def on_zones(self, msg: CollisionPolygons) -> None:
         self.ch.zones.log(zones_scene(msg))

@@ -22,6 +22,10 @@ topic                 schema                       from (under the namespace ``n
 /odom/speed           JSON                         ``{ns}/odom`` (speed, for the plot)
 /log                  foxglove.Log                 ``{ns}/bt/transitions`` + bridge lines
 /collision_monitor    foxglove.SceneUpdate         ``{ns}/collision_monitor/polygons``
+/particle_cloud       foxglove.PosesInFrame        ``{ns}/particle_cloud`` (localization)
+/amcl_pose            foxglove.PoseInFrame         ``{ns}/amcl_pose`` (localization, latched)
+/sim/pose             foxglove.PoseInFrame         ``{ns}/sim/pose``: the simulation's truth
+                                                   (not in the navigator's recordings)
 ====================  ===========================  =====================================
 """
 
@@ -72,6 +76,9 @@ class Channels:
     speed: foxglove.Channel
     log: fc.LogChannel
     zones: fc.SceneUpdateChannel
+    particles: fc.PosesInFrameChannel
+    amcl_pose: fc.PoseInFrameChannel
+    truth: fc.PoseInFrameChannel
 
     @classmethod
     def create(cls, context: foxglove.Context) -> Channels:
@@ -94,6 +101,9 @@ class Channels:
             speed=foxglove.Channel("/odom/speed", schema=_SPEED, context=c),
             log=fc.LogChannel("/log", context=c),
             zones=fc.SceneUpdateChannel("/collision_monitor", context=c),
+            particles=fc.PosesInFrameChannel("/particle_cloud", context=c),
+            amcl_pose=fc.PoseInFrameChannel("/amcl_pose", context=c),
+            truth=fc.PoseInFrameChannel("/sim/pose", context=c),
         )
 
     def topics(self) -> set[str]:

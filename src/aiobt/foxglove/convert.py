@@ -22,6 +22,7 @@ from aiobt.msgs import (
     Msg,
     OccupancyGrid,
     Odometry,
+    ParticleCloud,
     Path,
     PoseStamped,
     decode,
@@ -108,6 +109,16 @@ def poses_in_frame(msg: Path) -> fm.PosesInFrame:
         timestamp=timestamp(msg.header.stamp),
         frame_id=msg.header.frame_id,
         poses=[pose(p.pose) for p in msg.poses],
+    )
+
+
+def particle_cloud(msg: ParticleCloud) -> fm.PosesInFrame:
+    """The localization's particles as poses (RViz draws ``nav2_msgs/ParticleCloud`` as
+    arrows; the 3D panel draws PosesInFrame so)."""
+    return fm.PosesInFrame(
+        timestamp=timestamp(msg.header.stamp),
+        frame_id=msg.header.frame_id,
+        poses=[pose(p.pose) for p in msg.particles],
     )
 
 

@@ -27,7 +27,9 @@ def open_mcap(path: Path, context: foxglove.Context, overwrite: bool = False) ->
 class McapRecording:
     """Records every channel of a :class:`FoxgloveBridge` on ``bus`` to ``path`` from
     construction until :meth:`close` (idempotent). It only records: no goal is
-    forwarded, nothing is announced. ``OSError`` naming the file if it cannot be written."""
+    forwarded, nothing is announced, and the simulation's truth is not read (the
+    navigator records with it: no navigation service subscribes to the truth).
+    ``OSError`` naming the file if it cannot be written."""
 
     def __init__(
         self,
@@ -40,7 +42,7 @@ class McapRecording:
         self._writer: foxglove.mcap.MCAPWriter | None = open_mcap(path, context)
         self.path = path
         self._bridge = FoxgloveBridge(
-            bus, context, footprint_radius, costmap_period, forwards_goals=False
+            bus, context, footprint_radius, costmap_period, forwards_goals=False, truth=False
         )
         self._bridge.start()
 

@@ -71,9 +71,9 @@ def test_the_layout_uses_only_bridged_topics() -> None:
     topics = Channels.create(foxglove.Context()).topics()
     panels = layout["configById"]
     assert set(panels["3D!aiobt"]["topics"]) <= topics
-    assert {"/plan", "/local_plan", "/global_costmap", "/local_costmap"} <= set(
-        panels["3D!aiobt"]["topics"]
-    )
+    assert {
+        "/plan", "/local_plan", "/global_costmap", "/local_costmap", "/particle_cloud", "/sim/pose"
+    } <= set(panels["3D!aiobt"]["topics"])  # fmt: skip
     plotted = {p["value"].split(".")[0] for p in panels["Plot!aiobtspeed"]["paths"]}
     assert plotted <= topics
     assert panels["RawMessages!aiobtfeedback"]["topicPath"] in topics
