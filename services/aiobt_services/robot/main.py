@@ -74,10 +74,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 class BusOutputs:
-    """The runner's sink: one publisher per topic."""
+    """The runner's sink: one publisher per topic (``pose`` only as the localization's
+    stand-in: a base publishes no pose in map, nor declares one)."""
 
-    def __init__(self, bus: Bus) -> None:
-        self._pubs = {name: bus.publisher(name, model) for name, model in PUBLISHED.items()}
+    def __init__(self, bus: Bus, *, pose: bool = True) -> None:
+        topics = {name: model for name, model in PUBLISHED.items() if pose or name != "pose"}
+        self._pubs = {name: bus.publisher(name, model) for name, model in topics.items()}
 
     def publish(self, topic: str, msg: Msg) -> None:
         self._pubs[topic].put(msg)
@@ -124,7 +126,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
         runner = SimRunner(
             sim,
-            BusOutputs(bus),
+            BusOutputs(bus, pose=args.pose_source == "truth"),
             speed=args.speed,
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
             command_wait=args.command_wait,
