@@ -6,7 +6,8 @@ four goals of the small world through the navigator; the third starts with
 the robot walled in by boxes, so no path exists until the navigator's first
 recovery (then the boxes are taken away, see :mod:`aiobt.demo.boxes`). Progress
 shows goal k of n, distance remaining and recoveries; at the end a PNG (map,
-inflated costmap, planned paths, driven trajectory, goals, recoveries) is
+inflated costmap, planned paths, the driven tracks as estimated and in truth, goals,
+recoveries) is
 written to the path it prints. The services' output goes to a log file next
 to it. Exit status 0 only when every goal was reached.
 """

@@ -18,8 +18,8 @@ HEADER = 62  # px above the map: title and summary
 _ROW = 22  # px per legend row
 LEGEND: tuple[tuple[str, Colour, str], ...] = (
     ("line", PLAN, "planned path"),
-    ("line", TRAIL, "driven: the pose estimate ({ns}/pose)"),
-    ("wide", TRUTH, "driven: the truth (the simulation's)"),
+    ("line", TRAIL, "driven, as estimated (pose)"),
+    ("wide", TRUTH, "driven, in truth (the simulation's sim/pose)"),
     ("start", START, "start"),
     ("ring", GOAL, "goal k, ring: 0.25 m tolerance"),
     ("dot", OBSTACLE, "filled: goal not reached"),
