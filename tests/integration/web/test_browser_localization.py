@@ -62,9 +62,7 @@ async def test_page_draws_the_particle_cloud_and_the_truth_beside_the_estimate(
         assert drawn["particles"] == len(page_value(browser, "window.aiobtState.particles"))
         assert page_value(browser, pixels_of(PARTICLE)) > 2 * len(particles)
         assert page_value(browser, pixels_of(TRUTH)) > 20
-        error = await wait_page(
-            browser, "document.getElementById('truth-error').textContent", "the error readout"
-        )
+        error = await wait_page(browser, "window.aiobtState.truthError", "the error readout")
         assert error.startswith("estimate off the truth by "), error
         assert float(error.split(" by ")[1].split(" cm")[0]) < 50.0, error
         toggle = browser.find_element("id", "show-particles")

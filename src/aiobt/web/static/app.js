@@ -8,7 +8,7 @@ const state = {
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
   goalsSent: 0, goalReply: null, route: [], routeGraph: null,
-  particles: [], truth: null, amclPose: null, drawn: { particles: 0, truth: 0 },
+  particles: [], truth: null, amclPose: null, drawn: { particles: 0, truth: 0 }, truthError: "",
 };
 window.aiobtState = state;
 
@@ -58,7 +58,6 @@ function receive(update) {
   if ("particles" in update) state.particles = update.particles;
   if ("amcl_pose" in update) state.amclPose = update.amcl_pose;
   if ("truth" in update) state.truth = update.truth;
-  if ("truth" in update || "pose" in update) showTruthError();
   for (const key of ["scan", "plan", "route", "local", "footprint", "zones"]) {
     if (key in update) state[key] = update[key];
   }

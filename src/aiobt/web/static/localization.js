@@ -27,13 +27,19 @@ function drawEllipse(estimate) {
   ctx.ellipse(cx, cy, Math.max(major * perPixel, 2), Math.max(minor * perPixel, 2), -angle, 0, 2 * Math.PI);
   ctx.stroke();
 }
-// the simulation's truth: a dashed ring and heading over the estimate's robot
+// the simulation's truth: a dashed ring and heading over the estimate's robot, and how far
+// the estimate is off it, top left on the map (on the canvas: the page's layout stays put)
 function drawTruth(truth) {
   ctx.setLineDash([4, 3]); arrow(truth, TRUTH, state.footprint.radius * 1.25); ctx.setLineDash([]);
   state.drawn.truth += 1;
+  const error = truthError(truth, state.robot); state.truthError = error;
+  if (!error) return;
+  ctx.font = "13px system-ui, sans-serif"; const width = ctx.measureText(error).width;
+  ctx.fillStyle = "rgba(255, 255, 255, 0.8)"; ctx.fillRect(6, 6, width + 12, 22);
+  ctx.fillStyle = "#222"; ctx.fillText(error, 12, 22);
 }
-function showTruthError() {
-  const t = state.truth; const r = state.robot; if (!t || !r) return;
+function truthError(t, r) {
+  if (!r) return "";
   const turn = Math.abs(Math.atan2(Math.sin(r.yaw - t.yaw), Math.cos(r.yaw - t.yaw)));
-  setText("truth-error", `estimate off the truth by ${(100 * Math.hypot(r.x - t.x, r.y - t.y)).toFixed(1)} cm, ${(turn * 180 / Math.PI).toFixed(1)}°`);
+  return `estimate off the truth by ${(100 * Math.hypot(r.x - t.x, r.y - t.y)).toFixed(1)} cm, ${(turn * 180 / Math.PI).toFixed(1)}°`;
 }
