@@ -1,4 +1,5 @@
-"""The controller's local plan and local costmap as the page gets them (Sources.flush)."""
+"""The controller's local plan and local costmap as the page gets them (Sources.flush); a
+map-frame stream in another frame (local plan, particles, amcl_pose) is not drawn."""
 
 from __future__ import annotations
 
@@ -9,10 +10,12 @@ import logging
 import numpy as np
 import pytest
 
-from aiobt.msgs import Header, OccupancyGrid, Path, Pose, PoseStamped
+from aiobt.msgs import Header, Msg, OccupancyGrid, Path, Pose, PoseStamped
 from aiobt.transport import Bus
 from aiobt.web.coalesce import Hub
 from aiobt.web.sources import Sources
+
+from .test_localization_streams import cloud, estimate
 
 
 def _path(frame: str, points: list[tuple[float, float]]) -> Path:
@@ -34,17 +37,25 @@ async def test_local_plan_goes_to_the_page_and_an_empty_one_clears_it(local_bus:
     sources.close()
 
 
-async def test_a_local_plan_outside_the_map_frame_is_not_drawn_and_said_once(
-    local_bus: Bus, caplog: pytest.LogCaptureFixture
+@pytest.mark.parametrize(
+    ("stream", "message", "shown_as"),
+    [
+        ("local_plan", _path("odom", [(0.0, 0.0), (1.0, 0.0)]), "local_plan"),
+        ("particle_cloud", cloud("odom"), "particles"),
+        ("amcl_pose", estimate("odom"), "amcl_pose"),
+    ],
+)
+async def test_a_map_frame_stream_in_another_frame_is_not_drawn_and_said_once(
+    local_bus: Bus, caplog: pytest.LogCaptureFixture, stream: str, message: Msg, shown_as: str
 ) -> None:
     hub = Hub()
     sources = Sources(local_bus, hub)
     with caplog.at_level(logging.WARNING, logger="aiobt.web.sources"):
         for _ in range(3):
-            sources.raw.set("local_plan", _path("odom", [(0.0, 0.0), (1.0, 0.0)]))
+            sources.raw.set(stream, message)
             sources.flush()
-    assert "local_plan" not in hub.latest
-    assert caplog.text.count("local_plan in frame 'odom' not shown") == 1
+    assert shown_as not in hub.latest
+    assert caplog.text.count(f"{stream} in frame 'odom' not shown") == 1
     sources.close()
 
 
