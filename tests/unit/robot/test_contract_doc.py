@@ -20,6 +20,7 @@ import pytest
 from pydantic import BaseModel
 
 from aiobt.system.robot_flags import add_pose_timeout_argument
+from aiobt_services.controller import main as controller_main
 from aiobt_services.localization.odom_buffer import KEEP
 from aiobt_services.robot import convert
 from aiobt_services.robot import main as robot_main
@@ -244,4 +245,7 @@ def test_the_rates_the_timeout_and_the_limits_are_the_services_defaults() -> Non
     add_pose_timeout_argument(parser.add_argument_group())
     assert f"`--pose-timeout` ({parser.parse_args([]).pose_timeout:g} s" in text
     assert f"{KEEP} messages" in text
+    controller = argparse.ArgumentParser()
+    controller_main.add_arguments(controller)
+    assert f"the controller's `--rate` ({controller.parse_args([]).rate:g} Hz)" in rows["cmd_vel"]
     assert f"({LidarConfig().height:g} m up)" in text
