@@ -35,6 +35,7 @@ def test_the_demo_patrols_through_the_navigator_recovers_and_draws(tmp_path: Pat
     assert "  the robot is walled in by 2 boxes (in the planner's costmap)" in lines
     assert "  the boxes are gone" in lines
     assert done.stderr == ""  # no log line mixed into the demo's output
+    assert lines[-2].startswith("pose estimate off the truth by "), lines[-2]  # both tracks
     summary = lines[-1]
     assert summary.startswith("4 of 4 goals reached, ")
     picture = Path(summary.rsplit("picture: ", 1)[1])

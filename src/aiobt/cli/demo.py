@@ -138,6 +138,8 @@ async def demo(config: SystemConfig, out_dir: Path, out: TextIO) -> int:
     recoveries = sum(leg.recoveries for leg in record.legs)
     total = len(record.legs)
     recovered = plural(recoveries, "recovery")
+    if record.tracking.pairs:  # in the simulation: the estimate against the truth
+        out.write(f"{record.tracking.summary()}\n")
     out.write(f"{reached} of {total} goals reached, {recovered}; picture: {picture}\n")
     return 0 if reached == len(record.legs) else 1
 

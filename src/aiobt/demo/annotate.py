@@ -14,7 +14,7 @@ PLAN, TRAIL, GOAL, RECOVERY, OBSTACLE, START = (
 TRUTH = (0, 190, 200)  # the simulation's track, drawn wide under the estimate's
 WALL, UNKNOWN, COST = (0, 0, 0), (180, 180, 180), (120, 170, 255)
 _TITLE, _TEXT = ImageFont.load_default(size=20), ImageFont.load_default(size=14)
-HEADER = 62  # px above the map: title and summary
+HEADER = 80  # px above the map: title and summary (two lines)
 _ROW = 22  # px per legend row
 LEGEND: tuple[tuple[str, Colour, str], ...] = (
     ("line", PLAN, "planned path"),
@@ -39,7 +39,7 @@ def framed(image: Image.Image, title: str, summary: str) -> Image.Image:
     out.paste(image, (0, HEADER))
     draw = ImageDraw.Draw(out)
     draw.text((10, 8), title, fill=(0, 0, 0), font=_TITLE)
-    draw.text((10, 36), summary, fill=(40, 40, 40), font=_TEXT)
+    draw.multiline_text((10, 36), summary, fill=(40, 40, 40), font=_TEXT, spacing=4)
     top = HEADER + image.height + 8
     width = image.width // _PER_ROW
     for index, (kind, colour, text) in enumerate(LEGEND):

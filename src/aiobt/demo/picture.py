@@ -35,13 +35,15 @@ GOAL_TOLERANCE = 0.25  # m: the goal checker's xy_goal_tolerance (Nav2's default
 
 
 def summary(record: Record) -> str:
-    """``4 of 4 goals reached in 85.3 s of sim time, 1 recovery``."""
+    """``4 of 4 goals reached in 85.3 s of sim time, 1 recovery`` and, with the truth, a
+    second line: ``pose estimate off the truth by 1.2 cm RMS, 4.0 cm at worst``."""
     reached = sum(leg.reached for leg in record.legs)
     seconds = sum(leg.seconds for leg in record.legs)
     recoveries = sum(leg.recoveries for leg in record.legs)
+    tracking = record.tracking.summary()
     return (
         f"{reached} of {plural(len(record.legs), 'goal')} reached in {seconds:.1f} s of sim "
-        f"time, {plural(recoveries, 'recovery')}"
+        f"time, {plural(recoveries, 'recovery')}" + (f"\n{tracking}" if tracking else "")
     )
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from aiobt.demo.tracking import TrackingError
 from aiobt.msgs import OccupancyGrid, PoseStamped
 
 XY = tuple[float, float]
@@ -30,6 +31,7 @@ class Record:
     map: OccupancyGrid | None = None
     trajectory: list[XY] = field(default_factory=list)  # the estimate's: {ns}/pose
     truth: list[XY] = field(default_factory=list)  # the simulation's: {ns}/sim/pose
+    tracking: TrackingError = field(default_factory=TrackingError)
     legs: list[Leg] = field(default_factory=list)
     recoveries: list[XY] = field(default_factory=list)
     # boxes put in the robot's way: x, y, yaw, size along, size across
@@ -40,9 +42,11 @@ class Record:
 
     def on_pose(self, pose: PoseStamped) -> None:
         _extend(self.trajectory, pose)
+        self.tracking.on_estimate(pose.header.stamp, (pose.x, pose.y))
 
     def on_truth(self, pose: PoseStamped) -> None:
         _extend(self.truth, pose)
+        self.tracking.on_truth(pose.header.stamp, (pose.x, pose.y))
 
     @property
     def position(self) -> XY:

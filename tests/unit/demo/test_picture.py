@@ -31,6 +31,13 @@ def record() -> Record:
 
 def test_the_summary_counts_goals_time_and_recoveries_in_plain_words() -> None:
     assert summary(record()) == "1 of 2 goals reached in 25.5 s of sim time, 1 recovery"
+    with_truth = record()
+    with_truth.tracking.on_truth(1.0, (2.0, 2.0))
+    with_truth.tracking.on_estimate(1.0, (2.0, 2.02))
+    assert summary(with_truth) == (
+        "1 of 2 goals reached in 25.5 s of sim time, 1 recovery\n"
+        "pose estimate off the truth by 2.0 cm RMS, 2.0 cm at worst"
+    )
 
 
 def test_the_picture_frames_the_map_and_marks_start_and_goal_tolerance() -> None:
