@@ -94,6 +94,7 @@ def declared_by_the_service(monkeypatch: pytest.MonkeyPatch, *flags: str) -> dic
 
     monkeypatch.setattr(robot_main, "open_bus_unless_stopped", recording)
     monkeypatch.setattr(robot_main, "stop_on_signals", stopped)
+    monkeypatch.setattr(robot_main, "settle", lambda: None)  # no gc.freeze in pytest's process
     with Simulation(load_map(SMALL)) as sim:
         asyncio.run(robot_main.serve(robot_args("--stepped", *flags), sim))
     return bus.declared
