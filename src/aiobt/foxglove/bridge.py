@@ -4,7 +4,8 @@
 message, converted by :mod:`aiobt.foxglove.convert`, to its channel of
 :class:`~aiobt.foxglove.channels.Channels`. Whatever sinks the channels' context
 has (the WebSocket server, an MCAP file) get them. Goals a Foxglove client
-publishes arrive through :meth:`forward_goal` and go to ``{ns}/goal_pose``.
+publishes arrive through :meth:`forward_goal` and go to ``{ns}/goal_pose``; pose
+estimates (the 3D panel's tool) through :meth:`forward_initialpose` to ``{ns}/initialpose``.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ from typing import Any
 import foxglove
 from foxglove import messages as fm
 
-from aiobt.foxglove import convert
+from aiobt.foxglove import convert, inbound
 from aiobt.foxglove.channels import Channels
 from aiobt.foxglove.costmap import CostmapMirror
 from aiobt.foxglove.zones import zones_scene
@@ -71,8 +72,12 @@ class FoxgloveBridge:
         self.truth = truth
         # declared up front: a put right after a publisher's declaration may be lost
         self.goals: Publisher[PoseStamped] | None = None
+        self.initialposes: Publisher[PoseWithCovarianceStamped] | None = None
         if forwards_goals:
             self.goals = bus.publisher("goal_pose", PoseStamped, reliable=True)
+            self.initialposes = bus.publisher(
+                "initialpose", PoseWithCovarianceStamped, reliable=True
+            )
         self.costmap = CostmapMirror(costmap_period) if costmap_period > 0.0 else None
         self._pose: PoseStamped | None = None
         self._odom: Odometry | None = None
@@ -208,7 +213,7 @@ class FoxgloveBridge:
     def forward_goal(self, payload: bytes, topic: str) -> None:
         """A goal a Foxglove client published: on ``{ns}/goal_pose``, or a warning."""
         try:
-            goal = convert.goal_from_json(payload)
+            goal = inbound.goal_from_json(payload)
         except (MessageError, ValueError) as exc:
             self.note(f"goal on {topic} refused: {exc}", fm.LogLevel.Warning)
             return
@@ -218,3 +223,19 @@ class FoxgloveBridge:
         self.goals.put(goal)
         p = goal.pose.position
         self.note(f"goal from Foxglove: ({p.x:.2f}, {p.y:.2f}) in {goal.header.frame_id}")
+
+    def forward_initialpose(self, payload: bytes, topic: str) -> None:
+        """A pose estimate a Foxglove client published: on ``{ns}/initialpose`` (for the
+        localization, as RViz's "2D Pose Estimate"), or a warning."""
+        try:
+            estimate = inbound.initialpose_from_json(payload)
+        except (MessageError, ValueError) as exc:
+            self.note(f"initialpose on {topic} refused: {exc}", fm.LogLevel.Warning)
+            return
+        if self.initialposes is None:
+            self.note(f"initialpose on {topic} refused: this bridge only records",
+                      fm.LogLevel.Warning)  # fmt: skip
+            return
+        self.initialposes.put(estimate)
+        frame = estimate.header.frame_id
+        self.note(f"initialpose from Foxglove: ({estimate.x:.2f}, {estimate.y:.2f}) in {frame}")

@@ -39,6 +39,7 @@ from foxglove import channels as fc
 from aiobt.msgs import NavigateToPose
 
 GOAL_TOPIC = "/goal_pose"  # the client channel a Publish panel sends goals on
+INITIALPOSE_TOPIC = "/initialpose"  # the one the 3D panel's pose estimate tool sends on
 
 # JSON schemas: Foxglove's message path editor (plots, raw messages) offers the fields
 _FEEDBACK = {

@@ -7,7 +7,6 @@ Stamps are robot-clock seconds (``Header.stamp``) turned into Foxglove
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Any
 
@@ -25,7 +24,6 @@ from aiobt.msgs import (
     ParticleCloud,
     Path,
     PoseStamped,
-    decode,
 )
 from aiobt.msgs import Pose as AiobtPose
 from aiobt.msgs.route_graph import RouteGraph
@@ -239,27 +237,6 @@ def speed(msg: Odometry) -> dict[str, float]:
         "angular": msg.twist.angular.z,
         "speed": math.hypot(lin.x, lin.y),
     }
-
-
-def goal_from_json(payload: bytes) -> PoseStamped:
-    """A goal from a Foxglove client: aiobt's PoseStamped JSON (also its short form
-    ``{"x", "y", "yaw"}``), ROS's ``geometry_msgs/PoseStamped`` JSON (stamp as
-    ``{sec, nanosec}``) or Foxglove's ``PoseInFrame`` (``frame_id`` and ``pose``).
-    A bad payload is a :class:`~aiobt.msgs.MessageError` naming the field."""
-    try:
-        data = json.loads(payload)
-    except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise ValueError(f"goal is not JSON: {exc}") from None
-    if isinstance(data, dict) and "pose" in data and "header" not in data:
-        data = {"header": {"frame_id": data.get("frame_id") or "map"}, "pose": data["pose"]}
-    elif isinstance(data, dict) and isinstance(data.get("header"), dict):
-        header = dict(data["header"])
-        if isinstance(header.get("stamp"), dict):
-            header.pop("stamp")  # ROS stamp: the navigator stamps goals itself
-        header.setdefault("frame_id", "map")
-        header["frame_id"] = header["frame_id"] or "map"
-        data = {**data, "header": header}
-    return decode(PoseStamped, json.dumps(data), key="goal")
 
 
 def route_graph(msg: RouteGraph) -> fm.SceneUpdate:

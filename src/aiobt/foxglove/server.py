@@ -25,7 +25,7 @@ from foxglove.websocket import (
 )
 
 from aiobt.foxglove.bridge import DEFAULT_COSTMAP_PERIOD, DEFAULT_FOOTPRINT_RADIUS, FoxgloveBridge
-from aiobt.foxglove.channels import GOAL_TOPIC
+from aiobt.foxglove.channels import GOAL_TOPIC, INITIALPOSE_TOPIC
 from aiobt.foxglove.recording import open_mcap
 from aiobt.transport import Bus
 from aiobt.transport.announce import announce
@@ -58,20 +58,24 @@ def recording_path(path: Path, overwrite: bool) -> Path:
 
 
 class _GoalListener(ServerListener):
-    """Client channels on :data:`GOAL_TOPIC` -> ``bridge.forward_goal`` in the loop."""
+    """Client channels on :data:`GOAL_TOPIC` -> ``bridge.forward_goal`` and on
+    :data:`INITIALPOSE_TOPIC` -> ``bridge.forward_initialpose``, in the loop."""
 
     def __init__(self, bridge: FoxgloveBridge, loop: asyncio.AbstractEventLoop) -> None:
         self._bridge = bridge
         self._loop = loop
         self._topics: dict[tuple[int, int], str] = {}
         self._lock = threading.Lock()
+        self._forward = {
+            GOAL_TOPIC: bridge.forward_goal, INITIALPOSE_TOPIC: bridge.forward_initialpose,
+        }  # fmt: skip
 
     def on_client_advertise(self, client: Client, channel: ClientChannel) -> None:
         with self._lock:
             self._topics[(client.id, channel.id)] = channel.topic
-        if channel.topic != GOAL_TOPIC:
-            log.info("client %d advertised %s: only %s is forwarded", client.id,
-                     channel.topic, GOAL_TOPIC)  # fmt: skip
+        if channel.topic not in self._forward:
+            log.info("client %d advertised %s: only %s are forwarded", client.id,
+                     channel.topic, " and ".join(self._forward))  # fmt: skip
 
     def on_client_unadvertise(self, client: Client, client_channel_id: int) -> None:
         with self._lock:
@@ -80,8 +84,8 @@ class _GoalListener(ServerListener):
     def on_message_data(self, client: Client, client_channel_id: int, data: bytes) -> None:
         with self._lock:
             topic = self._topics.get((client.id, client_channel_id))
-        if topic == GOAL_TOPIC:
-            self._loop.call_soon_threadsafe(self._bridge.forward_goal, bytes(data), topic)
+        if topic is not None and (forward := self._forward.get(topic)) is not None:
+            self._loop.call_soon_threadsafe(forward, bytes(data), topic)
 
     def on_subscribe(self, client: Client, channel: ChannelView) -> None:
         log.debug("client %d subscribed to %s", client.id, channel.topic)

@@ -11,7 +11,7 @@ from foxglove import messages as fm
 from mcap.records import Schema
 from mcap_protobuf.decoder import DecoderFactory
 
-from aiobt.foxglove import convert
+from aiobt.foxglove import convert, inbound
 from aiobt.msgs import (
     BtNode,
     BtTransition,
@@ -146,16 +146,16 @@ def test_plan_and_goal_poses() -> None:
     ids=["aiobt-short", "ros-pose-stamped", "foxglove-pose-in-frame"],
 )
 def test_goal_from_json_forms(payload: bytes) -> None:
-    goal = convert.goal_from_json(payload)
+    goal = inbound.goal_from_json(payload)
     assert goal.header.frame_id == "map"
     assert (goal.pose.position.x, goal.pose.position.y) == (1.5, -0.5)
 
 
 def test_a_bad_goal_names_the_field() -> None:
     with pytest.raises(MessageError, match=r"pose\.position\.x"):
-        convert.goal_from_json(b'{"pose": {"position": {"x": "far"}}}')
+        inbound.goal_from_json(b'{"pose": {"position": {"x": "far"}}}')
     with pytest.raises(ValueError, match="not JSON"):
-        convert.goal_from_json(b"{nope")
+        inbound.goal_from_json(b"{nope")
 
 
 def test_transition_logs_name_nodes_of_the_same_run() -> None:

@@ -12,7 +12,7 @@ import pytest
 from aiobt.cli import foxglove as cli
 from aiobt.cli import up
 from aiobt.foxglove import LAYOUT
-from aiobt.foxglove.channels import GOAL_TOPIC, Channels
+from aiobt.foxglove.channels import GOAL_TOPIC, INITIALPOSE_TOPIC, Channels
 from aiobt.foxglove.server import recording_path
 from aiobt.system.config import ConfigError, SystemConfig
 from aiobt.system.foxglove import FoxgloveOptions, foxglove_command
@@ -80,3 +80,4 @@ def test_the_layout_uses_only_bridged_topics() -> None:
     assert panels["RosOut!aiobtlog"]["topicToRender"] in topics
     assert panels["Publish!aiobtgoal"]["topicName"] == GOAL_TOPIC
     assert panels["3D!aiobt"]["publish"]["poseTopic"] == GOAL_TOPIC
+    assert panels["3D!aiobt"]["publish"]["poseEstimateTopic"] == INITIALPOSE_TOPIC
