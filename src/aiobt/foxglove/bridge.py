@@ -12,7 +12,8 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import Any
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 import foxglove
 from foxglove import messages as fm
@@ -44,6 +45,7 @@ from aiobt.transport.topics import declare_subscription
 
 log = logging.getLogger("aiobt.foxglove.bridge")
 
+Forwarded = TypeVar("Forwarded", PoseStamped, PoseWithCovarianceStamped)
 DEFAULT_FOOTPRINT_RADIUS = 0.22  # m: the robot service's body
 DEFAULT_COSTMAP_PERIOD = 1.0  # s of robot time between costmap updates
 
@@ -212,30 +214,26 @@ class FoxgloveBridge:
     # -- Foxglove -> bus -----------------------------------------------------------------
     def forward_goal(self, payload: bytes, topic: str) -> None:
         """A goal a Foxglove client published: on ``{ns}/goal_pose``, or a warning."""
-        try:
-            goal = inbound.goal_from_json(payload)
-        except (MessageError, ValueError) as exc:
-            self.note(f"goal on {topic} refused: {exc}", fm.LogLevel.Warning)
-            return
-        if self.goals is None:
-            self.note(f"goal on {topic} refused: this bridge only records", fm.LogLevel.Warning)
-            return
-        self.goals.put(goal)
-        p = goal.pose.position
-        self.note(f"goal from Foxglove: ({p.x:.2f}, {p.y:.2f}) in {goal.header.frame_id}")
+        self._forward("goal", topic, payload, inbound.goal_from_json, self.goals)
 
     def forward_initialpose(self, payload: bytes, topic: str) -> None:
         """A pose estimate a Foxglove client published: on ``{ns}/initialpose`` (for the
         localization, as RViz's "2D Pose Estimate"), or a warning."""
+        self._forward(
+            "initialpose", topic, payload, inbound.initialpose_from_json, self.initialposes
+        )
+
+    def _forward(
+        self, what: str, topic: str, payload: bytes,
+        parse: Callable[[bytes], Forwarded], publisher: Publisher[Forwarded] | None,
+    ) -> None:  # fmt: skip
         try:
-            estimate = inbound.initialpose_from_json(payload)
+            msg = parse(payload)
         except (MessageError, ValueError) as exc:
-            self.note(f"initialpose on {topic} refused: {exc}", fm.LogLevel.Warning)
+            self.note(f"{what} on {topic} refused: {exc}", fm.LogLevel.Warning)
             return
-        if self.initialposes is None:
-            self.note(f"initialpose on {topic} refused: this bridge only records",
-                      fm.LogLevel.Warning)  # fmt: skip
+        if publisher is None:
+            self.note(f"{what} on {topic} refused: this bridge only records", fm.LogLevel.Warning)
             return
-        self.initialposes.put(estimate)
-        frame = estimate.header.frame_id
-        self.note(f"initialpose from Foxglove: ({estimate.x:.2f}, {estimate.y:.2f}) in {frame}")
+        publisher.put(msg)
+        self.note(f"{what} from Foxglove: ({msg.x:.2f}, {msg.y:.2f}) in {msg.header.frame_id}")
