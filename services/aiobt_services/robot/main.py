@@ -47,6 +47,7 @@ from .runner import Rates, SimRunner
 from .service import RobotService
 from .sim import Simulation
 from .snapshot import render_png
+from .target_service import add_target_arguments, wire_target
 from .worlds import world_path
 
 log = logging.getLogger("aiobt_services.robot.main")
@@ -71,6 +72,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "publishes {ns}/clock",
     )
     add_robot_arguments(parser)
+    add_target_arguments(parser)
 
 
 class BusOutputs:
@@ -132,6 +134,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             publish_pose=args.pose_source == "truth",
         )
         _wire(bus, service, localization_stand_in=args.pose_source == "truth")
+        wire_target(bus, sim, runner, args)
         settle()  # start-up's objects (the world's too) out of the collector's full passes
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -89,6 +90,7 @@ class Simulation:
         self._bumper = Bumper()
         self._clamp_logged = False
         self._empty_logged = False
+        self.movers: list[Callable[[], None]] = []  # called each step (e.g. target.py's box)
         try:
             self.check_free(start, self.config.robot.radius)
         except PoseError as exc:
@@ -152,6 +154,8 @@ class Simulation:
             (body_speed * math.cos(yaw), body_speed * math.sin(yaw), 0.0),
             (0.0, 0.0, angular),
         )
+        for mover in self.movers:
+            mover()
         self._move_dynamic_obstacles()
         self._physics.call("stepSimulation")
         self.time = round(self.time + dt, 9)
