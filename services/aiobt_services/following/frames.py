@@ -2,7 +2,7 @@
 
 :class:`RobotFrames` keeps a short history of the robot's pose per frame (``odom``
 from ``{odom_topic}``, ``map`` from ``{ns}/pose``, as the other services read them)
-and the measured turn rate. A pose given in one of those frames, or in the robot's
+and the newest measured turn rate. A pose given in one of those frames, or in the robot's
 own frame (``base_frame``, ``base_scan``: a tracker on the robot), is put in the
 fixed frame with the robot's poses at its stamp, within ``transform_tolerance``:
 what TF does for Nav2's server.
@@ -25,14 +25,13 @@ HISTORY = 2.0  # s of poses kept per frame
 class RobotFrames:
     """``add(frame, stamp, pose)`` as poses arrive; then look-ups and transforms."""
 
-    __slots__ = ("_history", "_turn_rates", "base_frame", "odom_duration", "tolerance")
+    __slots__ = ("_history", "base_frame", "tolerance", "turn_rate")
 
-    def __init__(self, base_frame: str, tolerance: float, odom_duration: float = 0.3) -> None:
+    def __init__(self, base_frame: str, tolerance: float) -> None:
         self.base_frame = base_frame
         self.tolerance = tolerance
-        self.odom_duration = odom_duration
         self._history: dict[str, deque[tuple[float, Pose2D]]] = {}
-        self._turn_rates: deque[tuple[float, float]] = deque()
+        self.turn_rate = 0.0  # the newest measured, rad/s
 
     def add(self, frame: str, stamp: float, pose: Pose2D) -> None:
         history = self._history.setdefault(frame, deque())
@@ -42,17 +41,9 @@ class RobotFrames:
         while history and history[0][0] < stamp - HISTORY:
             history.popleft()
 
-    def add_turn_rate(self, stamp: float, rate: float) -> None:
-        """The odometry's measured turn rate (Nav2's OdomSmoother over odom_duration)."""
-        rates = self._turn_rates
-        rates.append((stamp, rate))
-        while rates and rates[0][0] < stamp - self.odom_duration:
-            rates.popleft()
-
-    @property
-    def turn_rate(self) -> float:
-        rates = self._turn_rates
-        return sum(r for _, r in rates) / len(rates) if rates else 0.0
+    def add_turn_rate(self, rate: float) -> None:
+        """The odometry's measured turn rate (Nav2 turns from the raw twist)."""
+        self.turn_rate = rate
 
     def is_robot_frame(self, frame: str) -> bool:
         return frame == self.base_frame or frame in ROBOT_FRAMES

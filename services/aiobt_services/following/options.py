@@ -44,7 +44,7 @@ def add_following_arguments(group: argparse._ArgumentGroup) -> None:
         ("desired_distance", non_negative, "m kept from the object"),
         ("search_angle", non_negative, "rad either side when searching"),
         ("transform_tolerance", non_negative, "s between a detection and the robot pose"),
-        ("odom_duration", non_negative, "s the measured turn rate is averaged over"),
+        ("odom_duration", non_negative, "s (accepted as Nav2; the search reads the raw rate)"),
         ("filter_coef", non_negative, "low-pass weight of a new detection, 0: none"),
     ):
         add(f"--{name.replace('_', '-')}", type=kind, default=getattr(d, name),

@@ -40,7 +40,7 @@ class FollowingParams:
     search_angle: float = math.pi / 2  # rad either side of the heading when lost
     transform_tolerance: float = 0.1  # s between a detection and the robot pose used
     odom_topic: str = "odom"
-    odom_duration: float = 0.3  # s of odometry the measured turn rate is averaged over
+    odom_duration: float = 0.3  # Nav2's OdomSmoother window; its search turns from the raw rate
     filter_coef: float = 0.1
     controller: SmoothControlParams = field(default_factory=SmoothControlParams)
     rotate: RotateParams = field(default_factory=RotateParams)

@@ -47,8 +47,7 @@ class FollowingService:
     ) -> None:
         self.bus = bus
         self.params = params
-        self.frames = RobotFrames(params.base_frame, params.transform_tolerance,
-                                  params.odom_duration)  # fmt: skip
+        self.frames = RobotFrames(params.base_frame, params.transform_tolerance)
         self._cmd = bus.publisher(cmd_vel_topic, Twist, reliable=True)
         self._filtered = bus.publisher(FILTERED_TOPIC, PoseStamped)
         self.server = FollowingServer(params, self.frames, clock, self.detections,
@@ -66,7 +65,7 @@ class FollowingService:
         stamp = msg.header.stamp
         self.frames.add(msg.header.frame_id or "odom", stamp,
                         Pose2D(pose.position.x, pose.position.y, pose.yaw))  # fmt: skip
-        self.frames.add_turn_rate(stamp, msg.twist.angular.z)
+        self.frames.add_turn_rate(msg.twist.angular.z)
 
     def on_pose(self, msg: PoseStamped) -> None:
         self.frames.add(msg.header.frame_id or "map", msg.header.stamp, planar(msg).pose)

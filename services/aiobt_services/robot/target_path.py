@@ -16,7 +16,7 @@ from .mapfile import MapInfo
 FloatArray = npt.NDArray[np.float64]
 LOOP_POINTS = 180
 BUMPS = (2, 3, 4)  # the harmonics of the seeded bumps
-BUMP_SIZE = 0.06  # of each radius, per harmonic
+BUMP_SIZE = 0.04  # of each radius, per harmonic
 
 
 class PathError(ValueError):

@@ -9,7 +9,7 @@ from pydantic import Field
 from aiobt.msgs._base import Msg
 
 OFFICE_LOOP_CENTRE = (7.5, 13.6)  # the office world's open plan, round both pillars
-OFFICE_LOOP_RADII = (3.9, 1.8)
+OFFICE_LOOP_RADII = (3.6, 1.8)
 
 
 class StartTarget(Msg):
