@@ -5,7 +5,9 @@ Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), the trut
 ``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
 move,remove,list}``, ``{ns}/srv/reset_pose``,
-``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
+``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot``,
+``{ns}/srv/follow_target/{start,hide,stop}`` (the followed box, its detections on
+``{ns}/dynamic_pose``, its truth on ``{ns}/sim/target``) and, with
 ``--stepped``, ``{ns}/srv/step``; holds the liveliness token ``{ns}/nodes/robot``.
 See README.md next to this file for the message shapes.
 """
