@@ -21,6 +21,8 @@ since the last flush and hands it to the :class:`Hub`. Streams:
                ``compute_path_through_poses`` results)
 ``route``      the route server's latest dense path (``compute_route`` results)
 ``route_graph`` ``{ns}/route_graph`` (latched): the route server's graph
+``followed``   ``{ns}/filtered_dynamic_pose``: the object the following server
+               follows, put in ``map`` (:mod:`aiobt.web.followed`)
 ``feedback``   navigate_to_pose / navigate_through_poses feedback
 ``tree``       ``{ns}/bt/tree``; ``status`` from ``bt/transitions`` and
 ``nav``        ``bt/snapshot`` (the navigation's state, and the goal it
@@ -46,6 +48,7 @@ from aiobt.msgs import (
     NavigateThroughPoses,
     NavigateToPose,
     OccupancyGrid,
+    Odometry,
     Path,
     PoseStamped,
     Twist,
@@ -56,7 +59,7 @@ from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Subscription
 from aiobt.transport.topics import declare_subscription
-from aiobt.web import convert
+from aiobt.web import convert, followed
 from aiobt.web.coalesce import Hub, Latest
 from aiobt.web.tree import TreeStatus
 
@@ -90,6 +93,7 @@ class Sources:
         self._skipped_frames: set[str] = set()
         self._subs: list[Subscription[Any]] = []
         self._goal_pub = bus.publisher("goal_pose", PoseStamped, reliable=True)
+        self._odom = bus.latest("odom", Odometry)  # read only to place a followed object
 
     def attach(self) -> None:
         # the robot is drawn as its inscribed circle, the radius the costmap is inflated with
@@ -100,7 +104,7 @@ class Sources:
             ("bt/snapshot", BtSnapshot, False),
             ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
             ("collision_monitor/polygons", CollisionPolygons, True),
-            ("route_graph", RouteGraph, True),
+            ("route_graph", RouteGraph, True), (followed.TOPIC, PoseStamped, False),
         ]  # fmt: skip
         for name, model, latched in topics:
             sub = self.bus.subscribe(
@@ -163,6 +167,10 @@ class Sources:
         elif stream == "pose" and isinstance(message, PoseStamped):
             robot.pose = message
             self.hub.publish("pose", convert.pose_payload(message))
+        elif stream == followed.TOPIC and isinstance(message, PoseStamped):
+            where = followed.followed_in_map(message, robot.pose, self._odom.get())
+            if where is not None:
+                self.hub.publish("followed", followed.followed_payload(where, message.header.stamp))
         elif isinstance(message, LaserScan) and robot.pose is not None:
             self.hub.publish("scan", convert.scan_points(message, robot.pose))
         elif isinstance(message, Twist):

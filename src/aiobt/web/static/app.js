@@ -7,7 +7,7 @@ const state = {
   scaleBar: null, zones: [],
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
-  goalsSent: 0, goalReply: null, route: [], routeGraph: null,
+  goalsSent: 0, goalReply: null, route: [], routeGraph: null, followed: null,
 };
 window.aiobtState = state;
 
@@ -54,7 +54,7 @@ function receive(update) {
     canvas.dataset.robotX = update.pose.x; canvas.dataset.robotY = update.pose.y;
   }
   if ("route_graph" in update) state.routeGraph = update.route_graph;
-  for (const key of ["scan", "plan", "route", "local", "footprint", "zones"]) {
+  for (const key of ["scan", "plan", "route", "local", "footprint", "zones", "followed"]) {
     if (key in update) state[key] = update[key];
   }
   if ("map" in update) { state.map = update.map; layers.map = gridImage(update.map, mapColour); }
@@ -193,6 +193,7 @@ function draw() {
   polyline(state.local, "#00a86b", 3);
   polyline(state.localPlan, "#e6007a", 3);
   drawGoals();
+  drawFollowed();
   if (state.robot) arrow(state.robot, "#ff9800", state.footprint.radius);
   drawScaleBar();
 }
@@ -208,6 +209,13 @@ function drawGoals() {
     ctx.beginPath(); ctx.arc(cx, cy, 5, 0, 2 * Math.PI); ctx.stroke();
   }
   arrow(goals[goals.length - 1], colour, 0.15);
+}
+// the object the following server follows (its filtered pose), while it is fresh
+function drawFollowed() {
+  const f = state.followed;
+  if (!f || !state.robot || state.robot.stamp - f.stamp > 2.0) return;
+  const [cx, cy] = toCanvas(f.x, f.y); const half = 0.2 / state.map.resolution * scale;
+  ctx.strokeStyle = "#00838f"; ctx.lineWidth = 2.5; ctx.strokeRect(cx - half, cy - half, 2 * half, 2 * half);
 }
 // a bar of 1, 2 or 5 x 10^k metres, about a fifth of the map's width, bottom left
 function drawScaleBar() {
