@@ -22,6 +22,7 @@ topic                 schema                       from (under the namespace ``n
 /odom/speed           JSON                         ``{ns}/odom`` (speed, for the plot)
 /log                  foxglove.Log                 ``{ns}/bt/transitions`` + bridge lines
 /collision_monitor    foxglove.SceneUpdate         ``{ns}/collision_monitor/polygons``
+/followed             foxglove.PoseInFrame         ``{ns}/filtered_dynamic_pose`` (following)
 ====================  ===========================  =====================================
 """
 
@@ -72,6 +73,7 @@ class Channels:
     speed: foxglove.Channel
     log: fc.LogChannel
     zones: fc.SceneUpdateChannel
+    followed: fc.PoseInFrameChannel
 
     @classmethod
     def create(cls, context: foxglove.Context) -> Channels:
@@ -94,6 +96,7 @@ class Channels:
             speed=foxglove.Channel("/odom/speed", schema=_SPEED, context=c),
             log=fc.LogChannel("/log", context=c),
             zones=fc.SceneUpdateChannel("/collision_monitor", context=c),
+            followed=fc.PoseInFrameChannel("/followed", context=c),
         )
 
     def topics(self) -> set[str]:

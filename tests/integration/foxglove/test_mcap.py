@@ -27,8 +27,8 @@ GOAL = (1.0, 0.8, 0.0)  # small world: open floor from the start at the origin
 
 
 # channels of the services `aiobt up` leaves off by default (the safety chain's monitor, the
-# route server): this stack does not run them, so nothing is recorded on them
-OFF_BY_DEFAULT = {"/collision_monitor", "/route", "/route_graph"}
+# route server, the following server): this stack does not run them, so nothing is recorded on them
+OFF_BY_DEFAULT = {"/collision_monitor", "/route", "/route_graph", "/followed"}
 
 
 def every_topic() -> set[str]:
