@@ -9,11 +9,9 @@ from __future__ import annotations
 import asyncio
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 
 import pytest
 
-from aiobt.msgs import PoseStamped
 from aiobt.msgs.follow_target import (
     OFFICE_LOOP_CENTRE,
     OFFICE_LOOP_RADII,
@@ -22,13 +20,13 @@ from aiobt.msgs.follow_target import (
     TargetStarted,
 )
 from aiobt.msgs.remote_actions import FollowObject, FollowObjectError
-from aiobt.msgs.sim import Ack, BumperEvent
+from aiobt.msgs.sim import Ack
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
-from aiobt.transport.keys import SIM_POSE, sim_topic
 from aiobt_services.robot.target_path import seeded_loop
 
 from ..services import common, up
+from .truth import Watch
 
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]
@@ -37,37 +35,6 @@ DESIRED, BAND = 1.0, 0.3
 FOLLOWING = ["--search-by-rotating", "true", "--controller.v-linear-max", "0.5",
              "--controller.v-angular-max", "1.0"]  # fmt: skip
 RETRY, CONTROLLING = 4, 2
-
-
-@dataclass
-class Watch:
-    """The truth per stamp, the bumper, the goal's feedback; an event at a sim time."""
-
-    robot: dict[float, PoseStamped] = field(default_factory=dict)
-    box: dict[float, PoseStamped] = field(default_factory=dict)
-    bumps: list[BumperEvent] = field(default_factory=list)
-    states: list[tuple[float, int]] = field(default_factory=list)
-    now: float = 0.0
-    waiting: list[tuple[float, asyncio.Event]] = field(default_factory=list)
-
-    def on_box(self, msg: PoseStamped) -> None:
-        self.box[msg.header.stamp] = msg
-        self.now = msg.header.stamp
-        for at, event in self.waiting:
-            if self.now >= at:
-                event.set()
-
-    async def until(self, sim_time: float, wall: float) -> None:
-        event = asyncio.Event()
-        self.waiting.append((sim_time, event))
-        if self.now >= sim_time:
-            event.set()
-        async with asyncio.timeout(wall):
-            await event.wait()
-
-    def distances(self, t0: float, t1: float) -> list[tuple[float, float]]:
-        pairs = [(t, b, self.robot.get(t)) for t, b in sorted(self.box.items()) if t0 <= t <= t1]
-        return [(t, math.hypot(b.x - r.x, b.y - r.y)) for t, b, r in pairs if r is not None]
 
 
 async def start_stack(spawn: Spawn, bus: Bus, settings: BusSettings) -> None:
@@ -88,10 +55,7 @@ async def test_follows_a_walking_box_and_finds_it_again_after_it_hides(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
     await start_stack(spawn, bus, bus_settings)
-    watch = Watch()
-    bus.subscribe(SIM_POSE, PoseStamped, lambda m: watch.robot.__setitem__(m.header.stamp, m))
-    bus.subscribe(sim_topic("target"), PoseStamped, watch.on_box)
-    bus.subscribe("bumper", BumperEvent, watch.bumps.append)
+    watch = Watch.on(bus)
     started = await bus.call("follow_target/start", StartTarget(seed=SEED, hold=HOLD),
                              TargetStarted)  # fmt: skip
     assert started.ok, started.message
