@@ -51,17 +51,18 @@ def add_following_arguments(group: argparse._ArgumentGroup) -> None:
             help=f"{unit} (default: %(default)s)")  # fmt: skip
     add("--max-retries", type=int, default=d.max_retries, help="(default: %(default)s)")
     for name in ("skip_orientation", "search_by_rotating"):
-        add(f"--{name.replace('_', '-')}", type=flag, default=getattr(d, name),
+        add(f"--{name.replace('_', '-')}", type=flag, default=getattr(d, name), metavar="BOOL",
             help="true/false (default: %(default)s)")  # fmt: skip
     for name in ("base_frame", "fixed_frame", "odom_topic"):
         add(f"--{name.replace('_', '-')}", default=getattr(d, name), help="(default: %(default)s)")
     add("--controller.use-collision-detection", type=flag, default=False, dest="collision",
+        metavar="BOOL",
         help="must stay false: Nav2's following server refuses it")  # fmt: skip
     for cls in (SmoothControlParams, RotateParams):
         for f in fields(cls):
             nav2 = f.name.rstrip("_")
             add(f"--controller.{nav2.replace('_', '-')}", type=non_negative, default=f.default,
-                dest=f"controller.{nav2}", help="(default: %(default)s)")  # fmt: skip
+                dest=f"controller.{nav2}", metavar="X", help="(default: %(default)s)")  # fmt: skip
 
 
 def following_params(args: argparse.Namespace) -> FollowingParams:
