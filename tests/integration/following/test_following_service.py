@@ -91,6 +91,12 @@ async def test_follows_a_walking_box_and_finds_it_again_after_it_hides(
     assert result.num_retries == 1  # lost once, by the hide
     retry = next(i for i, (t, s) in enumerate(watch.states) if s == RETRY and t >= t_hide)
     assert any(s == CONTROLLING for _, s in watch.states[retry:])  # searched, then followed
+    found = next(t for t, s in watch.states[retry:] if s == CONTROLLING)
+    farthest = max(d for _, d in watch.distances(t_hide, math.inf))
+    print(
+        f"hidden at {t_hide:.1f} s: searching from {watch.states[retry][0] - t_hide:.1f} s, "
+        f"found again at {found - t_hide:.1f} s, at most {farthest:.2f} m away"
+    )
     after = watch.distances(t_hide + 12.0, math.inf)
     assert after
     assert all(abs(d - DESIRED) <= BAND for _, d in after)  # re-acquired and caught up
