@@ -59,6 +59,9 @@ class Tracking:
         if detected is None:
             raise FailedToDetect(f"no detection of the object on '{self.detections.topic}'")
         self.seen = True
+        if not (detected.pose.is_finite() and math.isfinite(detected.stamp)):
+            raise FailedToDetect(f"detection on '{self.detections.topic}' is not finite: "
+                                 f"{detected.pose} at {detected.stamp}")  # fmt: skip
         age = self.clock.now() - detected.stamp
         if age > self.params.detection_timeout:
             raise FailedToDetect(

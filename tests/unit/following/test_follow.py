@@ -119,3 +119,11 @@ async def test_bad_goals_fail_at_once_naming_what(
 
 def test_the_search_turns_left_first() -> None:
     assert math.pi / 2 == FollowingParams().search_angle
+
+
+async def test_a_detection_that_is_not_finite_is_never_driven_to() -> None:
+    world = Kinematic(lambda t: Pose2D(math.nan, 0.0, 0.0), FollowingParams())
+    result = await world.follow(pose_topic="dynamic_pose")
+    assert result.error_code == FollowObjectError.FAILED_TO_DETECT_OBJECT
+    assert "is not finite" in result.error_msg
+    assert all(c.is_finite() for c in world.commands)
