@@ -7,11 +7,14 @@ of sim time, then the box hides for 3 s. Measured on the simulation's truth
 from __future__ import annotations
 
 import asyncio
+import itertools
 import math
+import time
 from collections.abc import Callable, Sequence
 
 import pytest
 
+from aiobt.msgs import GoalState, Header, Odometry, PoseStamped, Twist
 from aiobt.msgs.follow_target import (
     OFFICE_LOOP_CENTRE,
     OFFICE_LOOP_RADII,
@@ -120,3 +123,47 @@ async def test_an_object_never_seen_fails_naming_it_and_the_server_runs_on(
         assert result.error_code == code, result
         assert words in result.error_msg
     assert server.popen.poll() is None
+
+
+async def test_a_cancelled_goal_stops_the_robot(spawn: Spawn, bus: Bus, bus_settings: BusSettings):
+    """A tracker and odometry from the test (the robot standing, the object 3 m ahead):
+    the server drives toward it; cancelled, it answers CANCELED and sends a stop."""
+    server = spawn(["-m", "aiobt_services.following", *common(bus_settings)])
+    await up(bus, "following", server)
+    commands: list[Twist] = []
+    driving, stopped = asyncio.Event(), asyncio.Event()
+
+    def on_command(cmd: Twist) -> None:
+        commands.append(cmd)
+        if cmd.linear.x > 0.1:
+            driving.set()
+        elif cmd == Twist():
+            stopped.set()
+
+    bus.subscribe("cmd_vel", Twist, on_command)
+    odom, seen = bus.publisher("odom", Odometry), bus.publisher("dynamic_pose", PoseStamped)
+
+    async def robot_and_tracker() -> None:
+        for tick in itertools.count():
+            now = time.monotonic()  # the server's wall clock (CLOCK_MONOTONIC, system-wide)
+            odom.put(Odometry(header=Header(stamp=now, frame_id="odom")))
+            if tick % 5 == 0:
+                seen.put(PoseStamped.from_xy_yaw(3.0, 0.0, 0.0, "base_link", now))
+            await asyncio.sleep(0.02)
+
+    feeding = asyncio.create_task(robot_and_tracker())
+    try:
+        client = bus.action_client(FollowObject.name, FollowObject)
+        goal = await client.send_goal(FollowObject.Goal(pose_topic="dynamic_pose"),
+                                      server_timeout=10.0)  # fmt: skip
+        async with asyncio.timeout(10.0):
+            await driving.wait()
+        stopped.clear()
+        result = await goal.cancel(timeout=5.0)
+    finally:
+        feeding.cancel()
+    assert result is not None
+    assert goal.status is GoalState.CANCELED
+    async with asyncio.timeout(5.0):
+        await stopped.wait()
+    assert commands[-1] == Twist()  # the stop is the last command
