@@ -5,11 +5,11 @@ Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), the trut
 ``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
 move,remove,list}``, ``{ns}/srv/reset_pose``,
-``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot``,
-``{ns}/srv/follow_target/{start,hide,stop}`` (the followed box, its detections on
-``{ns}/dynamic_pose``, its truth on ``{ns}/sim/target``) and, with
+``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
 ``--stepped``, ``{ns}/srv/step``; holds the liveliness token ``{ns}/nodes/robot``.
-See README.md next to this file for the message shapes.
+See README.md next to this file for the message shapes. With ``target_service``: the
+followed box (``{ns}/srv/follow_target/{start,hide,stop}``, its detections on
+``{ns}/dynamic_pose``, its truth on ``{ns}/sim/target``).
 """
 
 from __future__ import annotations
@@ -126,9 +126,10 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             return
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
+        targets = wire_target(bus, sim, args)  # the followed box (srv/follow_target/*)
         runner = SimRunner(
             sim,
-            BusOutputs(bus),
+            targets.tap(BusOutputs(bus)),
             speed=args.speed,
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
             command_wait=args.command_wait,
@@ -136,7 +137,6 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             publish_pose=args.pose_source == "truth",
         )
         _wire(bus, service, localization_stand_in=args.pose_source == "truth")
-        wire_target(bus, sim, runner, args)
         settle()  # start-up's objects (the world's too) out of the collector's full passes
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(

@@ -13,7 +13,6 @@ from __future__ import annotations
 import asyncio
 import logging
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -24,7 +23,7 @@ from aiobt.transport.keys import SIM_POSE
 
 from . import convert
 from .pacing import Pacer
-from .sim import Scan, Simulation
+from .sim import Simulation
 
 log = logging.getLogger("aiobt_services.robot.runner")
 
@@ -105,7 +104,6 @@ class SimRunner:
         self._clock_owed = False  # a clock stamp was due and is not out yet
         self._clock_sent = 0  # the step of the last one out
         self._clock_batch = 1  # steps a stamp due may wait (see :meth:`run`)
-        self.scan_observers: list[Callable[[Scan], None]] = []
 
     def tick(self) -> None:
         """One physics step, then every publication due at the new sim time."""
@@ -126,10 +124,7 @@ class SimRunner:
             if self._publish_pose:
                 self._outputs.publish("pose", convert.map_pose(sim))
         if "scan" in due:
-            scan = sim.scan()
-            self._outputs.publish("scan", convert.laser_scan(scan))
-            for observer in self.scan_observers:  # e.g. target.py's tracker, on this scan
-                observer(scan)
+            self._outputs.publish("scan", convert.laser_scan(sim.scan()))
         if "battery" in due:
             self._outputs.publish("battery", convert.battery_state(sim.battery, sim.time))
 

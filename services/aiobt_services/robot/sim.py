@@ -87,10 +87,10 @@ class Simulation:
         self._true = start
         self._loc_offset = Pose2D()
         self._obstacles: dict[str, _Obstacle] = {}
+        self.movers: list[Callable[[], None]] = []  # each step, first (target.py's box)
         self._bumper = Bumper()
         self._clamp_logged = False
         self._empty_logged = False
-        self.movers: list[Callable[[], None]] = []  # called each step (e.g. target.py's box)
         try:
             self.check_free(start, self.config.robot.radius)
         except PoseError as exc:
@@ -154,8 +154,6 @@ class Simulation:
             (body_speed * math.cos(yaw), body_speed * math.sin(yaw), 0.0),
             (0.0, 0.0, angular),
         )
-        for mover in self.movers:
-            mover()
         self._move_dynamic_obstacles()
         self._physics.call("stepSimulation")
         self.time = round(self.time + dt, 9)
@@ -269,6 +267,8 @@ class Simulation:
             raise ObstacleError(f"obstacle '{spec.id}' would overlap the robot")
 
     def _move_dynamic_obstacles(self) -> None:
+        for mover in self.movers:
+            mover()
         for obstacle in self._obstacles.values():
             if obstacle.spec.motion is not None:
                 pose = obstacle.spec.pose_at(self.time - obstacle.since)

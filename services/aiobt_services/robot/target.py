@@ -8,7 +8,8 @@ returns the simulation labels as the box's (as a labelled-point sensor does; onl
 beams that really hit it, with the lidar's noise and dropouts, none through a wall),
 the box's centre estimated from those points in the robot's frame; nothing when
 fewer than ``min_points`` beams hit it, while it hides, or as the tracker's own
-dropout. Its truth is only for ``{ns}/sim/target``.
+dropout. It reads the scan as published (``{ns}/scan``). Its truth is only for
+``{ns}/sim/target``.
 """
 
 from __future__ import annotations
@@ -19,10 +20,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from aiobt.geometry import Pose2D
+from aiobt.msgs import LaserScan
 
 from .lidar import Rectangles, rectangle_distances
 from .obstacles import ObstacleError, ObstacleSpec
-from .sim import Scan, Simulation
+from .sim import Simulation
 from .target_path import LoopPath
 
 LABEL_SLACK = 0.05  # m beyond 3 sigma of range noise a return still counts as the box's
@@ -78,21 +80,21 @@ class FollowTarget:
     def hidden(self) -> bool:
         return self.sim.time < self.hidden_until
 
-    def detect(self, scan: Scan) -> Pose2D | None:
+    def detect(self, scan: LaserScan) -> Pose2D | None:
         """The box's centre in the robot's frame from ``scan`` (taken this step)."""
         if self.hidden or self._rng.uniform() < self.tracker.dropout:
             return None
-        robot, box, cfg = self.sim.true_pose, self.pose, scan.config
+        robot, box = self.sim.true_pose, self.pose
+        ranges = np.asarray(scan.ranges, dtype=np.float64)
+        bearings = scan.angle_min + scan.angle_increment * np.arange(ranges.size)
+        ranges[(ranges < scan.range_min) | (ranges > scan.range_max)] = np.inf  # no return
         half = [0.5 * self.size]
         rect = Rectangles.from_centres([box.x], [box.y], half, half, box.yaw)
-        bearings = cfg.angles()
         headings = robot.yaw + bearings
         to_box = rectangle_distances(rect, robot.x, robot.y, np.cos(headings), np.sin(headings))
-        ranges = scan.ranges
         with np.errstate(invalid="ignore"):
-            labelled = np.isfinite(ranges) & (
-                np.abs(ranges - to_box) < 3.0 * cfg.noise + LABEL_SLACK
-            )
+            slack = 3.0 * self.sim.config.lidar.noise + LABEL_SLACK
+            labelled = np.isfinite(ranges) & (np.abs(ranges - to_box) < slack)
         if int(labelled.sum()) < self.tracker.min_points:
             return None
         r, a = ranges[labelled], bearings[labelled]

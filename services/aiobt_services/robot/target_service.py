@@ -7,16 +7,17 @@ from __future__ import annotations
 
 import argparse
 import logging
+from collections.abc import Callable
 
-from aiobt.msgs import Empty, PoseStamped
+from aiobt.msgs import Empty, LaserScan, Msg, PoseStamped
 from aiobt.msgs import sim as messages
 from aiobt.msgs.follow_target import HideTarget, StartTarget, TargetStarted
 from aiobt.transport import Bus
 from aiobt.transport.keys import sim_topic
 
 from .obstacles import ObstacleError
-from .runner import SimRunner
-from .sim import Scan, Simulation
+from .runner import Outputs
+from .sim import Simulation
 from .target import FollowTarget, TrackerConfig
 from .target_path import LoopPath, PathError, seeded_loop
 
@@ -24,6 +25,20 @@ log = logging.getLogger("aiobt_services.robot.target")
 TRUTH_TOPIC = sim_topic("target")
 TRACKER = TrackerConfig()
 CLEARANCE = 0.05  # m between the box and any wall along its path
+
+
+class ScanTap:
+    """The runner's outputs (an :class:`~.runner.Outputs`), and each scan to ``on_scan``:
+    the tracker reads the scan that is published, at its step."""
+
+    def __init__(self, outputs: Outputs, on_scan: Callable[[LaserScan], None]) -> None:
+        self._outputs = outputs
+        self._on_scan = on_scan
+
+    def publish(self, topic: str, msg: Msg) -> None:
+        self._outputs.publish(topic, msg)
+        if topic == "scan" and isinstance(msg, LaserScan):
+            self._on_scan(msg)
 
 
 class TargetService:
@@ -44,18 +59,22 @@ class TargetService:
         if self.target is not None:
             self.target.update()
 
-    def on_scan(self, scan: Scan) -> None:
+    def on_scan(self, scan: LaserScan) -> None:
         """The tracker's detection from this scan, and the truth at its time."""
-        target = self.target
+        target, stamp = self.target, scan.header.stamp
         if target is None:
             return
         truth = target.pose
-        self._truth.put(PoseStamped.from_xy_yaw(truth.x, truth.y, truth.yaw, "map", scan.time))
+        self._truth.put(PoseStamped.from_xy_yaw(truth.x, truth.y, truth.yaw, "map", stamp))
         seen = target.detect(scan)
         if seen is not None:
             self._detections.put(
-                PoseStamped.from_xy_yaw(seen.x, seen.y, seen.yaw, "base_link", scan.time)
+                PoseStamped.from_xy_yaw(seen.x, seen.y, seen.yaw, "base_link", stamp)
             )
+
+    def tap(self, outputs: Outputs) -> ScanTap:
+        """``outputs`` with each scan also handed to the tracker."""
+        return ScanTap(outputs, self.on_scan)
 
     def start(self, req: StartTarget) -> TargetStarted:
         try:
@@ -107,12 +126,12 @@ def add_target_arguments(parser: argparse.ArgumentParser) -> None:
         help="share of scans the tracker misses it in (default: %(default)s)")  # fmt: skip
 
 
-def wire_target(bus: Bus, sim: Simulation, runner: SimRunner, args: argparse.Namespace) -> None:
-    """The target's services on ``bus``, its tracker on ``runner``'s scans."""
+def wire_target(bus: Bus, sim: Simulation, args: argparse.Namespace) -> TargetService:
+    """The target's services on ``bus``; :meth:`TargetService.tap` feeds its tracker."""
     tracker = TrackerConfig(args.target_min_points, args.target_dropout)
     service = TargetService(sim, bus, args.target_topic, tracker)
-    runner.scan_observers.append(service.on_scan)
     if args.follow_target is not None:
         started = service.start(StartTarget(seed=args.follow_target))
         if not started.ok:
             log.error("--follow-target %d: %s", args.follow_target, started.message)
+    return service

@@ -14,6 +14,7 @@ from aiobt.msgs.remote_actions import FollowObject
 from aiobt_services.following.follow import FollowingServer
 from aiobt_services.following.frames import RobotFrames
 from aiobt_services.following.params import FollowingParams
+from aiobt_services.robot.convert import laser_scan
 from aiobt_services.robot.sim import Simulation
 from aiobt_services.robot.target import FollowTarget
 
@@ -63,7 +64,7 @@ class SteppedWorld:
             self.frames.add("odom", sim.time, sim.odometry.pose)
             self.frames.add_turn_rate(sim.odometry.angular)
         if sim.steps % SCAN_EVERY == 0 and self.target is not None:
-            seen = self.target.detect(sim.scan())
+            seen = self.target.detect(laser_scan(sim.scan()))
             if seen is not None:
                 self.detection = StampedPose(seen, sim.time, "base_link")
             robot, box = sim.true_pose, self.target.pose

@@ -9,6 +9,7 @@ import pytest
 
 from aiobt.geometry import Pose2D
 from aiobt.msgs.follow_target import OFFICE_LOOP_CENTRE, OFFICE_LOOP_RADII
+from aiobt_services.robot.convert import laser_scan
 from aiobt_services.robot.mapfile import MapInfo, load_map
 from aiobt_services.robot.sensors import LidarConfig
 from aiobt_services.robot.sim import SimConfig, Simulation
@@ -74,26 +75,26 @@ def tracker_world(robot: tuple[float, float, float]) -> tuple[Simulation, Follow
 def test_the_tracker_sees_the_box_in_the_robot_frame_near_its_truth() -> None:
     sim, box = tracker_world((3.0, 13.5, 0.3))
     with sim:
-        seen = box.detect(sim.scan())
+        seen = box.detect(laser_scan(sim.scan()))
         assert seen is not None
         found = sim.true_pose.compose(seen)
         assert math.hypot(found.x - 5.0, found.y - 13.0) < 0.08
         box.hide(1.0)
-        assert box.detect(sim.scan()) is None
+        assert box.detect(laser_scan(sim.scan())) is None
         sim.run_for(1.0)
-        assert box.detect(sim.scan()) is not None
+        assert box.detect(laser_scan(sim.scan())) is not None
 
 
 def test_the_tracker_does_not_see_through_a_wall() -> None:
     sim, box = tracker_world((5.0, 9.75, 0.0))  # in the corridor, the box 3.25 m north
     with sim:
-        assert box.detect(sim.scan()) is None
+        assert box.detect(laser_scan(sim.scan())) is None
 
 
 def test_the_trackers_dropout_misses_about_its_share() -> None:
     sim, box = tracker_world((3.0, 13.5, 0.0))
     box.tracker = TrackerConfig(dropout=0.3)
     with sim:
-        scan = sim.scan()
+        scan = laser_scan(sim.scan())
         missed = sum(box.detect(scan) is None for _ in range(400))
     assert 80 < missed < 160

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from aiobt.msgs import Empty, PoseStamped
+from aiobt.msgs import Empty, Msg, PoseStamped
 from aiobt.msgs.follow_target import HideTarget, StartTarget, TargetStarted
 from aiobt.msgs.sim import Ack
 from aiobt.transport import Bus
@@ -18,8 +18,13 @@ from aiobt_services.robot.worlds import world_path
 
 
 class Sink:
-    def publish(self, topic: str, msg: object) -> None:
-        pass
+    """The runner's outputs: the topics published, in order."""
+
+    def __init__(self) -> None:
+        self.topics: list[str] = []
+
+    def publish(self, topic: str, msg: Msg) -> None:
+        self.topics.append(topic)
 
 
 def flags(*argv: str) -> argparse.Namespace:
@@ -36,8 +41,9 @@ async def test_start_hide_stop_and_what_each_scan_publishes(local_bus: Bus) -> N
     local_bus.subscribe("dynamic_pose", PoseStamped, seen.append)
     local_bus.subscribe("sim/target", PoseStamped, truth.append)
     with Simulation(world) as sim:
-        runner = SimRunner(sim, Sink())
-        wire_target(local_bus, sim, runner, flags("--target-dropout", "0"))
+        sink = Sink()
+        targets = wire_target(local_bus, sim, flags("--target-dropout", "0"))
+        runner = SimRunner(sim, targets.tap(sink))
         wall = StartTarget(waypoints=[(2.0, 9.75), (6.0, 9.75), (6.0, 13.0)])
         refused = await local_bus.call("follow_target/start", wall, TargetStarted)
         assert not refused.ok
@@ -53,6 +59,7 @@ async def test_start_hide_stop_and_what_each_scan_publishes(local_bus: Bus) -> N
         assert "target" not in sim.obstacles
         again = await local_bus.call("follow_target/stop", Empty(), Ack)
         assert not again.ok
+    assert sink.topics.count("scan") == 14  # every output still goes out
     assert [m.header.stamp for m in truth][:3] == [0.1, 0.2, 0.3]
     assert {m.header.frame_id for m in seen} == {"base_link"}
     assert all(m.header.stamp <= 1.0 for m in seen)  # none while hidden (1.0 .. 1.5 s)
