@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import bisect
 from collections import deque
+from collections.abc import Callable
 
 from aiobt.geometry import Pose2D
 from aiobt.geometry.pose_filter import StampedPose
@@ -25,11 +26,14 @@ HISTORY = 2.0  # s of poses kept per frame
 class RobotFrames:
     """``add(frame, stamp, pose)`` as poses arrive; then look-ups and transforms."""
 
-    __slots__ = ("_history", "base_frame", "tolerance", "turn_rate")
+    __slots__ = ("_history", "base_frame", "refresh", "tolerance", "turn_rate")
 
-    def __init__(self, base_frame: str, tolerance: float) -> None:
+    def __init__(
+        self, base_frame: str, tolerance: float, refresh: Callable[[], None] = lambda: None
+    ) -> None:
         self.base_frame = base_frame
         self.tolerance = tolerance
+        self.refresh = refresh  # reads the poses that came meanwhile, before each look-up
         self._history: dict[str, deque[tuple[float, Pose2D]]] = {}
         self.turn_rate = 0.0  # the newest measured, rad/s
 
@@ -51,6 +55,7 @@ class RobotFrames:
     def robot_in(self, frame: str, stamp: float | None = None) -> Pose2D:
         """The robot's pose in ``frame`` at ``stamp`` (None: the newest); TransformError
         when there is none within ``transform_tolerance``."""
+        self.refresh()
         history = self._history.get(frame)
         if not history:
             known = ", ".join(sorted(self._history)) or "none yet"

@@ -80,9 +80,11 @@ async def test_follows_a_walking_box_and_finds_it_again_after_it_hides(
     result = await goal.result(timeout=90.0)
     listening.cancel()
 
-    assert result.error_code == 0, result.error_msg
+    assert result.error_code == 0, result
     run = watch.distances(t0, t0 + 60.0)
-    assert len(run) > 500  # the truth at 10 Hz of sim time over the minute
+    # the truth at 10 Hz of sim time over the minute (best effort: a loaded machine drops some)
+    assert len(run) > 300, len(run)
+    assert run[-1][0] - run[0][0] > 58.0, (run[0], run[-1])
     inside = sum(abs(d - DESIRED) <= BAND for _, d in run) / len(run)
     print(
         f"within {BAND} m of {DESIRED} m: {inside:.1%} of {len(run)} samples; "
