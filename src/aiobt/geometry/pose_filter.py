@@ -1,5 +1,5 @@
 """Nav2's ``opennav_docking::PoseFilter``: a first-order low-pass on a stream of
-detected poses (the docking and following servers smooth their detections with it).
+detected poses (Nav2's docking and following servers smooth their detections with it).
 
 Each update moves the estimate ``coef`` of the way to the measurement (the heading
 along the shorter arc, as Nav2's quaternion slerp does in the plane); a measurement

@@ -1,5 +1,5 @@
 """Nav2's smooth control law (``nav2_graceful_controller::SmoothControlLaw``), the one
-the docking and following servers drive with: a unicycle command that steers onto a
+Nav2's docking and following servers drive with: a unicycle command that steers onto a
 target pose along a smooth spiral (Park and Kuipers' graceful law), slowing with the
 path's curvature and near the target.
 
