@@ -7,7 +7,9 @@ Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), the trut
 move,remove,list}``, ``{ns}/srv/reset_pose``,
 ``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
 ``--stepped``, ``{ns}/srv/step``; holds the liveliness token ``{ns}/nodes/robot``.
-See README.md next to this file for the message shapes.
+See README.md next to this file for the message shapes. With ``target_service``: the
+followed box (``{ns}/srv/follow_target/{start,hide,stop}``, its detections on
+``{ns}/dynamic_pose``, its truth on ``{ns}/sim/target``).
 """
 
 from __future__ import annotations
@@ -47,6 +49,7 @@ from .runner import Rates, SimRunner
 from .service import RobotService
 from .sim import Simulation
 from .snapshot import render_png
+from .target_service import add_target_arguments, wire_target
 from .worlds import world_path
 
 log = logging.getLogger("aiobt_services.robot.main")
@@ -71,6 +74,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "publishes {ns}/clock",
     )
     add_robot_arguments(parser)
+    add_target_arguments(parser)
 
 
 class BusOutputs:
@@ -124,9 +128,10 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             return
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
+        targets = wire_target(bus, sim, args)  # the followed box (srv/follow_target/*)
         runner = SimRunner(
             sim,
-            BusOutputs(bus, pose=args.pose_source == "truth"),
+            targets.tap(BusOutputs(bus, pose=args.pose_source == "truth")),
             speed=args.speed,
             rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
             command_wait=args.command_wait,

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -86,6 +87,7 @@ class Simulation:
         self._true = start
         self._loc_offset = Pose2D()
         self._obstacles: dict[str, _Obstacle] = {}
+        self.movers: list[Callable[[], None]] = []  # each step, first (target.py's box)
         self._bumper = Bumper()
         self._clamp_logged = False
         self._empty_logged = False
@@ -265,6 +267,8 @@ class Simulation:
             raise ObstacleError(f"obstacle '{spec.id}' would overlap the robot")
 
     def _move_dynamic_obstacles(self) -> None:
+        for mover in self.movers:
+            mover()
         for obstacle in self._obstacles.values():
             if obstacle.spec.motion is not None:
                 pose = obstacle.spec.pose_at(self.time - obstacle.since)

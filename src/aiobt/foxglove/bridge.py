@@ -112,6 +112,7 @@ class FoxgloveBridge:
         add(self._watch(routes, ComputeRoute.result_type(), self.on_route))
         add(bus.subscribe("route_graph", RouteGraph, self.on_route_graph, latched=True))
         add(self._watch(feedback, NavigateToPose.feedback_type(), self.on_feedback))
+        add(bus.subscribe("filtered_dynamic_pose", PoseStamped, self.on_followed, queue_size=2))
         self.note(f"bridging namespace '{bus.namespace}'")
 
     def _watch(self, key: str, model: Any, callback: Any) -> Subscription[Any]:
@@ -184,6 +185,10 @@ class FoxgloveBridge:
 
     def on_route_graph(self, msg: RouteGraph) -> None:
         self.ch.route_graph.log(convert.route_graph(msg))
+
+    def on_followed(self, msg: PoseStamped) -> None:
+        """The object the following server follows, in its fixed frame (placed by /tf)."""
+        self.ch.followed.log(convert.pose_in_frame(msg))
 
     def on_local_plan(self, msg: Path) -> None:
         """The controller's local plan; an empty one (its goal ended) clears the panel's."""

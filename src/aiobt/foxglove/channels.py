@@ -26,6 +26,7 @@ topic                 schema                       from (under the namespace ``n
 /amcl_pose            foxglove.PoseInFrame         ``{ns}/amcl_pose`` (localization, latched)
 /sim/pose             foxglove.PoseInFrame         ``{ns}/sim/pose``: the simulation's truth
                                                    (not in the navigator's recordings)
+/followed             foxglove.PoseInFrame         ``{ns}/filtered_dynamic_pose`` (following)
 ====================  ===========================  =====================================
 """
 
@@ -80,6 +81,7 @@ class Channels:
     particles: fc.PosesInFrameChannel
     amcl_pose: fc.PoseInFrameChannel
     truth: fc.PoseInFrameChannel
+    followed: fc.PoseInFrameChannel
 
     @classmethod
     def create(cls, context: foxglove.Context) -> Channels:
@@ -105,6 +107,7 @@ class Channels:
             particles=fc.PosesInFrameChannel("/particle_cloud", context=c),
             amcl_pose=fc.PoseInFrameChannel("/amcl_pose", context=c),
             truth=fc.PoseInFrameChannel("/sim/pose", context=c),
+            followed=fc.PoseInFrameChannel("/followed", context=c),
         )
 
     def topics(self) -> set[str]:

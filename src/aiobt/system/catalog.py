@@ -47,6 +47,11 @@ SERVICES: tuple[ServiceSpec, ...] = (
         enabled=False,
         world_flag="--graph-filepath",
     ),
+    ServiceSpec(
+        "following",
+        "the following server: Nav2's nav2_following (follow a detected object)",
+        enabled=False,
+    ),
 )
 """In start order: the robot first (the map and the clock), the navigator last."""
 

@@ -26,6 +26,8 @@ since the last flush and hands it to the :class:`Hub`. Streams:
                ``compute_path_through_poses`` results)
 ``route``      the route server's latest dense path (``compute_route`` results)
 ``route_graph`` ``{ns}/route_graph`` (latched): the route server's graph
+``followed``   ``{ns}/filtered_dynamic_pose``: the object the following server
+               follows, put in ``map`` (:mod:`aiobt.web.followed`)
 ``feedback``   navigate_to_pose / navigate_through_poses feedback
 ``tree``       ``{ns}/bt/tree``; ``status`` from ``bt/transitions`` and
 ``nav``        ``bt/snapshot`` (the navigation's state, and the goal it
@@ -51,6 +53,7 @@ from aiobt.msgs import (
     NavigateThroughPoses,
     NavigateToPose,
     OccupancyGrid,
+    Odometry,
     ParticleCloud,
     Path,
     PoseStamped,
@@ -64,7 +67,7 @@ from aiobt.msgs.safety import CollisionPolygons
 from aiobt.transport import Bus, Subscription
 from aiobt.transport.keys import SIM_POSE
 from aiobt.transport.topics import declare_subscription
-from aiobt.web import convert
+from aiobt.web import convert, followed
 from aiobt.web.coalesce import Hub, Latest
 from aiobt.web.tree import TreeStatus
 
@@ -98,6 +101,7 @@ class Sources:
         self._skipped_frames: set[tuple[str, str]] = set()
         self._subs: list[Subscription[Any]] = []
         self._goal_pub = bus.publisher("goal_pose", PoseStamped, reliable=True)
+        self._odom = bus.latest("odom", Odometry)  # read only to place a followed object
 
     def attach(self) -> None:
         # the robot is drawn as its inscribed circle, the radius the costmap is inflated with
@@ -111,6 +115,7 @@ class Sources:
             ("route_graph", RouteGraph, True),
             (SIM_POSE, PoseStamped, False), ("particle_cloud", ParticleCloud, False),
             ("amcl_pose", PoseWithCovarianceStamped, True),
+            (followed.TOPIC, PoseStamped, False),
         ]  # fmt: skip
         for name, model, latched in topics:
             sub = self.bus.subscribe(
@@ -181,6 +186,10 @@ class Sources:
         elif isinstance(message, PoseWithCovarianceStamped):
             if self._in_map_frame("amcl_pose", message.header.frame_id):
                 self.hub.publish("amcl_pose", convert.estimate_payload(message))
+        elif stream == followed.TOPIC and isinstance(message, PoseStamped):
+            where = followed.followed_in_map(message, robot.pose, self._odom.get())
+            if where is not None:
+                self.hub.publish("followed", followed.followed_payload(where, message.header.stamp))
         elif isinstance(message, LaserScan) and robot.pose is not None:
             self.hub.publish("scan", convert.scan_points(message, robot.pose))
         elif isinstance(message, Twist):

@@ -7,7 +7,7 @@ const state = {
   scaleBar: null, zones: [],
   localPlan: [], localPlanUpdates: 0, localPlanMax: 0, localCostmap: null,
   footprint: { radius: 0.22 }, feedback: null, nav: null, tree: null, status: null,
-  goalsSent: 0, goalReply: null, route: [], routeGraph: null,
+  goalsSent: 0, goalReply: null, route: [], routeGraph: null, followed: null,
   particles: [], truth: null, amclPose: null, drawn: { particles: 0, truth: 0 }, truthError: "",
 };
 window.aiobtState = state;
@@ -58,7 +58,7 @@ function receive(update) {
   if ("particles" in update) state.particles = update.particles;
   if ("amcl_pose" in update) state.amclPose = update.amcl_pose;
   if ("truth" in update) state.truth = update.truth;
-  for (const key of ["scan", "plan", "route", "local", "footprint", "zones"]) {
+  for (const key of ["scan", "plan", "route", "local", "footprint", "zones", "followed"]) {
     if (key in update) state[key] = update[key];
   }
   if ("map" in update) { state.map = update.map; layers.map = gridImage(update.map, mapColour); }
@@ -201,6 +201,7 @@ function draw() {
     drawParticles(state.particles);
     if (state.amclPose) drawEllipse(state.amclPose);
   }
+  drawFollowed();
   if (state.robot) arrow(state.robot, "#ff9800", state.footprint.radius);
   if (state.truth) drawTruth(state.truth);
   drawScaleBar();
@@ -217,6 +218,13 @@ function drawGoals() {
     ctx.beginPath(); ctx.arc(cx, cy, 5, 0, 2 * Math.PI); ctx.stroke();
   }
   arrow(goals[goals.length - 1], colour, 0.15);
+}
+// the object the following server follows (its filtered pose), while it is fresh
+function drawFollowed() {
+  const f = state.followed;
+  if (!f || !state.robot || state.robot.stamp - f.stamp > 2.0) return;
+  const [cx, cy] = toCanvas(f.x, f.y); const half = 0.2 / state.map.resolution * scale;
+  ctx.strokeStyle = "#00838f"; ctx.lineWidth = 2.5; ctx.strokeRect(cx - half, cy - half, 2 * half, 2 * half);
 }
 // a bar of 1, 2 or 5 x 10^k metres, about a fifth of the map's width, bottom left
 function drawScaleBar() {
