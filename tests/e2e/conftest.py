@@ -8,8 +8,9 @@
 - ``bus``: a client of the stack's router in its namespace; ``track`` (the robot's
   pose), ``goals`` (every server's goal states and last result codes), ``tree`` (the
   navigator's tree transitions) and ``world`` (obstacles, resets, navigation goals).
-- ``AIOBT_E2E_SAFETY_CHAIN=1``: the velocity smoother and the collision monitor run
-  between the controller/behaviors (on ``cmd_vel_nav``) and the base.
+- The velocity smoother and the collision monitor run between the controller/behaviors
+  (on ``cmd_vel_nav``) and the base, as ``aiobt up`` runs them by default;
+  ``AIOBT_E2E_SAFETY_CHAIN=0`` leaves them out.
 
 Readiness is liveliness tokens ({ns}/nodes/<service>) and the navigator's action
 servers, never a fixed sleep; every wait is bounded; processes are killed by PID;
@@ -34,7 +35,7 @@ from .world import ACTIONS, NAVIGATORS, World
 __all__ = ["pytest_runtest_makereport"]
 
 SPEED = float(os.environ.get("AIOBT_E2E_SPEED", "4"))
-SAFETY_CHAIN = os.environ.get("AIOBT_E2E_SAFETY_CHAIN", "") == "1"  # smoother + monitor in
+SAFETY_CHAIN = os.environ.get("AIOBT_E2E_SAFETY_CHAIN", "1") != "0"  # smoother + monitor in
 READY_TIMEOUT = 90.0  # wall s for five Python services to import and connect on 2 loaded cores
 
 

@@ -31,7 +31,7 @@ from aiobt_services.robot.worlds import WORLDS_DIR
 from aiobt_services.route.geojson import load_graph
 from aiobt_services.route.graphs import OFFICE
 
-from .conftest import SPEED
+from .conftest import SAFETY_CHAIN, SPEED
 from .world import ACTIONS, START, World
 
 pytestmark = [pytest.mark.e2e, pytest.mark.integration]
@@ -50,6 +50,7 @@ OFF_NODE = 0.9  # m from a node, for a goal
 @pytest.fixture(scope="module")
 def _module_stack() -> Iterator[NavStack]:
     config = StackConfig(world="office", speed=SPEED, seed=7, services=(*SERVICES, "route"),
+                         safety_chain=SAFETY_CHAIN,
                          extra={"route": ["--graph-filepath", "office", "--sim-time"]})  # fmt: skip
     with running_stack(config) as stack:
         yield stack

@@ -46,7 +46,8 @@ HOSTS = {
     "robot": ("robot", "controller", "behaviors"),
     "base": ("planner", "navigator"),
 }
-# the services `aiobt up` runs by default (the safety chain and route stay off in a share)
+# the services `aiobt up` runs by default but the safety chain (off in a share, as in
+# deploy/*-host.yaml; route stays off too)
 SERVICES = tuple(
     spec.name for spec in catalog.SERVICES if spec.enabled and spec.name not in catalog.SAFETY_CHAIN
 )
@@ -94,7 +95,7 @@ def host_config(
     if lease_ms != DEFAULT_LEASE_MS:
         for name in HOSTS[host]:
             services[name]["args"] = ["--lease-ms", str(lease_ms)]
-    return {"namespace": NAMESPACE, "router": router, "services": services}
+    return {"namespace": NAMESPACE, "safety_chain": False, "router": router, "services": services}
 
 
 @dataclass

@@ -63,7 +63,8 @@ async def serve(args: argparse.Namespace, params: MonitorParams) -> None:
 
     names = ", ".join(f"{z.name} ({z.action_type})" for z in params.polygons)
     detail = f": {params.cmd_vel_in_topic} -> {params.cmd_vel_out_topic}, polygons {names}"
-    await serve_on_clock(args, "collision_monitor", start, detail, log)
+    # on sim time, the robot's time from its odometry (read anyway): no clock as well
+    await serve_on_clock(args, "collision_monitor", start, detail, log, odometry=params.odom_topic)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -68,6 +68,11 @@ class CollisionMonitor:
         initial = self._previous.velocity == (-1.0, -1.0, -1.0)
         return Action("none", "", STOP) if initial else self._previous
 
+    def stale_at(self) -> float:
+        """When the first enabled source goes stale unless new data comes (inf: never)."""
+        sources = (s for s in self.sources.values() if s.params.enabled)
+        return min((s.stale_at(self.robot_time) for s in sources), default=math.inf)
+
     def toggle(self, enable: bool) -> str:
         """Nav2's ``~/toggle``: the reply's message."""
         self.enabled = enable

@@ -4,6 +4,14 @@ one decision per command (as Nav2's); sources subscribed as configured (the lida
 kept undecoded as it comes (50 Hz: no wake-up of the loop each) and read when a scan
 or a command arrives.
 
+On sim time the monitor's clock is the robot's time as its odometry stamps it
+(:func:`aiobt.system.service.make_clock`), not a second subscription to the 100 Hz
+``{ns}/clock``: the
+same time base as Nav2's (``use_sim_time``), at a third of the wake-ups of Zenoh's
+threads (bench/history/safety.md). Beside Nav2's decision per command, a source
+going stale between two commands stops a moving base at once (:meth:`watch`), so
+the stop does not wait for the controller's next command.
+
 Publishes, latched, its state on ``{ns}/collision_monitor/state`` (which polygon acts
 and why, on every change) and its polygons on ``{ns}/collision_monitor/polygons`` (the
 acting one marked); serves ``{ns}/srv/collision_monitor/toggle`` (Nav2's ``Toggle``,
@@ -12,6 +20,7 @@ what the ``ToggleCollisionMonitor`` node calls).
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import math
 
@@ -27,13 +36,15 @@ from aiobt.msgs.safety import (
 from aiobt.transport import Bus, Latest, Publisher
 from aiobt.transport.simtime import SimTime
 
-from .monitor import Action, CollisionMonitor
+from .monitor import STOP, Action, CollisionMonitor
 from .sources import Source, cloud_points, scan_points
+from .zones import Vel
 
 log = logging.getLogger("aiobt_services.collision_monitor.service")
 POLYGONS_TOPIC = "collision_monitor/polygons"
 TOGGLE_SERVICE = "collision_monitor/toggle"
 ODOM_KEPT = 32  # odometry messages kept between reads (50 Hz; reads at 10 Hz or more)
+IDLE_CHECK = 1.0  # robot s between looks for data to watch when none goes stale
 
 
 class MonitorService:
@@ -50,6 +61,10 @@ class MonitorService:
         self._shapes: tuple[int, ...] = ()  # the zones' shapes last published
         self._odom: Latest[Odometry] | None = None
         self._odom_fed = -math.inf  # the stamp of the newest odometry in the history
+        self._command: Vel = STOP  # the last command in
+        self._task: asyncio.Task[None] | None = None
+        timeouts = [s.source_timeout for s in monitor.params.sources if s.source_timeout > 0.0]
+        self._idle_check = min([IDLE_CHECK, *timeouts])  # for data to come
 
     def start(self) -> None:
         if isinstance(self.clock, SimTime):
@@ -65,6 +80,12 @@ class MonitorService:
         self.bus.subscribe(p.cmd_vel_in_topic, Twist, self.on_command, queue_size=1)
         self.bus.serve(TOGGLE_SERVICE, Toggle.Request, Toggle.Response, self.on_toggle)
         self._report(self.monitor.last, force=True)
+        self._task = asyncio.create_task(self.watch(), name="collision_monitor.watch")
+
+    async def stop(self) -> None:
+        if self._task is not None:
+            self._task.cancel()
+            await asyncio.gather(self._task, return_exceptions=True)
 
     def _subscribe(self, source: Source) -> None:
         topic = source.params.topic
@@ -104,12 +125,31 @@ class MonitorService:
             self._odom_fed = fresh[0].header.stamp
 
     def on_command(self, msg: Twist) -> None:
+        self._command = (msg.linear.x, msg.linear.y, msg.angular.z)
+        self._decide()
+
+    def _decide(self) -> None:
         self._feed_odom()
-        action = self.monitor.process((msg.linear.x, msg.linear.y, msg.angular.z), self.clock.now())
+        action = self.monitor.process(self._command, self.clock.now())
         if action.publish and self._out is not None:
             vx, vy, wz = action.velocity
             self._out.put(Twist.planar(vx, wz, vy))
         self._report(action)
+
+    async def watch(self) -> None:
+        """Until cancelled: at the moment a source goes stale, a base still moving is
+        stopped (decided as for the last command), not at the next command."""
+        acted = math.nan  # the deadline already acted on
+        while True:
+            now, due = self.clock.now(), self.monitor.stale_at()
+            if now <= due < math.inf:
+                await self.clock.sleep(due - now + 1e-6)  # strictly older than the timeout
+                continue
+            if due < now and due != acted:
+                acted = due
+                if self.monitor.last.velocity != STOP:
+                    self._decide()
+            await self.clock.sleep(self._idle_check)
 
     def on_toggle(self, request: Toggle.Request) -> Toggle.Response:
         message = self.monitor.toggle(request.enable)
@@ -122,6 +162,8 @@ class MonitorService:
         polygons then too, and when a velocity polygon changes its shape."""
         shown = (action.action_type, action.polygon_name)
         shapes = tuple(id(z.shape) for z in self.monitor.zones)
+        if shown == self._shown and not force and shapes == self._shapes:
+            return  # the common case: nothing to tell
         stamp = Header(stamp=self.clock.now(), frame_id="base_link")
         if shown != self._shown or force:
             if shown != self._shown:
@@ -129,8 +171,6 @@ class MonitorService:
             self._shown = shown
             if self._state is not None:
                 self._state.put(self._state_of(action, stamp))
-        elif shapes == self._shapes:
-            return
         self._shapes = shapes
         if self._polygons is not None:
             self._polygons.put(self._outlines(action, stamp))

@@ -2,13 +2,15 @@
 point-in-zone counts and the checks that refuse a zone that cannot work.
 
 Point-in-polygon is the even-odd ray cast of Nav2's ``isPointInsidePolygon``, for
-all points against all edges at once (points x edges boolean arrays).
+all points against all edges at once (points x edges boolean arrays). A zone looks
+only at the points within its ``reach`` of the base origin (no point farther can be
+inside): of a lidar's hundreds of returns, a zone about the robot sees a few.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
@@ -25,9 +27,20 @@ def inside_polygon(points: Points, vertices: Points) -> NDArray[np.bool_]:
     """Whether each point lies inside the polygon (even-odd rule, as Nav2's)."""
     if len(points) == 0:
         return np.zeros(0, dtype=bool)
-    x, y = points[:, 0:1], points[:, 1:2]  # (n, 1) against (1, m) edges
+    return _inside_edges(points, _edges(vertices))
+
+
+Edges = tuple[Points, Points, Points, Points]  # x1, y1, x2, y2 of each edge
+
+
+def _edges(vertices: Points) -> Edges:
     x1, y1 = vertices[:, 0], vertices[:, 1]
-    x2, y2 = np.roll(x1, -1), np.roll(y1, -1)
+    return x1, y1, np.roll(x1, -1), np.roll(y1, -1)
+
+
+def _inside_edges(points: Points, edges: Edges) -> NDArray[np.bool_]:
+    x, y = points[:, 0:1], points[:, 1:2]  # (n, 1) against (1, m) edges
+    x1, y1, x2, y2 = edges
     straddles = (y1 > y) != (y2 > y)
     with np.errstate(divide="ignore", invalid="ignore"):
         crossing_x = x1 + (y - y1) * (x2 - x1) / (y2 - y1)
@@ -78,12 +91,24 @@ class Shape:
 
     vertices: Points | None = None
     radius: float = 0.0
+    reach: float = field(init=False)  # the farthest a point inside is from the origin
+    _edges: Edges | None = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        v = self.vertices
+        reach = self.radius if v is None else float(np.max(np.hypot(v[:, 0], v[:, 1])))
+        object.__setattr__(self, "reach", reach)
+        object.__setattr__(self, "_edges", None if v is None else _edges(v))
 
     def inside(self, points: Points) -> NDArray[np.bool_]:
-        if self.vertices is not None:
-            return inside_polygon(points, self.vertices)
         x, y = points[:, 0], points[:, 1]
-        return np.asarray(x * x + y * y < self.radius**2)
+        if self._edges is None:
+            return np.asarray(x * x + y * y < self.radius**2)
+        near = x * x + y * y <= self.reach**2
+        result = np.zeros(len(points), dtype=bool)
+        if near.any():
+            result[near] = _inside_edges(points[near], self._edges)
+        return result
 
     def outline(self) -> Points:
         """Vertices to draw (a circle as Nav2's 16-edge polygon)."""

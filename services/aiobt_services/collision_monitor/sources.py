@@ -112,6 +112,13 @@ class Source:
     def take(self, points: Points, stamp: float, arrival: float) -> None:
         self.reading = Reading(points, stamp, arrival)
 
+    def stale_at(self, robot_time: bool) -> float:
+        """When the newest reading goes stale (inf: none yet, or no timeout)."""
+        reading, timeout = self.reading, self.params.source_timeout
+        if reading is None or timeout == 0.0:
+            return math.inf
+        return (reading.stamp if robot_time else reading.arrival) + timeout
+
     def points(self, now: float, robot_time: bool, odom: OdomHistory | None) -> Points | str:
         """The points in the base frame now, or why the source is invalid."""
         reading, name, timeout = self.reading, self.params.name, self.params.source_timeout
@@ -120,6 +127,8 @@ class Source:
         age = now - (reading.stamp if robot_time else reading.arrival)
         if timeout != 0.0 and age > timeout:
             return f"source '{name}' is {age:.2f} s old (source_timeout {timeout:g} s)"
+        if timeout != 0.0 and -age > timeout:  # robot time (odometry's stamps) stands still
+            return f"source '{name}' is {-age:.2f} s ahead of the robot's time: odometry stale?"
         if odom is None:
             return reading.points
         if odom.empty:

@@ -73,9 +73,12 @@ class Zone:
         p = self.params
         if self.count(points) >= p.min_points:
             return 0.0
-        if len(points) == 0:
-            return -1.0
         poses = simulated_poses(velocity, p.simulation_time_step, p.time_before_collision)
+        travel = float(np.max(np.hypot(poses[:, 0], poses[:, 1])))
+        reach = self.shape.reach + travel  # no point farther can enter the zone
+        points = points[np.hypot(points[:, 0], points[:, 1]) <= reach]
+        if len(points) < p.min_points:
+            return -1.0
         c, s = np.cos(poses[:, 2]), np.sin(poses[:, 2])
         dx = points[None, :, 0] - poses[:, None, 0]
         dy = points[None, :, 1] - poses[:, None, 1]

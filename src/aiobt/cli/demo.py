@@ -39,9 +39,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add("--out", default="out/demo", metavar="DIR", help="PNG and log (default: %(default)s)")
     add("--listen", metavar="ENDPOINT", help="the router's (default: a free loopback port)")
     add(
-        "--safety-chain",
-        action="store_true",
-        help="the velocity smoother and the collision monitor between the commands and the base",
+        "--no-safety-chain",
+        dest="safety_chain",
+        action="store_false",
+        help="without the velocity smoother and the collision monitor between the commands "
+        "and the base (they run by default)",
     )
 
 

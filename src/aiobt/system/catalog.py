@@ -37,8 +37,8 @@ SERVICES: tuple[ServiceSpec, ...] = (
     ServiceSpec("planner", "the planner service", realtime_priority=70),
     ServiceSpec("controller", "the controller service", realtime_priority=90),
     ServiceSpec("behaviors", "the behavior service"),
-    ServiceSpec("velocity_smoother", "Nav2's velocity smoother (with safety_chain)"),
-    ServiceSpec("collision_monitor", "Nav2's collision monitor (with safety_chain)"),
+    ServiceSpec("velocity_smoother", "Nav2's velocity smoother (off with safety_chain: false)"),
+    ServiceSpec("collision_monitor", "Nav2's collision monitor (off with safety_chain: false)"),
     ServiceSpec("navigator", "the navigator: Nav2's bt_navigator over Zenoh", realtime_priority=60),
     # Nav2's optional servers, off unless enabled (as Nav2's bringup leaves them out)
     ServiceSpec(
@@ -57,7 +57,7 @@ SERVICES: tuple[ServiceSpec, ...] = (
 
 SERVICE_NAMES: tuple[str, ...] = tuple(spec.name for spec in SERVICES)
 SAFETY_CHAIN: tuple[str, ...] = ("velocity_smoother", "collision_monitor")
-"""Between the controller/behaviors and the base: run only with ``safety_chain: true``."""
+"""Between the controller/behaviors and the base: run unless ``safety_chain: false``."""
 
 
 def service(name: str) -> ServiceSpec:

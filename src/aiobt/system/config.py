@@ -4,8 +4,8 @@
     world: office             # shipped world (office, small) or a Nav2 map YAML path
     speed: 1.0                # sim time runs this many times faster than the wall
     sim_time: null            # null: on when speed != 1; true/false forces it
-    safety_chain: false       # true: the velocity smoother and the collision monitor run
-                              # between the controller/behaviors (on cmd_vel_nav) and the base
+    safety_chain: true        # the velocity smoother and the collision monitor run between
+                              # the controller/behaviors (on cmd_vel_nav) and the base
     router:
       listen: tcp/127.0.0.1:7447   # where the router listens and services connect
       start: true             # false: use a router that is already running there
@@ -24,8 +24,8 @@
       planner:    {enabled: true, args: []}
       controller: {enabled: true, args: []}
       behaviors:  {enabled: true, args: []}
-      velocity_smoother: {enabled: true, args: []}   # with safety_chain only
-      collision_monitor: {enabled: true, args: []}   # with safety_chain only
+      velocity_smoother: {enabled: true, args: []}   # with safety_chain (the default)
+      collision_monitor: {enabled: true, args: []}   # with safety_chain (the default)
       navigator:  {enabled: true, args: []}
       route:      {enabled: false, args: []}   # Nav2's route server: off, as in Nav2
 
@@ -86,7 +86,7 @@ class SystemConfig:
     world: str = "office"
     speed: float = 1.0
     sim_time: bool | None = None
-    safety_chain: bool = False
+    safety_chain: bool = True
     router: RouterConfig = RouterConfig()
     restart: RestartConfig = RestartConfig()
     services: Mapping[str, ServiceConfig] = field(
@@ -143,7 +143,7 @@ def config_from_dict(data: Mapping[str, Any], where: str = "config") -> SystemCo
         world=_typed(data, "world", str, "office", where),
         speed=_number(data, "speed", 1.0, where, positive=True),
         sim_time=_typed(data, "sim_time", bool, None, where),
-        safety_chain=_typed(data, "safety_chain", bool, False, where),
+        safety_chain=_typed(data, "safety_chain", bool, True, where),
         router=_router(_section(data, "router", where), where),
         restart=_restart(_section(data, "restart", where), where),
         services=_services(_section(data, "services", where), where),

@@ -16,6 +16,7 @@ from collections.abc import AsyncIterator, Callable, Coroutine
 from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock, SystemClock
+from aiobt.msgs import Odometry
 from aiobt.system.heap import settle
 from aiobt.system.realtime import RealtimePriorityError, realtime_if_asked
 from aiobt.system.signals import stop_on_signals as stop_on_signals  # for the services
@@ -128,18 +129,20 @@ async def serve_on_clock(
     detail: str = "",
     logger: logging.Logger = log,
     realtime: int | None = None,
+    odometry: str | None = None,
 ) -> None:
     """Raise the process to ``realtime`` priority if given (before the bus: Zenoh's
     threads too, see :mod:`aiobt.system.realtime`), open the bus, wait for the clock
-    (``--sim-time``), ``start(bus, clock)``, announce ``nodes/{name}``, then run until
-    SIGINT/SIGTERM; "``name`` up" goes to ``logger``."""
+    (``--sim-time``; the stamps of the odometry on ``odometry`` if given, see
+    :func:`make_clock`), ``start(bus, clock)``, announce ``nodes/{name}``, then run
+    until SIGINT/SIGTERM; "``name`` up" goes to ``logger``."""
     detail += realtime_if_asked(realtime)
     stop = stop_on_signals()
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
         stopper = asyncio.create_task(stop.wait())
-        made = await unless_stopped(make_clock(bus, args.sim_time), stopper)
+        made = await unless_stopped(make_clock(bus, args.sim_time, odometry), stopper)
         if made is None:
             return
         start(bus, made[0])
@@ -164,16 +167,34 @@ async def open_clock(bus: Bus, sim_time: bool, stop: asyncio.Event) -> Clock | N
     return None if made is None else made[0]
 
 
-async def make_clock(bus: Bus, sim_time: bool) -> tuple[Clock, SimClockFollower | None]:
+async def make_clock(
+    bus: Bus, sim_time: bool, odometry: str | None = None
+) -> tuple[Clock, SimClockFollower | None]:
     """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp),
     listened to only while held: by a sleeper, a goal, a clearing call (see
-    :mod:`aiobt.transport.simtime`); an idle service receives no clock."""
+    :mod:`aiobt.transport.simtime`); an idle service receives no clock.
+
+    ``odometry``: the robot's time from the stamps of its odometry on that topic
+    (always listened to), for a service that reads the odometry anyway and needs the
+    time at every moment (the collision monitor): the same time as the clock's, at 50
+    stamps a second, with no second subscription (bench/history/safety.md). Coarser
+    than the clock's 100 a second: the velocity smoother, whose timer ramps, keeps
+    the clock."""
     if not sim_time:
         return SystemClock(), None
-    follower = SimClockFollower(bus, on_demand=True)
+    follower = (
+        SimClockFollower(bus, on_demand=True)
+        if odometry is None
+        else SimClockFollower(bus, topic=odometry, model=Odometry, stamp_of=_odometry_stamp)
+    )
+    topic = odometry or "clock"
     while True:
         try:
             await follower.wait_started(timeout=5.0)
             return follower.clock, follower
         except TimeoutError:
-            log.info("waiting for sim time on %s/clock", bus.namespace)
+            log.info("waiting for sim time on %s/%s", bus.namespace, topic)
+
+
+def _odometry_stamp(odometry: Odometry) -> float:
+    return odometry.header.stamp

@@ -7,19 +7,24 @@ stamps a second the simulation sends at a speed-up of 10. A plain
 :class:`ManualClock` passed in is set in the loop at every stamp, as before.
 With ``on_demand`` the subscription is held only while the :class:`SimTime` is
 (a sleeper, a goal: see :mod:`aiobt.transport.simtime`).
+
+Any stamped message of the robot can carry its time instead (``model`` and
+``stamp_of``): a service that receives the robot's odometry anyway follows its
+stamps rather than subscribing to the clock as well.
 """
 
 from __future__ import annotations
 
 import asyncio
 import logging
-from typing import TYPE_CHECKING
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from pydantic import ValidationError
 
 from aiobt.core.clock import ManualClock
 from aiobt.msgs import Clock as ClockMsg
-from aiobt.msgs import MessageError, wire_validator
+from aiobt.msgs import MessageError, Msg, wire_validator
 from aiobt.transport import _z
 from aiobt.transport.bridge import callback
 from aiobt.transport.simtime import SimTime
@@ -39,6 +44,8 @@ class SimClockFollower:
     (a restarted simulation's earlier stamps are ignored until they catch up).
     A malformed stamp is dropped and logged (the first one as a warning).
     ``on_demand`` (with a :class:`SimTime`): subscribed only while the clock is held.
+    ``model`` and ``stamp_of``: the stamps come as ``stamp_of(message)`` of another
+    message on ``topic`` (default: the clock's own).
     """
 
     def __init__(
@@ -48,13 +55,17 @@ class SimClockFollower:
         topic: str = "clock",
         *,
         on_demand: bool = False,
+        model: type[Msg] = ClockMsg,
+        stamp_of: Callable[[Any], float] = lambda msg: float(msg.clock),
     ) -> None:
         self.clock = clock if clock is not None else SimTime()
         self._sim_time = self.clock if isinstance(self.clock, SimTime) else None
         self._key = bus.keys.topic(topic)
         self._session = bus.session
         self._bridge = bus.bridge
-        self._validate = wire_validator(ClockMsg)
+        self._model = model
+        self._validate = wire_validator(model)
+        self._stamp_of = stamp_of
         self._latest: float | None = None
         self._wake_due = False
         self._first = asyncio.Event()
@@ -95,7 +106,7 @@ class SimClockFollower:
         try:
             if len(payload) > self._bridge.max_payload:
                 raise ValueError(f"{self._key}: payload of {len(payload)} bytes")
-            stamp = self._validate(payload).clock
+            stamp = self._stamp_of(self._validate(payload))
         except (ValidationError, ValueError) as exc:
             self._bridge.call(self._reject, exc)
             return
@@ -118,7 +129,7 @@ class SimClockFollower:
     def _reject(self, exc: Exception) -> None:
         self.dropped_invalid += 1
         detail = (
-            MessageError.from_validation(ClockMsg, exc, self._key)
+            MessageError.from_validation(self._model, exc, self._key)
             if isinstance(exc, ValidationError)
             else exc
         )

@@ -19,7 +19,7 @@ import pytest
 import yaml
 
 from aiobt.embed import connect
-from aiobt.system.catalog import SAFETY_CHAIN, SERVICES
+from aiobt.system.catalog import SERVICES
 from aiobt.system.commands import service_command
 from aiobt.system.config import config_from_dict
 from aiobt.testing.bus import ServiceProcess, free_endpoint, port_of, spawn_service, wait_port
@@ -48,9 +48,8 @@ def _services(profile: str | None) -> dict[str, list[str]]:
 @pytest.mark.parametrize("profile", [None, "two-robots"])
 def test_every_service_runs_the_command_aiobt_up_runs(profile: str | None) -> None:
     services = _services(profile)
-    # every service of the one list (aiobt.system.catalog) on by default, once per robot; the
-    # safety chain is docker-compose.safety-chain.yml's (test_safety_chain_config.py)
-    on = sorted(s.name for s in SERVICES if s.enabled and s.name not in SAFETY_CHAIN)
+    # every service of the one list (aiobt.system.catalog) on by default, once per robot
+    on = sorted(s.name for s in SERVICES if s.enabled)
     assert sorted(command[0] for command in services.values()) == on
     for command in services.values():
         namespace = command[command.index("--namespace") + 1]

@@ -135,6 +135,26 @@ def test_source_timeout_zero_never_goes_stale() -> None:
     cm = monitor(nested(), source_timeout=0.0)
     give_scan(cm, 4.5, 0.0)
     assert cm.process(CMD, 1000.0).velocity == pytest.approx(CMD)
+    assert cm.stale_at() == math.inf
+
+
+def test_stale_at_is_the_newest_data_plus_its_timeout() -> None:
+    cm = monitor(nested())
+    assert cm.stale_at() == math.inf  # nothing yet: process() stops for that itself
+    give_scan(cm, 4.5, 1.0)
+    assert cm.stale_at() == 1.0 + SOURCE_TIMEOUT
+    assert cm.process(CMD, cm.stale_at()).velocity == pytest.approx(CMD)
+    assert cm.process(CMD, cm.stale_at() + 1e-6).velocity == (0.0, 0.0, 0.0)
+
+
+def test_data_far_ahead_of_the_robots_time_stops_as_stale_odometry() -> None:
+    cm = monitor(nested())
+    cm.robot_time = True  # ages by the data's stamps against now, the odometry's time
+    give_scan(cm, 4.5, 10.0)
+    assert cm.process(CMD, 10.0 - SOURCE_TIMEOUT).velocity == pytest.approx(CMD)
+    ahead = cm.process(CMD, 10.0 - SOURCE_TIMEOUT - 0.01)
+    assert (ahead.action_type, ahead.polygon_name) == ("stop", INVALID_SOURCE)
+    assert "'Scan' is 5.01 s ahead of the robot's time" in ahead.reason
 
 
 def test_toggled_off_the_polygons_rest_but_a_bad_source_still_stops() -> None:

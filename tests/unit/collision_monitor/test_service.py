@@ -80,3 +80,30 @@ async def test_base_shift_correction_reads_the_odometry_come_since(local_bus: Bu
     assert not history.empty
     assert history.latest() == pytest.approx((0.4, 0.0, 0.0))
     assert clock.now() == 1.0
+
+
+async def test_data_gone_stale_between_commands_stops_a_moving_base_at_once(
+    local_bus: Bus,
+) -> None:
+    service, clock = start(local_bus, source_timeout=0.5)
+    out = local_bus.subscribe("cmd_vel_out", Twist)
+    scan = local_bus.publisher("scan", LaserScan)
+    try:
+        for _ in range(50):  # until the monitor has the scan (a ring 2 m round: no stop)
+            scan.put(ring_scan(2.0, clock.now()))
+            if await decision(local_bus, out, 0.3) == pytest.approx(0.3):
+                break
+        assert service.monitor.last.velocity[0] == pytest.approx(0.3)
+        due = service.monitor.stale_at()
+        await clock.forward(due - clock.now() - 0.02, step=0.01)  # no command meanwhile
+        with pytest.raises(TimeoutError):
+            await out.next(timeout=0.1)  # still fresh: nothing sent
+        await clock.forward(0.04, step=0.01)
+        assert (await out.next(timeout=2.0)).linear.x == 0.0  # stale: stopped, unasked
+        assert service.monitor.last.polygon_name == "invalid source"
+        assert "is 0.5" in service.monitor.last.reason
+        await clock.forward(2.0, step=0.05)
+        with pytest.raises(TimeoutError):
+            await out.next(timeout=0.1)  # once: the base is stopped, commands decide again
+    finally:
+        await service.stop()

@@ -62,3 +62,15 @@ def test_a_bad_polygon_is_refused_by_name(points: object, message: str) -> None:
 def test_a_bad_circle_is_refused_by_name() -> None:
     with pytest.raises(ShapeError, match="circle 'c': radius must be a number > 0"):
         circle("c", -1.0)
+
+
+def test_a_zone_looks_only_within_its_reach_and_decides_as_the_full_cast() -> None:
+    rng = np.random.default_rng(5)
+    star = polygon("star", [[1.0, 0.0], [0.2, 0.2], [0.0, 1.0], [-0.2, 0.2], [-1.0, 0.0],
+                            [-0.2, -0.2], [0.0, -1.0], [0.2, -0.2]])  # fmt: skip
+    assert star.reach == pytest.approx(1.0)
+    points = rng.uniform(-3.0, 3.0, size=(2000, 2))
+    full = inside_polygon(points, np.asarray(star.vertices))
+    assert star.inside(points).tolist() == full.tolist()
+    assert full.any()
+    assert circle("c", 0.5).reach == 0.5

@@ -30,9 +30,9 @@ def test_every_service_is_an_aiobt_command_by_module_path() -> None:
 def test_aiobt_up_takes_its_service_keys_and_order_from_the_list() -> None:
     assert tuple(SystemConfig().services) == SERVICE_NAMES
     by_default = [s.name for s in SERVICES if s.enabled]  # route: off, as in Nav2
-    chain = [name for name in by_default if name not in SAFETY_CHAIN]
-    assert SystemConfig().enabled() == chain  # the safety chain only with safety_chain: true
-    assert SystemConfig(safety_chain=True).enabled() == by_default
+    without = [name for name in by_default if name not in SAFETY_CHAIN]
+    assert SystemConfig().enabled() == by_default  # the safety chain too, by default
+    assert SystemConfig(safety_chain=False).enabled() == without
     with pytest.raises(ConfigError, match=r"unknown service services.plannr \(known: robot, "):
         config_from_dict({"services": {"plannr": {}}}, "cfg.yaml")
 

@@ -21,6 +21,7 @@ def certs(tmp_path: Path) -> str:
 def test_the_base_host_s_share(certs: str) -> None:
     config = config_from_dict(
         {
+            "safety_chain": False,  # as deploy/base-host.yaml: it runs beside the controller
             "router": {
                 "listen": "tls/198.18.0.5:7447",
                 "connect": ["tls/198.18.0.6:7447"],

@@ -1,5 +1,6 @@
-"""``safety_chain`` in the system config: off by default; on, the velocity smoother and
-the collision monitor run and the controller and behaviors command ``cmd_vel_nav``."""
+"""``safety_chain`` in the system config: on by default, the velocity smoother and the
+collision monitor run and the controller and behaviors command ``cmd_vel_nav``; off,
+the controller and behaviors command the base directly."""
 
 from __future__ import annotations
 
@@ -11,17 +12,14 @@ import yaml
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import ConfigError, config_from_dict
 
-
-def test_off_by_default_nothing_changes() -> None:
-    config = config_from_dict({})
-    assert config.enabled() == ["robot", "planner", "controller", "behaviors", "navigator"]
-    assert "--cmd-vel-topic" not in service_command("controller", config)
+CHAIN = ["robot", "planner", "controller", "behaviors", "velocity_smoother", "collision_monitor",
+         "navigator"]  # fmt: skip
 
 
-def test_on_the_chain_runs_between_the_commands_and_the_base() -> None:
-    config = config_from_dict({"safety_chain": True, "speed": 4})
-    assert config.enabled() == ["robot", "planner", "controller", "behaviors",
-                                "velocity_smoother", "collision_monitor", "navigator"]  # fmt: skip
+def test_on_by_default_the_chain_runs_between_the_commands_and_the_base() -> None:
+    config = config_from_dict({"speed": 4})
+    assert config.safety_chain
+    assert config.enabled() == CHAIN
     for name in ("controller", "behaviors"):
         assert service_command(name, config)[-2:] == ["--cmd-vel-topic", "cmd_vel_nav"]
     smoother = service_command("velocity_smoother", config)
@@ -32,9 +30,15 @@ def test_on_the_chain_runs_between_the_commands_and_the_base() -> None:
     assert available("collision_monitor")
 
 
+def test_off_the_commands_go_to_the_base() -> None:
+    config = config_from_dict({"safety_chain": False})
+    assert config.enabled() == ["robot", "planner", "controller", "behaviors", "navigator"]
+    assert "--cmd-vel-topic" not in service_command("controller", config)
+    assert "--cmd-vel-topic" not in service_command("behaviors", config)
+
+
 def test_each_link_has_its_own_section() -> None:
     config = config_from_dict({
-        "safety_chain": True,
         "services": {"collision_monitor": {"args": ["--params-file", "cm.yaml"]},
                      "velocity_smoother": {"enabled": False}},
     })  # fmt: skip
@@ -47,17 +51,12 @@ def test_a_wrong_type_is_refused_by_name() -> None:
         config_from_dict({"safety_chain": "yes"})
 
 
-def test_the_compose_override_runs_the_commands_aiobt_up_runs() -> None:
+def test_compose_runs_the_chain_as_aiobt_up_does() -> None:
     repo = Path(__file__).resolve().parents[3]
-    base = yaml.safe_load((repo / "docker-compose.yml").read_text())["services"]
-    chain = yaml.safe_load((repo / "docker-compose.safety-chain.yml").read_text())["services"]
-    config = config_from_dict({"safety_chain": True, "router": {"listen": "tcp/router:7447"}})
-    assert sorted(chain) == ["behaviors", "collision-monitor", "controller", "velocity-smoother"]
-    for name, spec in chain.items():
-        assert spec["command"] == service_command(spec["command"][0], config)
-        if name in base:
-            continue
-        assert {k: v for k, v in spec.items() if k != "command"} == {
-            "image": base["planner"]["image"], "build": ".", "env_file": ["zenoh.env"],
-            "depends_on": ["router"], "restart": "on-failure", "init": True,
-        }  # fmt: skip
+    services = yaml.safe_load((repo / "docker-compose.yml").read_text())["services"]
+    for prefix, namespace in (("", "robot"), ("robot2-", "robot2")):
+        config = config_from_dict({"namespace": namespace,
+                                   "router": {"listen": "tcp/router:7447"}})  # fmt: skip
+        for name in ("controller", "behaviors", "velocity-smoother", "collision-monitor"):
+            command = services[prefix + name]["command"]
+            assert command == service_command(command[0], config), prefix + name

@@ -1,0 +1,64 @@
+"""``make_clock(..., odometry=TOPIC)``: on sim time, the robot's time from the stamps
+of its odometry instead of ``{ns}/clock`` (the safety chain's services use it)."""
+
+from __future__ import annotations
+
+import asyncio
+
+from aiobt.msgs import Clock as ClockMsg
+from aiobt.msgs import Header, Odometry, Pose
+from aiobt.system.service import make_clock
+from aiobt.transport import Bus
+
+
+def odometry(stamp: float) -> Odometry:
+    return Odometry(header=Header(stamp=stamp, frame_id="odom"), pose=Pose.from_xy_yaw(0, 0))
+
+
+async def test_the_time_is_the_newest_odometry_stamp_and_the_clock_is_not_read(
+    local_bus: Bus,
+) -> None:
+    clock_pub = local_bus.publisher("clock", ClockMsg)
+    odom_pub = local_bus.publisher("odom", Odometry)
+
+    async def feed() -> None:
+        for i in range(200):
+            clock_pub.put(ClockMsg(clock=100.0 + i))  # another time: must not be followed
+            odom_pub.put(odometry(3.5))
+            await asyncio.sleep(0.01)
+
+    feeding = asyncio.create_task(feed())
+    try:
+        async with asyncio.timeout(5.0):
+            clock, follower = await make_clock(local_bus, sim_time=True, odometry="odom")
+        assert follower is not None
+        assert clock.now() == 3.5
+        feeding.cancel()
+        sleeper = asyncio.create_task(clock.sleep(0.5))  # until 4.0
+        await asyncio.sleep(0.05)
+        assert not sleeper.done()
+        odom_pub.put(odometry(4.25))
+        async with asyncio.timeout(5.0):
+            await sleeper  # woken by the odometry stamped 4.25
+        assert clock.now() == 4.25
+    finally:
+        feeding.cancel()
+        await asyncio.gather(feeding, return_exceptions=True)
+
+
+async def test_without_odometry_the_clock_is_followed(local_bus: Bus) -> None:
+    clock_pub = local_bus.publisher("clock", ClockMsg)
+
+    async def feed() -> None:
+        for _ in range(200):
+            clock_pub.put(ClockMsg(clock=7.0))
+            await asyncio.sleep(0.01)
+
+    feeding = asyncio.create_task(feed())
+    try:
+        async with asyncio.timeout(5.0):
+            clock, _ = await make_clock(local_bus, sim_time=True)
+        assert clock.now() == 7.0
+    finally:
+        feeding.cancel()
+        await asyncio.gather(feeding, return_exceptions=True)
