@@ -73,6 +73,11 @@ def laser_scan(scan: Scan) -> LaserScan:
     )
 
 
+def dock_detection(marker: Pose2D, stamp: float) -> PoseStamped:
+    """The dock's marker in the robot's frame, as a fiducial detector publishes it."""
+    return PoseStamped.from_xy_yaw(marker.x, marker.y, marker.yaw, "base_link", stamp)
+
+
 def battery_state(battery: Battery, stamp: float) -> BatteryState:
     cfg = battery.config
     volts = battery.voltage

@@ -2,7 +2,8 @@
 
 Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), the truth on
 ``{ns}/sim/pose``, ``{ns}/scan``, ``{ns}/battery``,
-``{ns}/clock``, ``{ns}/bumper`` and the latched ``{ns}/map``; listens on
+``{ns}/clock``, ``{ns}/bumper``, ``{ns}/detected_dock_pose`` (the dock's marker
+as the robot's camera sees it) and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
 move,remove,list}``, ``{ns}/srv/reset_pose``,
 ``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
@@ -45,7 +46,7 @@ from . import convert
 from .mapfile import MapError, load_map
 from .options import add_robot_arguments, sim_config
 from .pacing import speed_label
-from .runner import Rates, SimRunner
+from .runner import DOCK_DETECTION, Rates, SimRunner
 from .service import RobotService
 from .sim import Simulation
 from .snapshot import render_png
@@ -62,6 +63,7 @@ PUBLISHED: dict[str, type[Msg]] = {
     "battery": BatteryState,
     "clock": ClockMsg,
     "bumper": messages.BumperEvent,
+    DOCK_DETECTION: PoseStamped,
 }
 
 

@@ -12,7 +12,8 @@ The loaded grid is stored like a ROS OccupancyGrid: ``grid[row, col]`` with row
 0 at the *bottom* (the origin), so ``grid.ravel()`` is the message's ``data``.
 
 Optional aiobt extras live under an ``aiobt:`` key that Nav2 ignores:
-``start: [x, y, yaw]`` and ``dock: [x, y, radius]``.
+``start: [x, y, yaw]`` and ``dock: [x, y, yaw]`` (where the robot stands docked,
+facing the dock: see ``dock.py``).
 """
 
 from __future__ import annotations
@@ -45,14 +46,11 @@ class MapError(ValueError):
 
 @dataclass(slots=True, frozen=True)
 class Dock:
-    """A circular charging area in map coordinates."""
+    """A charging dock: the robot's pose in ``map`` when docked (facing the dock)."""
 
     x: float
     y: float
-    radius: float
-
-    def contains(self, x: float, y: float) -> bool:
-        return math.hypot(x - self.x, y - self.y) <= self.radius
+    yaw: float
 
 
 @dataclass(slots=True)
@@ -253,10 +251,8 @@ def _read_extras(path: Path, extras: Any, info: MapInfo) -> None:
         x, y, yaw = _floats(path, extras, "start", 3)
         info.start = (x, y, yaw)
     if "dock" in extras:
-        x, y, radius = _floats(path, extras, "dock", 3)
-        if radius <= 0.0:
-            raise MapError(path, "aiobt.dock", f"radius must be > 0, got {radius}")
-        info.dock = Dock(x, y, radius)
+        x, y, yaw = _floats(path, extras, "dock", 3)
+        info.dock = Dock(x, y, yaw)
 
 
 def save_map(info: MapInfo, yaml_path: str | Path, *, image_name: str | None = None) -> None:
@@ -278,5 +274,5 @@ def save_map(info: MapInfo, yaml_path: str | Path, *, image_name: str | None = N
         "aiobt": {"start": list(info.start)},
     }
     if info.dock is not None:
-        doc["aiobt"]["dock"] = [info.dock.x, info.dock.y, info.dock.radius]
+        doc["aiobt"]["dock"] = [info.dock.x, info.dock.y, info.dock.yaw]
     path.write_text(yaml.safe_dump(doc, sort_keys=False))

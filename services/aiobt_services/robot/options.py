@@ -12,7 +12,7 @@ from aiobt.system.service import non_negative, positive
 from .drive import DriveLimits
 from .pacing import parse_speed
 from .runner import MAX_LAG
-from .sensors import LidarConfig, NoiseConfig
+from .sensors import BatteryConfig, LidarConfig, NoiseConfig
 from .sim import SimConfig
 
 
@@ -126,6 +126,8 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     add("--pose-noise", type=float, default=0.0, help="std of localization error, m")
     add("--pose-noise-yaw", type=float, default=0.0, help="std of localization error, rad")
     add("--seed", type=int, default=0, help="noise seed (default: %(default)s)")
+    add("--battery", type=_fraction, default=1.0, metavar="FRACTION",
+        help="the battery's charge at the start, 0..1 (default: %(default)s)")  # fmt: skip
     add("--snapshot-on-exit", metavar="PNG", default=None, help="write a top-down PNG at exit")
 
 
@@ -152,6 +154,7 @@ def sim_config(args: argparse.Namespace) -> SimConfig:
             noise=args.lidar_noise,
             dropout=args.lidar_dropout,
         ),
+        battery=BatteryConfig(initial_percentage=args.battery),
         gui=args.gui,
     )
 
@@ -161,6 +164,13 @@ def _speed(text: str) -> float:
         return parse_speed(text)
     except ValueError as exc:
         raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def _fraction(text: str) -> float:
+    value = float(text)
+    if not 0.0 <= value <= 1.0:
+        raise argparse.ArgumentTypeError(f"must be within 0..1, got {text}")
+    return value
 
 
 def _angle_max(rays: int) -> float:

@@ -28,6 +28,7 @@ from .sim import Simulation
 log = logging.getLogger("aiobt_services.robot.runner")
 
 TOPICS = ("odom", "pose", "scan", "battery", "clock", "bumper")
+DOCK_DETECTION = "detected_dock_pose"  # Nav2's topic: the dock's marker, as a camera sees it
 COMMAND_POLL = 0.001  # wall s between looks for a late command
 # A command later than this (wall s) is a stalled client; one scheduler slot on a loaded
 # machine (CFS's latency on 2 cores: 12 ms) is not: the base drives on the last command.
@@ -60,6 +61,7 @@ class Rates:
     scan: float = 10.0
     battery: float = 1.0
     clock: float = 100.0
+    camera: float = 15.0  # the dock's marker detections
 
     def period_steps(self, topic: str, dt: float) -> int:
         rate = float(getattr(self, topic))
@@ -101,6 +103,7 @@ class SimRunner:
         self._periods = {t: rates.period_steps(t, sim.config.dt) for t in TOPICS[:5]}
         if not publish_clock:
             del self._periods["clock"]
+        self._camera_every = rates.period_steps("camera", sim.config.dt)
         self._clock_owed = False  # a clock stamp was due and is not out yet
         self._clock_sent = 0  # the step of the last one out
         self._clock_batch = 1  # steps a stamp due may wait (see :meth:`run`)
@@ -127,6 +130,8 @@ class SimRunner:
             self._outputs.publish("scan", convert.laser_scan(sim.scan()))
         if "battery" in due:
             self._outputs.publish("battery", convert.battery_state(sim.battery, sim.time))
+        if sim.steps % self._camera_every == 0 and (seen := sim.detect_dock()) is not None:
+            self._outputs.publish(DOCK_DETECTION, convert.dock_detection(seen, sim.time))
 
     def publish_clock(self) -> None:
         """The clock stamp owed, if one is (the sim's time now)."""

@@ -18,6 +18,7 @@ import numpy.typing as npt
 from aiobt.geometry import Pose2D
 
 from .bumper import Bumper, ContactEvent
+from .dock import build_station
 from .drive import CommandVerdict, DriveController, DriveLimits
 from .lidar import Disc, Rectangles, cast
 from .mapfile import MapInfo
@@ -81,6 +82,8 @@ class Simulation:
         self._physics = Physics(gui=self.config.gui, dt=self.config.dt, substeps=substeps)
         self._wall_rects = wall_rectangles(world)
         self._walls = set(self._physics.build_walls(self._wall_rects))
+        self.dock_station, self._dock_body = build_station(world, self.config.robot, self._physics)
+        self._camera_rng = np.random.default_rng(self.config.noise.seed + 1)
         self._headings = self.config.lidar.angles()
         start = Pose2D(*world.start)
         self._robot = self._physics.robot(self.config.robot, start)
@@ -162,8 +165,8 @@ class Simulation:
         self._physics.place(self._robot, pose, cfg.robot.z)  # keep the base flat
         self._true = pose
         self.odometry.update(linear, angular, dt, cfg.noise, self._rng)
-        dock = self.world.dock
-        self.battery.update(linear, angular, dock is not None and dock.contains(pose.x, pose.y), dt)
+        on_dock = self.dock_station is not None and self.dock_station.charging_contact(pose)
+        self.battery.update(linear, angular, on_dock, dt)
         return self._contact_events()
 
     # -- state -----------------------------------------------------------
@@ -180,6 +183,13 @@ class Simulation:
         """The lidar at the current step: walls and the obstacles taller than its plane,
         at their poses now (:mod:`.lidar`; the robot's own body is not seen)."""
         cfg, pose = self.config.lidar, self._true
+        dist = self.cast_from(pose, pose.yaw + self._headings)
+        return Scan(self.time, lidar_ranges(dist, cfg, self._rng), cfg)
+
+    def cast_from(self, pose: Pose2D, headings: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Distances from ``pose`` along world ``headings`` to the walls and to the
+        obstacles taller than the lidar's plane (``inf``: nothing)."""
+        cfg = self.config.lidar
         rects: list[Rectangles] = []
         discs: list[Disc] = []
         for oid, obstacle in self._obstacles.items():
@@ -192,8 +202,17 @@ class Simulation:
                 rects.append(Rectangles.from_centres([here.x], [here.y], half_x, half_y, here.yaw))
             else:
                 discs.append(Disc(here.x, here.y, spec.radius))
-        dist = cast(self._wall_rects, rects, discs, (pose.x, pose.y), pose.yaw + self._headings)
-        return Scan(self.time, lidar_ranges(dist, cfg, self._rng), cfg)
+        return cast(self._wall_rects, rects, discs, (pose.x, pose.y), headings)
+
+    # -- the dock ----------------------------------------------------------
+    def detect_dock(self) -> Pose2D | None:
+        """The robot camera's detection of the dock's marker (in ``base_link``, noisy),
+        or None when it is out of view or hidden."""
+        station, pose = self.dock_station, self._true
+        if station is None:
+            return None
+        hit = float(self.cast_from(pose, np.array([station.bearing_from(pose)]))[0])
+        return station.detect(pose, self._camera_rng) if station.visible(pose, hit) else None
 
     # -- robot pose ------------------------------------------------------
     def check_free(self, pose: Pose2D, clearance: float, ignore: str = "") -> None:
@@ -278,6 +297,8 @@ class Simulation:
     def _body_name(self, body: int) -> str | None:
         if body in self._walls:
             return "wall"
+        if body == self._dock_body:
+            return "dock"
         return next((oid for oid, o in self._obstacles.items() if o.body == body), None)
 
     def _contact_events(self) -> list[ContactEvent]:

@@ -8,6 +8,8 @@ import math
 import numpy as np
 from PIL import Image, ImageDraw
 
+from aiobt.geometry import Pose2D
+
 from .mapfile import FREE, OCCUPIED
 from .sim import Scan, Simulation
 
@@ -39,20 +41,23 @@ def render(sim: Simulation, *, scale: int = 2, scan: Scan | None = None) -> Imag
         r = radius * px_per_m
         draw.ellipse((u - r, v - r, u + r, v + r), fill=fill)
 
-    if world.dock is not None:
-        disc(world.dock.x, world.dock.y, world.dock.radius, (150, 230, 150))
+    def box(pose: Pose2D, hx: float, hy: float, fill: tuple[int, int, int]) -> None:
+        c, s = math.cos(pose.yaw), math.sin(pose.yaw)
+        corners = [
+            (pose.x + c * a - s * b, pose.y + s * a + c * b)
+            for a, b in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))
+        ]
+        draw.polygon([to_px(x, y) for x, y in corners], fill=fill)
+
+    if sim.dock_station is not None:
+        centre, (hx, hy, _) = sim.dock_station.block()
+        box(centre, hx, hy, (60, 170, 60))
     for oid, spec in sim.obstacles.items():
         pose = sim.obstacle_pose(oid)
         if spec.shape == "cylinder":
             disc(pose.x, pose.y, spec.radius, (220, 60, 60))
             continue
-        c, s = math.cos(pose.yaw), math.sin(pose.yaw)
-        hx, hy = spec.size_x / 2, spec.size_y / 2
-        corners = [
-            (pose.x + c * a - s * b, pose.y + s * a + c * b)
-            for a, b in ((hx, hy), (-hx, hy), (-hx, -hy), (hx, -hy))
-        ]
-        draw.polygon([to_px(x, y) for x, y in corners], fill=(220, 60, 60))
+        box(pose, spec.size_x / 2, spec.size_y / 2, (220, 60, 60))
     if scan is not None:
         _draw_scan(draw, sim, scan, to_px)
     robot = sim.true_pose

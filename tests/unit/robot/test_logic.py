@@ -13,7 +13,7 @@ from hypothesis.extra.numpy import arrays
 from aiobt.geometry import Pose2D, wrap_angle
 from aiobt_services.robot.boxes import merge_boxes
 from aiobt_services.robot.drive import DriveController, DriveLimits
-from aiobt_services.robot.mapfile import Dock, MapInfo
+from aiobt_services.robot.mapfile import MapInfo
 from aiobt_services.robot.obstacles import Motion, ObstacleError, ObstacleSpec, validate
 from aiobt_services.robot.sensors import Battery, NoiseConfig, WheelOdometry
 
@@ -142,7 +142,3 @@ def test_obstacle_distance_is_to_its_footprint_not_its_bounding_circle() -> None
     assert pillar.distance_to(1.0, 2.0) == pytest.approx(0.75)
     assert pillar.distance_to(1.1, 1.0) == 0.0
 
-
-def test_dock_contains() -> None:
-    assert Dock(1.0, 1.0, 0.5).contains(1.3, 1.3)
-    assert not Dock(1.0, 1.0, 0.5).contains(1.5, 1.5)

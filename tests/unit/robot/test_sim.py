@@ -186,7 +186,10 @@ def test_battery_drains_driving_charges_on_dock_and_empty_stops() -> None:
         assert run.battery.percentage < level
         dock = run.world.dock
         assert dock is not None
-        run.teleport(Pose2D(dock.x, dock.y))
+        run.teleport(Pose2D(dock.x + 0.05, dock.y, dock.yaw))  # 5 cm short of the contacts
+        run.run_for(1.0)
+        assert not run.battery.charging
+        run.teleport(Pose2D(dock.x, dock.y, dock.yaw))
         level = run.battery.percentage
         run.run_for(1.0)
         assert run.battery.charging

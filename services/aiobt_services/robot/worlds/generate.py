@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import math
 from pathlib import Path
 
 import numpy as np
@@ -79,7 +80,7 @@ def office() -> MapInfo:
         resolution=c.resolution,
         origin=(0.0, 0.0, 0.0),
         start=(2.0, 9.75, 0.0),
-        dock=Dock(0.8, 9.75, 0.5),
+        dock=Dock(0.49, 9.75, math.pi),  # the block on the west wall, facing east
     )
 
 
@@ -93,7 +94,7 @@ def small() -> MapInfo:
         resolution=c.resolution,
         origin=(-2.5, -2.5, 0.0),
         start=(0.0, 0.0, 0.0),
-        dock=Dock(-1.8, -1.8, 0.4),
+        dock=Dock(-2.01, -1.2, math.pi),  # the block on the west wall
     )
 
 

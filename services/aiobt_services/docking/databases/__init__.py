@@ -1,0 +1,1 @@
+"""Dock databases shipped for the bundled worlds (``--dock-database office``)."""

@@ -1,0 +1,120 @@
+"""``aiobt docking``'s flags, by Nav2's ``docking_server`` parameter names (dashes for
+underscores; dotted names through ``--param``), and the server's parts built from them.
+
+The flags' defaults are Nav2's. The dock plugin ``simple_charging_dock`` comes set up
+for aiobt's simulated robot and dock, as Nav2's ``nav2_params.yaml`` sets its own up
+(:data:`SHIPPED`); ``--param`` overrides any of it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+
+from aiobt.system.service import non_negative, positive
+
+from .control_law import ControlLawParams
+from .controller import ControllerParams
+from .database import database_path
+from .params import DockingParams
+from .plugins import ChargingDock, DockWiring, PluginFactory, params_from
+from .simple_charging_dock import SimpleChargingDock
+
+PLUGIN_TYPES: dict[str, PluginFactory] = {
+    "opennav_docking::SimpleChargingDock": SimpleChargingDock.create,
+}
+DEFAULT_PLUGIN = "simple_charging_dock"
+# aiobt's robot and dock: the marker is on the dock's face, a robot radius ahead of the
+# docked pose, and the detection is planar (no camera-frame turn); docked is pressed on
+# the contacts; a longer staging run and a stiffer law settle the heading before contact
+SHIPPED: dict[str, dict[str, str]] = {
+    DEFAULT_PLUGIN: {
+        "use_external_detection_pose": "true",
+        "external_detection_translation_x": "-0.22",
+        "external_detection_rotation_pitch": "0.0",
+        "external_detection_rotation_roll": "0.0",
+        "docking_threshold": "0.005",
+        "staging_x_offset": "-1.0",
+    },
+    "controller": {
+        "k_phi": "5.0",
+        "k_delta": "3.0",
+        "v_linear_min": "0.15",
+        "v_linear_max": "0.15",
+    },
+}
+
+
+def _names(text: str) -> list[str]:
+    return [name.strip() for name in text.split(",") if name.strip()]
+
+
+def _param(text: str) -> tuple[str, str, str]:
+    name, sep, value = text.partition("=")
+    scope, dot, key = name.partition(".")
+    if not (sep and dot and scope and key):
+        raise argparse.ArgumentTypeError(f"expected SCOPE.parameter=value, got {text!r}")
+    return scope, key, value
+
+
+def add_docking_arguments(group: argparse._ArgumentGroup) -> None:
+    add, d = group.add_argument, DockingParams()
+    add("--dock-database", type=database_path, default=None, metavar="PATH_OR_WORLD",
+        help="dock database (YAML): a path, or a shipped world's name (office, small)")  # fmt: skip
+    add("--dock-plugins", type=_names, default=DEFAULT_PLUGIN,
+        help="comma-separated dock plugin names (default: %(default)s)")  # fmt: skip
+    add("--param", type=_param, action="append", default=[], metavar="SCOPE.NAME=VALUE",
+        help="a plugin's or the controller's parameter, e.g. controller.k_phi=3.0 or "
+        "simple_charging_dock.staging_x_offset=-0.7")  # fmt: skip
+    for field in dataclasses.fields(DockingParams):
+        kind = field.type if field.type in ("int", "str") else "float"
+        convert = {"int": int, "str": str}.get(kind, non_negative)
+        if field.name == "controller_frequency":
+            convert = positive
+        add(f"--{field.name.replace('_', '-')}", type=convert, default=getattr(d, field.name),
+            help="(default: %(default)s)")  # fmt: skip
+
+
+def docking_params(args: argparse.Namespace) -> DockingParams:
+    return DockingParams(
+        **{f.name: getattr(args, f.name) for f in dataclasses.fields(DockingParams)}
+    )
+
+
+def scoped(args: argparse.Namespace, scope: str) -> dict[str, str]:
+    given = {key: value for name, key, value in args.param if name == scope}
+    return SHIPPED.get(scope, {}) | given
+
+
+def check_scopes(args: argparse.Namespace) -> None:
+    """ValueError naming a --param for neither the controller nor a plugin loaded."""
+    for scope, key, _ in args.param:
+        if scope != "controller" and scope not in args.dock_plugins:
+            loaded = ", ".join(args.dock_plugins)
+            raise ValueError(f"--param {scope}.{key}: '{scope}' is neither 'controller' nor "
+                             f"among the dock_plugins ({loaded})")  # fmt: skip
+
+
+def controller_params(args: argparse.Namespace) -> ControllerParams:
+    given = scoped(args, "controller")
+    detect = given.pop("use_collision_detection", "false")
+    law = params_from(ControlLawParams, "controller", {_law_name(k): v for k, v in given.items()})
+    return ControllerParams(law, use_collision_detection=detect.lower() != "false")
+
+
+def _law_name(key: str) -> str:
+    return "lambda_" if key == "lambda" else key
+
+
+def make_plugins(args: argparse.Namespace, wiring: DockWiring) -> dict[str, ChargingDock]:
+    if not args.dock_plugins:
+        raise ValueError("Charging dock plugins empty! Must provide 1.")
+    made: dict[str, ChargingDock] = {}
+    for name in args.dock_plugins:
+        given = scoped(args, name)
+        kind = given.pop("plugin", "opennav_docking::SimpleChargingDock")
+        if kind not in PLUGIN_TYPES:
+            raise ValueError(f"{name}.plugin: no dock plugin '{kind}' (known: "
+                             f"{', '.join(PLUGIN_TYPES)})")  # fmt: skip
+        made[name] = PLUGIN_TYPES[kind](name, given, wiring)
+    return made

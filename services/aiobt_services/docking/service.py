@@ -1,0 +1,124 @@
+"""Wires the docking server onto the bus: the robot's pose, odometry, battery and the
+dock's detections in; ``cmd_vel``, the poses it works with (``dock_pose``,
+``filtered_dock_pose``, ``staging_pose``), the docks and the docked state (latched,
+for viewers) out; the two actions and ``docking_server/reload_database``."""
+
+from __future__ import annotations
+
+import logging
+from typing import Any
+
+import numpy as np
+
+from aiobt.core.clock import Clock
+from aiobt.geometry import Pose2D, Velocity
+from aiobt.msgs import BatteryState, Odometry, PoseStamped, Twist
+from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
+from aiobt.msgs.remote_actions import DockRobot, UndockRobot
+from aiobt.transport import Bus
+from aiobt.transport.announce import announce
+
+from .database import DockInstance, database_path, load_database
+from .detection import Detection
+from .errors import DockDatabaseError
+from .frames import RobotFrames
+from .server import DockingServer
+
+log = logging.getLogger("aiobt_services.docking.service")
+ODOMETRY_KEPT = 25  # half a second of odometry at 50 Hz: to place a detection by its stamp
+SHOWN = ("dock_pose", "filtered_dock_pose", "staging_pose")
+
+
+def detection_of(msg: PoseStamped) -> Detection:
+    q = msg.pose.orientation
+    p = msg.pose.position
+    return Detection(p.x, p.y, p.z, np.array([q.x, q.y, q.z, q.w]), msg.header.stamp,
+                     msg.header.frame_id)  # fmt: skip
+
+
+class DockingBus:
+    """The server's inputs and outputs on ``bus``; :meth:`serve` starts the actions."""
+
+    def __init__(self, bus: Bus, clock: Clock, cmd_vel_topic: str = "cmd_vel") -> None:
+        self.bus = bus
+        self.clock = clock
+        self._pose = bus.latest("pose", PoseStamped)
+        self._odom = bus.latest("odom", Odometry, keep=ODOMETRY_KEPT)
+        self._detected = bus.latest("detected_dock_pose", PoseStamped)
+        self._battery = bus.latest("battery", BatteryState)
+        self.frames = RobotFrames(self._pose.get, self._odom.newest_first)
+        self._cmd = bus.publisher(cmd_vel_topic, Twist)
+        self._shown = {name: bus.publisher(name, PoseStamped) for name in SHOWN}
+        self._docks = bus.latched_publisher("docks", DockList)
+        self._state = bus.latched_publisher("docking_state", DockingState)
+
+    def detection(self) -> Detection | None:
+        msg = self._detected.get()
+        return None if msg is None else detection_of(msg)
+
+    def battery(self) -> BatteryState | None:
+        return self._battery.get()
+
+    def drive(self, cmd: Velocity) -> None:
+        self._cmd.put(Twist.planar(cmd.v, cmd.w))
+
+    def turn_rate(self) -> float:
+        odom = self._odom.get()
+        return 0.0 if odom is None else odom.twist.angular.z
+
+    def show(self, name: str, pose: Pose2D, frame: str) -> None:
+        msg = PoseStamped.from_xy_yaw(pose.x, pose.y, pose.yaw, frame, self.clock.now())
+        self._shown[name].put(msg)
+
+    def serve(self, server: DockingServer, sim_time: bool) -> None:
+        bus = self.bus
+
+        async def dock(goal: DockRobot.Goal, handle: Any) -> DockRobot.Result:
+            result = await server.dock_robot(goal, handle)
+            self.publish_state(server)
+            return result
+
+        async def undock(goal: UndockRobot.Goal, handle: Any) -> UndockRobot.Result:
+            result = await server.undock_robot(goal, handle)
+            self.publish_state(server)
+            return result
+
+        bus.action_server(DockRobot.name, DockRobot, dock, clock=self.clock)
+        bus.action_server(UndockRobot.name, UndockRobot, undock, clock=self.clock)
+        bus.serve(ReloadDockDatabase.service_name, ReloadDockDatabase.Request,
+                  ReloadDockDatabase.Response, lambda req: self.reload(server, req))  # fmt: skip
+        self.publish_docks(server)
+        self.publish_state(server)
+        announce(bus, "docking", sim_time=sim_time)
+
+    def reload(self, server: DockingServer, req: Any) -> Any:
+        if server.lock.locked():
+            log.error("Cannot reload database while docking!")
+            return ReloadDockDatabase.Response(message="Cannot reload database while docking!")
+        try:
+            server.docks = load_database(database_path(req.filepath))
+        except DockDatabaseError as exc:
+            log.error("%s", exc)
+            return ReloadDockDatabase.Response(message=str(exc))
+        log.info("Dock database reloaded from file %s.", req.filepath)
+        self.publish_docks(server)
+        return ReloadDockDatabase.Response(success=True)
+
+    def publish_docks(self, server: DockingServer) -> None:
+        self._docks.put(
+            DockList(docks=[self._entry(server, dock) for dock in server.docks.values()])
+        )
+
+    def publish_state(self, server: DockingServer) -> None:
+        docked = bool(server.current_type or server.docked_at)
+        self._state.put(DockingState(docked=docked, dock=server.docked_at,
+                                     dock_type=server.current_type))  # fmt: skip
+
+    def _entry(self, server: DockingServer, dock: DockInstance) -> DockEntry:
+        pose = PoseStamped.from_xy_yaw(dock.pose.x, dock.pose.y, dock.pose.yaw, dock.frame)
+        plugin = server.find_plugin(dock.type)
+        staging = None
+        if plugin is not None:
+            s = plugin.staging_pose(dock.pose, dock.frame)
+            staging = PoseStamped.from_xy_yaw(s.x, s.y, s.yaw, dock.frame)
+        return DockEntry(name=dock.name, type=dock.type, id=dock.id, pose=pose, staging=staging)

@@ -1,0 +1,135 @@
+"""The docking server's logic against the real simulation, in one process, no Zenoh:
+the server's clock steps the pybullet world (its sleeps are sim time), its commands go
+to the base, and it reads what the robot service would publish: the odometry, the pose
+(the localization stand-in), the battery and the camera's detections of the dock."""
+
+from __future__ import annotations
+
+import asyncio
+import math
+from collections import deque
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+
+from aiobt.geometry import Pose2D, Velocity
+from aiobt.msgs import BatteryState, Odometry, PoseStamped
+from aiobt.msgs.remote_actions import DockRobot
+from aiobt_services.docking.control_law import ControlLawParams
+from aiobt_services.docking.controller import ControllerParams, DockController
+from aiobt_services.docking.database import DockInstance
+from aiobt_services.docking.detection import Detection
+from aiobt_services.docking.frames import RobotFrames
+from aiobt_services.docking.motion import Motion
+from aiobt_services.docking.options import SHIPPED
+from aiobt_services.docking.params import DockingParams
+from aiobt_services.docking.plugins import DockWiring
+from aiobt_services.docking.server import DockingServer
+from aiobt_services.docking.service import detection_of
+from aiobt_services.docking.simple_charging_dock import SimpleChargingDock
+from aiobt_services.robot import convert
+from aiobt_services.robot.mapfile import load_map
+from aiobt_services.robot.sensors import BatteryConfig, NoiseConfig
+from aiobt_services.robot.sim import SimConfig, Simulation
+from aiobt_services.robot.worlds import WORLDS_DIR
+
+CAMERA_EVERY = 7  # steps: about 15 Hz, as the robot service
+BATTERY_EVERY = 100  # 1 Hz
+
+
+class SimClock:
+    """Robot time is the simulation's; a sleep steps it (publishing as the robot does)."""
+
+    def __init__(self, base: SimBase) -> None:
+        self.base = base
+
+    def now(self) -> float:
+        return self.base.sim.time
+
+    async def sleep(self, seconds: float) -> None:
+        self.base.step(max(1, round(seconds / self.base.sim.config.dt)))
+        await asyncio.sleep(0)
+
+
+@dataclass
+class SimBase:
+    sim: Simulation
+    odometry: deque[Odometry] = field(default_factory=lambda: deque(maxlen=25))
+    detected: PoseStamped | None = None
+    battery: BatteryState | None = None
+    last: tuple[float, float] = (0.0, 0.0)  # the last command
+
+    def step(self, count: int) -> None:
+        for _ in range(count):
+            self.sim.step()
+            steps = self.sim.steps
+            if steps % 2 == 0:
+                self.odometry.appendleft(convert.odometry(self.sim))
+            if steps % CAMERA_EVERY == 0 and (seen := self.sim.detect_dock()) is not None:
+                self.detected = convert.dock_detection(seen, self.sim.time)
+            if steps % BATTERY_EVERY == 0:
+                self.battery = convert.battery_state(self.sim.battery, self.sim.time)
+
+    def place(self, pose: Pose2D) -> None:
+        """Teleport the robot, then let a few odometry and camera messages out."""
+        self.sim.teleport(pose)
+        self.step(10)
+
+    def drive(self, cmd: Velocity) -> None:
+        self.last = (cmd.v, cmd.w)
+        self.sim.command(cmd.v, cmd.w)
+
+    def pose(self) -> PoseStamped:
+        return convert.map_pose(self.sim)
+
+    def odoms(self) -> Iterator[Odometry]:
+        return iter(self.odometry)
+
+    def detection(self) -> Detection | None:
+        return None if self.detected is None else detection_of(self.detected)
+
+
+def office_sim(battery: float = 0.5, seed: int = 3) -> Simulation:
+    noise = NoiseConfig(odom_linear=0.05, odom_angular=0.05, slip=0.02, odom_angular_scale=0.02,
+                        seed=seed)  # fmt: skip
+    config = SimConfig(noise=noise, battery=BatteryConfig(initial_percentage=battery))
+    return Simulation(load_map(WORLDS_DIR / "office.yaml"), config)
+
+
+def docking_server(base: SimBase, navigate: object, params: DockingParams | None = None,
+                   dock_params: dict[str, str] | None = None) -> DockingServer:  # fmt: skip
+    clock = SimClock(base)
+    frames = RobotFrames(base.pose, base.odoms)
+    wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None)
+    plugin = SimpleChargingDock.create(
+        "simple_charging_dock", SHIPPED["simple_charging_dock"] | (dock_params or {}), wiring
+    )
+    law = ControlLawParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
+    motion = Motion(params or DockingParams(), DockController(ControllerParams(law)), frames,
+                    clock, base.drive, lambda: base.sim.odometry.angular)  # fmt: skip
+    dock = base.sim.world.dock
+    assert dock is not None
+    home = DockInstance("home_dock", "simple_charging_dock", Pose2D(dock.x, dock.y, dock.yaw))
+    return DockingServer(motion, navigate, {"simple_charging_dock": plugin},  # type: ignore[arg-type]
+                         {"home_dock": home})  # fmt: skip
+
+
+class Feedback:
+    """A goal handle's feedback: the states in order; ``controlling`` once approaching."""
+
+    def __init__(self) -> None:
+        self.states: list[int] = []
+        self.controlling = asyncio.Event()
+
+    def publish_feedback(self, feedback: DockRobot.Feedback) -> None:
+        if not self.states or self.states[-1] != feedback.state:
+            self.states.append(feedback.state)
+        if feedback.state == 3:
+            self.controlling.set()
+
+
+def docked_error(sim: Simulation) -> tuple[float, float]:
+    """The robot's distance (m) and heading error (rad) from the dock pose, from the truth."""
+    station = sim.dock_station
+    assert station is not None
+    off = station.offset(sim.true_pose)
+    return math.hypot(off.x, off.y), abs(off.yaw)
