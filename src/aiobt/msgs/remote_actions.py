@@ -1,4 +1,5 @@
-"""Nav2 actions that aiobt's services do not serve yet: route, docking, following.
+"""Nav2's route, docking and following actions (served by ``aiobt route`` and
+``aiobt docking``; following: no server yet).
 
 Their BT leaves exist with Nav2's ports so that Nav2's trees load; against no
 server they fail after ``server_timeout`` with a clear "no server" message, and

@@ -52,6 +52,12 @@ SERVICES: tuple[ServiceSpec, ...] = (
         "the following server: Nav2's nav2_following (follow a detected object)",
         enabled=False,
     ),
+    ServiceSpec(
+        "docking",
+        "the docking server: Nav2's opennav_docking (dock and undock)",
+        enabled=False,
+        world_flag="--dock-database",
+    ),
 )
 """In start order: the robot first (the map and the clock), the navigator last."""
 

@@ -28,6 +28,7 @@
       collision_monitor: {enabled: true, args: []}   # with safety_chain (the default)
       navigator:  {enabled: true, args: []}
       route:      {enabled: false, args: []}   # Nav2's route server: off, as in Nav2
+      docking:    {enabled: false, args: []}   # Nav2's docking server: off, as in Nav2
 
 Every key is optional; an unknown key or a value of the wrong type is a
 :class:`ConfigError` naming the file and the key.
