@@ -55,21 +55,21 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_command_argument(group)
 
 
-def database_or_explain(args: argparse.Namespace) -> dict[str, DockInstance]:
-    """The docks; a database that does not load is logged, and none is served."""
+def database_or_explain(args: argparse.Namespace) -> tuple[dict[str, DockInstance], str]:
+    """The docks, and why there are none when the database does not load (logged)."""
     if args.dock_database is None:
         log.warning(
             "Dock database filepath nor dock parameters set. Docking actions can "
             "only be executed specifying the dock pose via the action request."
         )
-        return {}
+        return {}, ""
     try:
         docks = load_database(args.dock_database)
     except DockDatabaseError as exc:
         log.error("%s", exc)
-        return {}
+        return {}, str(exc)
     log.info("Loaded %d dock(s) from %s", len(docks), args.dock_database)
-    return docks
+    return docks, ""
 
 
 def build(args: argparse.Namespace, bus: Bus, clock: Clock) -> tuple[DockingBus, DockingServer]:
@@ -81,7 +81,9 @@ def build(args: argparse.Namespace, bus: Bus, clock: Clock) -> tuple[DockingBus,
     plugins = make_plugins(args, wiring)
     motion = Motion(params, controller, wires.frames, clock, wires.drive, wires.turn_rate)
     navigate = StagingNavigator(bus, clock, params.navigator_bt_xml)
-    server = DockingServer(motion, navigate, plugins, database_or_explain(args))
+    docks, problem = database_or_explain(args)
+    server = DockingServer(motion, navigate, plugins, docks)
+    server.database_error = problem
     log.info("Docking Server has %d dock types and %d dock instances available.",
              len(plugins), len(server.docks))  # fmt: skip
     return wires, server

@@ -31,6 +31,7 @@ class DockingServer:
         self.navigate = navigate
         self.plugins = dict(plugins)
         self.docks = dict(docks)
+        self.database_error = ""  # why the dock database did not load, if it did not
         self.current_type = ""  # the dock type of the last successful docking
         self.docked_at = ""  # the dock's name while docked by this server
         self.lock = asyncio.Lock()  # one procedure at a time (Nav2's mutex)
@@ -46,8 +47,9 @@ class DockingServer:
             dock = self.docks.get(goal.dock_id)
             if dock is None:
                 known = ", ".join(sorted(self.docks)) or "none"
+                why = f"; {self.database_error}" if self.database_error else ""
                 raise DockNotInDB(f"Dock ID requested is not in database! ('{goal.dock_id}'; "
-                                  f"known: {known})")  # fmt: skip
+                                  f"known: {known}{why})")  # fmt: skip
         else:
             pose = goal.dock_pose
             dock = DockInstance(

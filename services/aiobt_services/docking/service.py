@@ -97,6 +97,7 @@ class DockingBus:
             return ReloadDockDatabase.Response(message="Cannot reload database while docking!")
         try:
             server.docks = load_database(database_path(req.filepath))
+            server.database_error = ""
         except DockDatabaseError as exc:
             log.error("%s", exc)
             return ReloadDockDatabase.Response(message=str(exc))
