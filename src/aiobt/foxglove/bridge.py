@@ -36,6 +36,7 @@ from aiobt.msgs import (
     PoseStamped,
     PoseWithCovarianceStamped,
 )
+from aiobt.msgs.docking import DockList
 from aiobt.msgs.remote_actions import ComputeRoute
 from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
@@ -111,6 +112,7 @@ class FoxgloveBridge:
         routes = bus.keys.action(ComputeRoute.name).any_result
         add(self._watch(routes, ComputeRoute.result_type(), self.on_route))
         add(bus.subscribe("route_graph", RouteGraph, self.on_route_graph, latched=True))
+        add(bus.subscribe("docks", DockList, self.on_docks, latched=True))
         add(self._watch(feedback, NavigateToPose.feedback_type(), self.on_feedback))
         add(bus.subscribe("filtered_dynamic_pose", PoseStamped, self.on_followed, queue_size=2))
         self.note(f"bridging namespace '{bus.namespace}'")
@@ -189,6 +191,10 @@ class FoxgloveBridge:
     def on_followed(self, msg: PoseStamped) -> None:
         """The object the following server follows, in its fixed frame (placed by /tf)."""
         self.ch.followed.log(convert.pose_in_frame(msg))
+
+    def on_docks(self, msg: DockList) -> None:
+        stamp = self._pose.header.stamp if self._pose is not None else 0.0
+        self.ch.docks.log(convert.docks(msg, stamp))
 
     def on_local_plan(self, msg: Path) -> None:
         """The controller's local plan; an empty one (its goal ended) clears the panel's."""

@@ -15,6 +15,7 @@ topic                 schema                       from (under the namespace ``n
 /plan                 foxglove.PosesInFrame        ``compute_path_to_pose`` results
 /route                foxglove.PosesInFrame        ``compute_route`` results (the route server)
 /route_graph          foxglove.SceneUpdate         ``{ns}/route_graph`` (latched): lanes, nodes
+/docks                foxglove.SceneUpdate         ``{ns}/docks`` (latched): docks, staging poses
 /local_plan           foxglove.PosesInFrame        ``{ns}/local_plan`` (the controller)
 /local_costmap        foxglove.Grid                ``{ns}/local_costmap/costmap``
 /goal                 foxglove.PoseInFrame         ``{ns}/goal_pose`` and navigation goals
@@ -71,6 +72,7 @@ class Channels:
     plan: fc.PosesInFrameChannel
     route: fc.PosesInFrameChannel
     route_graph: fc.SceneUpdateChannel
+    docks: fc.SceneUpdateChannel
     local_plan: fc.PosesInFrameChannel
     local_costmap: fc.GridChannel
     goal: fc.PoseInFrameChannel
@@ -97,6 +99,7 @@ class Channels:
             plan=fc.PosesInFrameChannel("/plan", context=c),
             route=fc.PosesInFrameChannel("/route", context=c),
             route_graph=fc.SceneUpdateChannel("/route_graph", context=c),
+            docks=fc.SceneUpdateChannel("/docks", context=c),
             local_plan=fc.PosesInFrameChannel("/local_plan", context=c),
             local_costmap=fc.GridChannel("/local_costmap", context=c),
             goal=fc.PoseInFrameChannel("/goal", context=c),

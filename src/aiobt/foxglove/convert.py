@@ -26,6 +26,7 @@ from aiobt.msgs import (
     PoseStamped,
 )
 from aiobt.msgs import Pose as AiobtPose
+from aiobt.msgs.docking import DockList
 from aiobt.msgs.route_graph import RouteGraph
 
 _INT8 = fm.PackedElementFieldNumericType.Int8
@@ -255,4 +256,19 @@ def route_graph(msg: RouteGraph) -> fm.SceneUpdate:
                              thickness=0.15, points=[q for d in dots for q in (d, d)], color=green),
         ],
     )  # fmt: skip
+    return fm.SceneUpdate(entities=[entity])
+
+
+def docks(msg: DockList, stamp: float) -> fm.SceneUpdate:
+    """The docking server's docks (dark green, pointing into the dock) and their staging
+    poses (light green), as arrows in ``map``."""
+
+    def arrow(p: PoseStamped, length: float, green: float) -> fm.ArrowPrimitive:
+        return fm.ArrowPrimitive(pose=pose(p.pose), shaft_length=length, shaft_diameter=0.04,
+                                 head_length=0.1, head_diameter=0.12,
+                                 color=fm.Color(r=0.15, g=green, b=0.2, a=1.0))  # fmt: skip
+
+    arrows = [arrow(d.pose, 0.3, 0.5) for d in msg.docks]
+    arrows += [arrow(d.staging, 0.2, 0.85) for d in msg.docks if d.staging is not None]
+    entity = fm.SceneEntity(timestamp=timestamp(stamp), frame_id="map", id="docks", arrows=arrows)
     return fm.SceneUpdate(entities=[entity])

@@ -25,6 +25,7 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs.bt import BtSnapshot, BtTree
+from aiobt.msgs.docking import DockList
 from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
 
@@ -173,3 +174,12 @@ def route_graph_payload(graph: RouteGraph) -> Json:
         lanes.setdefault((*min(a, b), *max(a, b)), [*a, *b])
     nodes = [[_mm(n.position.x), _mm(n.position.y), n.nodeid] for n in graph.nodes]
     return {"name": graph.name, "nodes": nodes, "edges": list(lanes.values())}
+
+
+def docks_payload(docks: DockList) -> list[Json]:
+    """The docking server's docks: each one's name, pose and staging pose (or None)."""
+    return [
+        {"name": d.name, **pose_payload(d.pose),
+         "staging": pose_payload(d.staging) if d.staging is not None else None}
+        for d in docks.docks
+    ]  # fmt: skip

@@ -28,6 +28,7 @@ since the last flush and hands it to the :class:`Hub`. Streams:
 ``route_graph`` ``{ns}/route_graph`` (latched): the route server's graph
 ``followed``   ``{ns}/filtered_dynamic_pose``: the object the following server
                follows, put in ``map`` (:mod:`aiobt.web.followed`)
+``docks``       ``{ns}/docks`` (latched): the docking server's docks and staging poses
 ``feedback``   navigate_to_pose / navigate_through_poses feedback
 ``tree``       ``{ns}/bt/tree``; ``status`` from ``bt/transitions`` and
 ``nav``        ``bt/snapshot`` (the navigation's state, and the goal it
@@ -61,6 +62,7 @@ from aiobt.msgs import (
     Twist,
 )
 from aiobt.msgs.bt import BtSnapshot, BtTransitions, BtTree
+from aiobt.msgs.docking import DockList
 from aiobt.msgs.remote_actions import ComputeRoute
 from aiobt.msgs.route_graph import RouteGraph
 from aiobt.msgs.safety import CollisionPolygons
@@ -112,7 +114,7 @@ class Sources:
             ("bt/snapshot", BtSnapshot, False),
             ("local_plan", Path, False), ("local_costmap/costmap", OccupancyGrid, False),
             ("collision_monitor/polygons", CollisionPolygons, True),
-            ("route_graph", RouteGraph, True),
+            ("route_graph", RouteGraph, True), ("docks", DockList, True),
             (SIM_POSE, PoseStamped, False), ("particle_cloud", ParticleCloud, False),
             ("amcl_pose", PoseWithCovarianceStamped, True),
             (followed.TOPIC, PoseStamped, False),
@@ -206,6 +208,8 @@ class Sources:
                 self.hub.publish("route", convert.path_points(message.path))
         elif isinstance(message, RouteGraph):
             self.hub.publish("route_graph", convert.route_graph_payload(message), on_change=True)
+        elif isinstance(message, DockList):
+            self.hub.publish("docks", convert.docks_payload(message), on_change=True)
         elif stream == "feedback":
             self.hub.publish("feedback", _feedback(message))
 

@@ -58,6 +58,7 @@ function receive(update) {
   if ("particles" in update) state.particles = update.particles;
   if ("amcl_pose" in update) state.amclPose = update.amcl_pose;
   if ("truth" in update) state.truth = update.truth;
+  if ("docks" in update) state.docks = update.docks;
   for (const key of ["scan", "plan", "route", "local", "footprint", "zones", "followed"]) {
     if (key in update) state[key] = update[key];
   }
@@ -165,6 +166,12 @@ function drawGraph(graph) { // the route server's lanes and nodes
     const [cx, cy] = toCanvas(x, y); ctx.beginPath(); ctx.arc(cx, cy, 3, 0, 2 * Math.PI); ctx.fill();
   }
 }
+function drawDocks() { // the docking server's docks (green, facing the dock) and staging poses
+  for (const dock of state.docks || []) {
+    arrow(dock, "#2e7d32", 0.22);
+    if (dock.staging) arrow(dock.staging, "#81c784", 0.08);
+  }
+}
 function draw() {
   requestAnimationFrame(draw);
   if (!dirty || !state.map) return;
@@ -189,6 +196,7 @@ function draw() {
   }
   if (document.getElementById("show-route-graph").checked && state.routeGraph) drawGraph(state.routeGraph);
   polyline(state.route, "#2e7d32", 3);
+  drawDocks();
   for (const zone of state.zones || []) { // the collision monitor's; the acting one red
     if (zone.acting) polyline(zone.points, "#d50000", 3.5);
     else polyline(zone.points, zone.action === "approach" ? "#2979ff" : "#ff9100", 1.5);
