@@ -15,31 +15,20 @@ See README.md.
 from __future__ import annotations
 
 import argparse
+import functools
 import logging
 
 from aiobt.core.clock import Clock
 from aiobt.system.robot_flags import add_command_argument
-from aiobt.system.service import (
-    add_clock_arguments,
-    open_bus_unless_stopped,
-    open_clock,
-    run_service,
-    stop_on_signals,
-)
-from aiobt.transport import Bus, BusSettings, add_bus_arguments
+from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
+from aiobt.transport import Bus, add_bus_arguments
 
 from .controller import DockController
 from .database import DockInstance, load_database
 from .errors import DockDatabaseError
 from .motion import Motion
 from .navigator import StagingNavigator
-from .options import (
-    add_docking_arguments,
-    check_scopes,
-    controller_params,
-    docking_params,
-    make_plugins,
-)
+from .options import Settings, add_docking_arguments, make_plugins, settings_from
 from .plugins import DockWiring
 from .server import DockingServer
 from .service import DockingBus
@@ -72,40 +61,27 @@ def database_or_explain(args: argparse.Namespace) -> tuple[dict[str, DockInstanc
     return docks, ""
 
 
-def build(args: argparse.Namespace, bus: Bus, clock: Clock) -> tuple[DockingBus, DockingServer]:
-    """The server's parts; ValueError naming a bad parameter."""
-    check_scopes(args)
-    params, controller = docking_params(args), DockController(controller_params(args))
+def start(settings: Settings, args: argparse.Namespace, bus: Bus, clock: Clock) -> None:
+    """The server's parts on ``bus``, its actions and services served."""
     wires = DockingBus(bus, clock, args.cmd_vel_topic)
     wiring = DockWiring(wires.frames, clock, wires.detection, wires.battery, wires.show)
-    plugins = make_plugins(args, wiring)
-    motion = Motion(params, controller, wires.frames, clock, wires.drive, wires.turn_rate)
-    navigate = StagingNavigator(bus, clock, params.navigator_bt_xml)
+    plugins = make_plugins(settings.plugins, wiring)
+    motion = Motion(settings.docking, DockController(settings.controller), wires.frames, clock,
+                    wires.drive, wires.turn_rate)  # fmt: skip
+    navigate = StagingNavigator(bus, clock, settings.docking.navigator_bt_xml)
     docks, problem = database_or_explain(args)
     server = DockingServer(motion, navigate, plugins, docks)
     server.database_error = problem
     log.info("Docking Server has %d dock types and %d dock instances available.",
              len(plugins), len(server.docks))  # fmt: skip
-    return wires, server
-
-
-async def serve(args: argparse.Namespace) -> None:
-    stop = stop_on_signals()
-    async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
-        if bus is None:
-            return
-        clock = await open_clock(bus, args.sim_time, stop)
-        if clock is None:
-            return
-        try:
-            wires, server = build(args, bus, clock)
-        except ValueError as exc:
-            log.error("docking: %s", exc)
-            raise SystemExit(2) from None
-        wires.serve(server, args.sim_time)
-        log.info("docking server up on namespace '%s'", bus.namespace)
-        await stop.wait()
+    wires.serve(server)
 
 
 def run(args: argparse.Namespace) -> int:
-    return run_service(serve(args), log, "docking")
+    try:
+        settings = settings_from(args)
+    except ValueError as exc:
+        log.error("docking: %s", exc)
+        return 2
+    up = functools.partial(start, settings, args)
+    return run_service(serve_on_clock(args, "docking", up), log, "docking")

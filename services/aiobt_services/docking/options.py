@@ -10,18 +10,21 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+from dataclasses import dataclass
+from typing import Any
 
+from aiobt.system.plugin_params import comma_list, dotted_param, params_from
 from aiobt.system.service import non_negative, positive
 
 from .control_law import ControlLawParams
 from .controller import ControllerParams
 from .database import database_path
 from .params import DockingParams
-from .plugins import ChargingDock, DockWiring, PluginFactory, params_from
-from .simple_charging_dock import SimpleChargingDock
+from .plugins import ChargingDock, DockWiring, PluginFactory
+from .simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 
-PLUGIN_TYPES: dict[str, PluginFactory] = {
-    "opennav_docking::SimpleChargingDock": SimpleChargingDock.create,
+PLUGIN_TYPES: dict[str, tuple[type[Any], PluginFactory]] = {  # Nav2's type: params, class
+    "opennav_docking::SimpleChargingDock": (SimpleChargingDockParams, SimpleChargingDock),
 }
 DEFAULT_PLUGIN = "simple_charging_dock"
 # aiobt's robot and dock: the marker is on the dock's face, a robot radius ahead of the
@@ -45,25 +48,29 @@ SHIPPED: dict[str, dict[str, str]] = {
 }
 
 
-def _names(text: str) -> list[str]:
-    return [name.strip() for name in text.split(",") if name.strip()]
+@dataclass(slots=True, frozen=True)
+class PluginSpec:
+    name: str
+    make: PluginFactory
+    params: Any
 
 
-def _param(text: str) -> tuple[str, str, str]:
-    name, sep, value = text.partition("=")
-    scope, dot, key = name.partition(".")
-    if not (sep and dot and scope and key):
-        raise argparse.ArgumentTypeError(f"expected SCOPE.parameter=value, got {text!r}")
-    return scope, key, value
+@dataclass(slots=True, frozen=True)
+class Settings:
+    """The server's parameters, checked before anything starts."""
+
+    docking: DockingParams
+    controller: ControllerParams
+    plugins: list[PluginSpec]
 
 
 def add_docking_arguments(group: argparse._ArgumentGroup) -> None:
     add, d = group.add_argument, DockingParams()
     add("--dock-database", type=database_path, default=None, metavar="PATH_OR_WORLD",
         help="dock database (YAML): a path, or a shipped world's name (office, small)")  # fmt: skip
-    add("--dock-plugins", type=_names, default=DEFAULT_PLUGIN,
+    add("--dock-plugins", type=comma_list, default=DEFAULT_PLUGIN,
         help="comma-separated dock plugin names (default: %(default)s)")  # fmt: skip
-    add("--param", type=_param, action="append", default=[], metavar="SCOPE.NAME=VALUE",
+    add("--param", type=dotted_param, action="append", default=[], metavar="SCOPE.NAME=VALUE",
         help="a plugin's or the controller's parameter, e.g. controller.k_phi=3.0 or "
         "simple_charging_dock.staging_x_offset=-0.7")  # fmt: skip
     for field in dataclasses.fields(DockingParams):
@@ -106,15 +113,26 @@ def _law_name(key: str) -> str:
     return "lambda_" if key == "lambda" else key
 
 
-def make_plugins(args: argparse.Namespace, wiring: DockWiring) -> dict[str, ChargingDock]:
+def plugin_specs(args: argparse.Namespace) -> list[PluginSpec]:
     if not args.dock_plugins:
         raise ValueError("Charging dock plugins empty! Must provide 1.")
-    made: dict[str, ChargingDock] = {}
+    specs: list[PluginSpec] = []
     for name in args.dock_plugins:
         given = scoped(args, name)
         kind = given.pop("plugin", "opennav_docking::SimpleChargingDock")
         if kind not in PLUGIN_TYPES:
-            raise ValueError(f"{name}.plugin: no dock plugin '{kind}' (known: "
-                             f"{', '.join(PLUGIN_TYPES)})")  # fmt: skip
-        made[name] = PLUGIN_TYPES[kind](name, given, wiring)
-    return made
+            known = ", ".join(PLUGIN_TYPES)
+            raise ValueError(f"{name}.plugin: no dock plugin '{kind}' (known: {known})")
+        params, make = PLUGIN_TYPES[kind]
+        specs.append(PluginSpec(name, make, params_from(params, name, given)))
+    return specs
+
+
+def settings_from(args: argparse.Namespace) -> Settings:
+    """ValueError naming the parameter that is wrong."""
+    check_scopes(args)
+    return Settings(docking_params(args), controller_params(args), plugin_specs(args))
+
+
+def make_plugins(specs: list[PluginSpec], wiring: DockWiring) -> dict[str, ChargingDock]:
+    return {spec.name: spec.make(spec.name, spec.params, wiring) for spec in specs}

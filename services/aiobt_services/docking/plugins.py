@@ -1,11 +1,9 @@
-"""Dock plugins (Nav2's ``opennav_docking_core::ChargingDock``): one Protocol, the
-registry of the plugin classes by their Nav2 name, and their parameters from
-``PLUGIN.name=value`` strings."""
+"""Dock plugins (Nav2's ``opennav_docking_core::ChargingDock``): the Protocol and what
+a plugin is given (the registry of plugin types is ``options.PLUGIN_TYPES``)."""
 
 from __future__ import annotations
 
-import dataclasses
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -58,29 +56,4 @@ class ChargingDock(Protocol):
     def stop_detection(self) -> bool: ...
 
 
-PluginFactory = Callable[[str, Mapping[str, str], DockWiring], ChargingDock]
-
-
-def params_from(cls: type[Any], plugin: str, given: Mapping[str, str]) -> Any:
-    """``cls`` (a dataclass of parameters) from strings; ValueError naming the
-    parameter that is unknown or of the wrong type."""
-    fields = {f.name: f for f in dataclasses.fields(cls)}
-    values: dict[str, Any] = {}
-    for key, text in given.items():
-        if key not in fields:
-            raise ValueError(f"{plugin}.{key}: no such parameter (known: {', '.join(fields)})")
-        values[key] = _convert(f"{plugin}.{key}", fields[key].type, text)
-    return cls(**values)
-
-
-def _convert(name: str, kind: object, text: str) -> Any:
-    if kind in (bool, "bool"):
-        if text.lower() not in ("true", "false"):
-            raise ValueError(f"{name}: expected true or false, got {text!r}")
-        return text.lower() == "true"
-    if kind in (float, "float"):
-        try:
-            return float(text)
-        except ValueError:
-            raise ValueError(f"{name}: expected a number, got {text!r}") from None
-    return text
+PluginFactory = Callable[[str, Any, DockWiring], ChargingDock]  # (name, its params, wiring)

@@ -16,7 +16,6 @@ from aiobt.msgs import BatteryState, Odometry, PoseStamped, Twist
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
 from aiobt.transport import Bus
-from aiobt.transport.announce import announce
 
 from .database import DockInstance, database_path, load_database
 from .detection import Detection
@@ -70,7 +69,7 @@ class DockingBus:
         msg = PoseStamped.from_xy_yaw(pose.x, pose.y, pose.yaw, frame, self.clock.now())
         self._shown[name].put(msg)
 
-    def serve(self, server: DockingServer, sim_time: bool) -> None:
+    def serve(self, server: DockingServer) -> None:
         bus = self.bus
 
         async def dock(goal: DockRobot.Goal, handle: Any) -> DockRobot.Result:
@@ -89,7 +88,6 @@ class DockingBus:
                   ReloadDockDatabase.Response, lambda req: self.reload(server, req))  # fmt: skip
         self.publish_docks(server)
         self.publish_state(server)
-        announce(bus, "docking", sim_time=sim_time)
 
     def reload(self, server: DockingServer, req: Any) -> Any:
         if server.lock.locked():

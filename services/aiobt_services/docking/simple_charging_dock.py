@@ -13,13 +13,12 @@ from __future__ import annotations
 
 import logging
 import math
-from collections.abc import Mapping
 from dataclasses import dataclass
 
 from aiobt.geometry import Pose2D
 
 from .detection import Detection, PoseFilter, dock_pose, quat_from_rpy
-from .plugins import DockWiring, params_from
+from .plugins import DockWiring
 
 log = logging.getLogger("aiobt_services.docking.simple_charging_dock")
 
@@ -75,10 +74,6 @@ class SimpleChargingDock:
                                       p.external_detection_rotation_pitch,
                                       p.external_detection_rotation_yaw)  # fmt: skip
         self.dock: tuple[Pose2D, str] | None = None  # the tracked dock pose and its frame
-
-    @classmethod
-    def create(cls, name: str, given: Mapping[str, str], wiring: DockWiring) -> SimpleChargingDock:
-        return cls(name, params_from(SimpleChargingDockParams, name, given), wiring)
 
     def staging_pose(self, dock: Pose2D, frame: str) -> Pose2D:
         if not self.params.use_external_detection_pose:

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 
 from aiobt.msgs.std import Trigger
+from aiobt.system.plugin_params import comma_list, dotted_param
 from aiobt.system.service import non_negative, positive
 
 from .dense import Smoothing
@@ -20,22 +21,10 @@ from .tracker import TrackerParams
 COLLISION_MONITOR_DEFAULTS = {"max_collision_dist": "3.0"}  # nav2_params.yaml (code: 5.0)
 
 
-def _names(text: str) -> list[str]:
-    return [name.strip() for name in text.split(",") if name.strip()]
-
-
 def _flag(text: str) -> bool:
     if text.lower() not in ("true", "false"):
         raise argparse.ArgumentTypeError(f"must be true or false, got {text}")
     return text.lower() == "true"
-
-
-def _param(text: str) -> tuple[str, str, str]:
-    name, sep, value = text.partition("=")
-    plugin, dot, key = name.partition(".")
-    if not (sep and dot and plugin and key):
-        raise argparse.ArgumentTypeError(f"expected PLUGIN.parameter=value, got {text!r}")
-    return plugin, key, value
 
 
 def add_route_arguments(group: argparse._ArgumentGroup) -> None:
@@ -53,11 +42,11 @@ def add_route_arguments(group: argparse._ArgumentGroup) -> None:
     add("--smoothing-radius", type=positive, default=1.0, help="m (%(default)s)")
     add("--smoothing-angle-threshold", type=positive, default=2.9, help="rad (%(default)s)")
     add("--max-planning-time", type=positive, default=2.0, help="s, warned over (%(default)s)")
-    add("--edge-cost-functions", type=_names, default=",".join(DEFAULT_SCORERS),
+    add("--edge-cost-functions", type=comma_list, default=",".join(DEFAULT_SCORERS),
         help=f"comma-separated, of {', '.join(SCORERS)} (default: %(default)s)")  # fmt: skip
-    add("--operations", type=_names, default=",".join(DEFAULT_OPERATIONS),
+    add("--operations", type=comma_list, default=",".join(DEFAULT_OPERATIONS),
         help=f"comma-separated, of {', '.join(OPERATIONS)} (default: %(default)s)")  # fmt: skip
-    add("--param", type=_param, action="append", default=[], metavar="PLUGIN.NAME=VALUE",
+    add("--param", type=dotted_param, action="append", default=[], metavar="PLUGIN.NAME=VALUE",
         help="a scorer's or operation's parameter, e.g. CostmapScorer.weight=2.0")  # fmt: skip
     add("--radius-to-achieve-node", type=positive, default=2.0, help="m (%(default)s)")
     add("--boundary-radius-to-achieve-node", type=positive, default=1.0, help="m (%(default)s)")

@@ -21,6 +21,7 @@ from typing import Any, TypeVar
 
 from aiobt.costmap import CostGrid
 from aiobt.msgs.std import Trigger
+from aiobt.system.plugin_params import convert_param
 
 P = TypeVar("P")
 NAV2_PREFIX = "nav2_route::"
@@ -79,19 +80,3 @@ def _values(plugin: type, name: str, params: dict[str, str], wiring: Wiring) -> 
     if extra is not None:
         values[extra] = extras
     return values
-
-
-def convert_param(where: str, text: str, default: Any) -> Any:
-    """``text`` as the type of ``default`` (true/false for a bool; a list of names,
-    comma-separated, optionally in brackets and quotes, for a tuple)."""
-    try:
-        if isinstance(default, bool):
-            if text.lower() not in ("true", "false"):
-                raise ValueError("not true or false")
-            return text.lower() == "true"
-        if isinstance(default, tuple):
-            names = (part.strip().strip("'\"") for part in text.strip().strip("[]").split(","))
-            return tuple(part for part in names if part)
-        return type(default)(text)
-    except ValueError as exc:
-        raise ValueError(f"{where}: bad value {text!r} ({exc})") from None

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.msgs import BatteryState, Odometry, PoseStamped
 from aiobt.msgs.remote_actions import DockRobot
+from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.control_law import ControlLawParams
 from aiobt_services.docking.controller import ControllerParams, DockController
 from aiobt_services.docking.database import DockInstance
@@ -25,7 +26,7 @@ from aiobt_services.docking.params import DockingParams
 from aiobt_services.docking.plugins import DockWiring
 from aiobt_services.docking.server import DockingServer
 from aiobt_services.docking.service import detection_of
-from aiobt_services.docking.simple_charging_dock import SimpleChargingDock
+from aiobt_services.docking.simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 from aiobt_services.robot import convert
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.sensors import BatteryConfig, NoiseConfig
@@ -100,9 +101,9 @@ def docking_server(base: SimBase, navigate: object, params: DockingParams | None
     clock = SimClock(base)
     frames = RobotFrames(base.pose, base.odoms)
     wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None)
-    plugin = SimpleChargingDock.create(
-        "simple_charging_dock", SHIPPED["simple_charging_dock"] | (dock_params or {}), wiring
-    )
+    given = SHIPPED["simple_charging_dock"] | (dock_params or {})
+    chosen = params_from(SimpleChargingDockParams, "simple_charging_dock", given)
+    plugin = SimpleChargingDock("simple_charging_dock", chosen, wiring)
     law = ControlLawParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
     motion = Motion(params or DockingParams(), DockController(ControllerParams(law)), frames,
                     clock, base.drive, lambda: base.sim.odometry.angular)  # fmt: skip
