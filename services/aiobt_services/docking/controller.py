@@ -1,39 +1,70 @@
 """The docking server's controller (Nav2's ``opennav_docking::Controller``): the
-graceful control law toward a pose in the robot's frame, and the turn in place.
-
-Collision checking of the projected trajectory (``controller.use_collision_detection``,
-Nav2's default true) is not available here: the server keeps no local costmap; the
-flag must be false (see README).
+graceful control law toward a pose in the robot's frame, the turn in place, and the
+check of the trajectory the law would drive (``controller.use_collision_detection``):
+projected ``projection_time`` ahead in ``simulation_time_step`` steps, every pose
+farther than ``dock_collision_threshold`` from the dock (docking) or from the start
+(undocking) must be free.
 """
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from aiobt.geometry import Pose2D, Velocity
 
 from .control_law import ControlLawParams, SmoothControlLaw
+from .errors import FailedToControl
+
+Collides = Callable[[list[Pose2D]], bool]  # any of these poses (robot's frame) on an obstacle
 
 
 @dataclass(slots=True, frozen=True)
 class ControllerParams:
+    """``controller.*`` beyond the law's, Nav2's defaults."""
+
     law: ControlLawParams = field(default_factory=ControlLawParams)
-    use_collision_detection: bool = False
+    use_collision_detection: bool = True
+    projection_time: float = 5.0
+    simulation_time_step: float = 0.1
+    dock_collision_threshold: float = 0.3
 
     def __post_init__(self) -> None:
-        if self.use_collision_detection:
-            raise ValueError("controller.use_collision_detection: the docking server here keeps "
-                             "no costmap to check against; set it false")  # fmt: skip
+        if not (self.projection_time > 0.0 and self.simulation_time_step > 0.0):
+            raise ValueError("controller.projection_time and controller.simulation_time_step "
+                             "must be > 0")  # fmt: skip
 
 
 class DockController:
-    def __init__(self, params: ControllerParams) -> None:
+    def __init__(self, params: ControllerParams, collides: Collides | None = None) -> None:
         self.params = params
         self.law = SmoothControlLaw(params.law)
+        self.collides = collides if params.use_collision_detection else None
 
-    def command(self, target: Pose2D, backward: bool) -> Velocity:
-        """Toward ``target``, given in the robot's frame."""
-        return self.law.velocity(target, None, backward)
+    def command(self, target: Pose2D, backward: bool, docking: bool) -> Velocity:
+        """Toward ``target``, given in the robot's frame; FailedToControl when the way
+        there collides."""
+        cmd = self.law.velocity(target, None, backward)
+        if not self.trajectory_free(target, backward, docking):
+            raise FailedToControl("Failed to get control")
+        return cmd
+
+    def trajectory_free(self, target: Pose2D, backward: bool, docking: bool) -> bool:
+        if self.collides is None:
+            return True
+        p = self.params
+        step, steps = p.simulation_time_step, math.ceil(p.projection_time / p.simulation_time_step)
+        pose, checked = Pose2D(), []
+        for _ in range(max(1, steps - 1)):
+            pose = self.law.next_pose(step, target, pose, backward)
+            to_target = math.hypot(target.x - pose.x, target.y - pose.y)
+            away = to_target if docking else math.hypot(pose.x, pose.y)
+            if away > p.dock_collision_threshold:
+                checked.append(pose)
+            if to_target <= 1e-2:
+                break
+        return not (checked and self.collides(checked))
 
     def rotate(self, angle_to_go: float, angular_now: float, dt: float) -> Velocity:
         return Velocity(0.0, self.law.rotate_to_heading(angle_to_go, angular_now, dt))

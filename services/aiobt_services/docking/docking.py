@@ -132,7 +132,9 @@ class DockingAttempt:
             if refined is None and not plugin.rotate_to_dock:
                 raise FailedToDetectDock("Failed dock detection")
             dock_pose = refined or dock_pose
-            m.drive(m.controller.command(self._aim(dock_pose, plugin.backward), plugin.backward))
+            m.refresh()
+            aim = self._aim(dock_pose, plugin.backward)
+            m.drive(m.controller.command(aim, plugin.backward, docking=True))
             if m.clock.now() - began > m.params.dock_approach_timeout:
                 raise FailedToControl("Timed out approaching dock; dock nor charging (if "
                                       "applicable) detected")  # fmt: skip

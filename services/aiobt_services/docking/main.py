@@ -2,7 +2,8 @@
 
 Loads a dock database (``--dock-database``, Nav2's YAML; a shipped world's name picks
 its database) and the dock plugins (``--dock-plugins``, Nav2's SimpleChargingDock);
-reads ``{ns}/pose``, ``{ns}/odom``, ``{ns}/battery`` and the dock's detections on
+reads ``{ns}/pose``, ``{ns}/odom``, ``{ns}/battery``, ``{ns}/scan`` (its approach's
+collision check) and the dock's detections on
 ``{ns}/detected_dock_pose``; serves the actions ``dock_robot`` and ``undock_robot``
 (navigating to a staging pose through the navigator's ``navigate_to_pose``) and the
 service ``srv/docking_server/reload_database``; publishes ``{ns}/cmd_vel`` while it
@@ -19,10 +20,15 @@ import functools
 import logging
 
 from aiobt.core.clock import Clock
-from aiobt.system.robot_flags import add_command_argument
+from aiobt.system.robot_flags import (
+    add_command_argument,
+    add_local_costmap_arguments,
+    local_costmap_from,
+)
 from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
 from aiobt.transport import Bus, add_bus_arguments
 
+from .collisions import ScanCollisions
 from .controller import DockController
 from .database import DockInstance, load_database
 from .errors import DockDatabaseError
@@ -42,6 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("docking server", description=__doc__.split("\n\n")[1])
     add_docking_arguments(group)
     add_command_argument(group)
+    add_local_costmap_arguments(parser.add_argument_group("local costmap (the approach's check)"))
 
 
 def database_or_explain(args: argparse.Namespace) -> tuple[dict[str, DockInstance], str]:
@@ -66,8 +73,10 @@ def start(settings: Settings, args: argparse.Namespace, bus: Bus, clock: Clock) 
     wires = DockingBus(bus, clock, args.cmd_vel_topic)
     wiring = DockWiring(wires.frames, clock, wires.detection, wires.battery, wires.show)
     plugins = make_plugins(settings.plugins, wiring)
-    motion = Motion(settings.docking, DockController(settings.controller), wires.frames, clock,
-                    wires.drive, wires.turn_rate)  # fmt: skip
+    costmap = ScanCollisions(local_costmap_from(args), wires.scan, wires.frames, clock)
+    controller = DockController(settings.controller, costmap.collides)
+    motion = Motion(settings.docking, controller, wires.frames, clock, wires.drive,
+                    wires.turn_rate, costmap.refresh)  # fmt: skip
     navigate = StagingNavigator(bus, clock, settings.docking.navigator_bt_xml)
     docks, problem = database_or_explain(args)
     server = DockingServer(motion, navigate, plugins, docks)

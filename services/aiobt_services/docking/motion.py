@@ -32,6 +32,7 @@ class Motion:
     clock: Clock
     drive: Callable[[Velocity], None]  # publishes cmd_vel
     turn_rate: Callable[[], float]  # the odometry's angular velocity
+    refresh: Callable[[], None] = lambda: None  # takes the newest scan into the costmap
 
     def stop(self) -> None:
         self.drive(STOP)
@@ -46,7 +47,9 @@ class Motion:
         near = math.hypot(robot.x - pose.x, robot.y - pose.y) < linear_tolerance
         if near and abs(wrap_angle(pose.yaw - robot.yaw)) < angular_tolerance:
             return None
-        return self.controller.command(self.frames.transform(pose, frame, "base_link"), backward)
+        target = self.frames.transform(pose, frame, "base_link")
+        self.refresh()
+        return self.controller.command(target, backward, docking=False)
 
     async def rotate_to(self, heading: float, frame: str) -> None:
         """Turn in place to ``heading`` in ``frame`` (Nav2's rotateToDock)."""

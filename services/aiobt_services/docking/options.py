@@ -103,10 +103,18 @@ def check_scopes(args: argparse.Namespace) -> None:
 
 
 def controller_params(args: argparse.Namespace) -> ControllerParams:
-    given = scoped(args, "controller")
-    detect = given.pop("use_collision_detection", "false")
-    law = params_from(ControlLawParams, "controller", {_law_name(k): v for k, v in given.items()})
-    return ControllerParams(law, use_collision_detection=detect.lower() != "false")
+    """``controller.*``: the law's and the collision check's."""
+    given = {_law_name(k): v for k, v in scoped(args, "controller").items()}
+    law_keys = {f.name for f in dataclasses.fields(ControlLawParams)}
+    own_keys = {f.name for f in dataclasses.fields(ControllerParams)} - {"law"}
+    for key in set(given) - law_keys - own_keys:
+        known = ", ".join(sorted(k.rstrip("_") for k in law_keys | own_keys))
+        raise ValueError(f"controller.{key}: no such parameter (known: {known})")
+    law = params_from(ControlLawParams, "controller", {k: given[k] for k in law_keys & set(given)})
+    own: ControllerParams = params_from(
+        ControllerParams, "controller", {k: given[k] for k in own_keys & set(given)}
+    )
+    return dataclasses.replace(own, law=law)
 
 
 def _law_name(key: str) -> str:

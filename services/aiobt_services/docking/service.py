@@ -12,7 +12,7 @@ import numpy as np
 
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
-from aiobt.msgs import BatteryState, Odometry, PoseStamped, Twist
+from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Twist
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
 from aiobt.transport import Bus
@@ -45,6 +45,7 @@ class DockingBus:
         self._odom = bus.latest("odom", Odometry, keep=ODOMETRY_KEPT)
         self._detected = bus.latest("detected_dock_pose", PoseStamped)
         self._battery = bus.latest("battery", BatteryState)
+        self._scan = bus.latest("scan", LaserScan)
         self.frames = RobotFrames(self._pose.get, self._odom.newest_first)
         self._cmd = bus.publisher(cmd_vel_topic, Twist)
         self._shown = {name: bus.publisher(name, PoseStamped) for name in SHOWN}
@@ -57,6 +58,9 @@ class DockingBus:
 
     def battery(self) -> BatteryState | None:
         return self._battery.get()
+
+    def scan(self) -> LaserScan | None:
+        return self._scan.get()
 
     def drive(self, cmd: Velocity) -> None:
         self._cmd.put(Twist.planar(cmd.v, cmd.w))

@@ -11,10 +11,12 @@ from collections import deque
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
+from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import Pose2D, Velocity
-from aiobt.msgs import BatteryState, Odometry, PoseStamped
+from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped
 from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
+from aiobt_services.docking.collisions import ScanCollisions
 from aiobt_services.docking.control_law import ControlLawParams
 from aiobt_services.docking.controller import ControllerParams, DockController
 from aiobt_services.docking.database import DockInstance
@@ -35,6 +37,7 @@ from aiobt_services.robot.worlds import WORLDS_DIR
 
 CAMERA_EVERY = 7  # steps: about 15 Hz, as the robot service
 BATTERY_EVERY = 100  # 1 Hz
+SCAN_EVERY = 10  # 10 Hz
 
 
 class SimClock:
@@ -57,6 +60,7 @@ class SimBase:
     odometry: deque[Odometry] = field(default_factory=lambda: deque(maxlen=25))
     detected: PoseStamped | None = None
     battery: BatteryState | None = None
+    scan: LaserScan | None = None
     last: tuple[float, float] = (0.0, 0.0)  # the last command
 
     def step(self, count: int) -> None:
@@ -67,6 +71,8 @@ class SimBase:
                 self.odometry.appendleft(convert.odometry(self.sim))
             if steps % CAMERA_EVERY == 0 and (seen := self.sim.detect_dock()) is not None:
                 self.detected = convert.dock_detection(seen, self.sim.time)
+            if steps % SCAN_EVERY == 0:
+                self.scan = convert.laser_scan(self.sim.scan())
             if steps % BATTERY_EVERY == 0:
                 self.battery = convert.battery_state(self.sim.battery, self.sim.time)
 
@@ -105,8 +111,10 @@ def docking_server(base: SimBase, navigate: object, params: DockingParams | None
     chosen = params_from(SimpleChargingDockParams, "simple_charging_dock", given)
     plugin = SimpleChargingDock("simple_charging_dock", chosen, wiring)
     law = ControlLawParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
-    motion = Motion(params or DockingParams(), DockController(ControllerParams(law)), frames,
-                    clock, base.drive, lambda: base.sim.odometry.angular)  # fmt: skip
+    costmap = ScanCollisions(LocalCostmap(), lambda: base.scan, frames, clock)
+    controller = DockController(ControllerParams(law), costmap.collides)
+    motion = Motion(params or DockingParams(), controller, frames, clock, base.drive,
+                    lambda: base.sim.odometry.angular, costmap.refresh)  # fmt: skip
     dock = base.sim.world.dock
     assert dock is not None
     home = DockInstance("home_dock", "simple_charging_dock", Pose2D(dock.x, dock.y, dock.yaw))

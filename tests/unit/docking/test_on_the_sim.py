@@ -15,6 +15,7 @@ from aiobt.msgs.remote_actions import DockRobot, DockRobotError, UndockRobot, Un
 from aiobt_services.docking.docking import State
 from aiobt_services.docking.errors import FailedToStage
 from aiobt_services.docking.params import DockingParams
+from aiobt_services.robot.obstacles import ObstacleSpec
 
 from .simbase import Feedback, SimBase, docked_error, docking_server, office_sim
 
@@ -116,3 +117,19 @@ async def test_a_cancelled_goal_stops_the_base() -> None:
             await task
         assert base.last == (0.0, 0.0)
         assert not server.lock.locked()
+
+
+@pytest.mark.timeout(60)
+async def test_an_obstacle_on_the_approach_fails_to_control() -> None:
+    with office_sim() as sim:
+        base = SimBase(sim)
+        server = docking_server(base, no_navigation, DockingParams(max_retries=0))
+        # beside the line of sight to the marker (it is still seen), on the robot's way in
+        sim.spawn(ObstacleSpec("box", "box", Pose2D(0.95, 9.95), size_x=0.15, size_y=0.15))
+        base.place(STAGING)
+        base.step(50)  # a scan or two into the docking costmap
+        result = await server.dock_robot(HOME, Feedback())
+        assert result.error_code == DockRobotError.FAILED_TO_CONTROL, result.error_msg
+        assert result.error_msg == "Failed to get control"
+        assert docked_error(sim)[0] > 0.9  # it never drove in
+        assert base.last == (0.0, 0.0)

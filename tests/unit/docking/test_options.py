@@ -41,7 +41,8 @@ def test_param_overrides_the_set_up() -> None:
     [
         (["--param", "dock2.docking_threshold=0.1"], "'dock2' is neither 'controller' nor"),
         (["--param", "controller.k_phy=1"], "controller.k_phy: no such parameter"),
-        (["--param", "controller.use_collision_detection=true"], "keeps no costmap"),
+        (["--param", "controller.projection_time=0"], "projection_time .* must be > 0"),
+        (["--param", "controller.use_collision_detection=maybe"], "bad value 'maybe'"),
         (["--param", "simple_charging_dock.plugin=opennav_docking::Pallet"], "no dock plugin"),
         (["--fixed-frame", "world"], "fixed_frame must be odom or map"),
         (["--dock-plugins", ""], "Charging dock plugins empty"),
