@@ -71,6 +71,14 @@ async def send(bus: Bus, action: Any, goal: Any, timeout: float) -> Any:  # noqa
     return await (await client.send_goal(goal, server_timeout=30.0)).result(timeout=timeout)
 
 
+async def teleport(world: World, x: float, y: float, yaw: float) -> None:
+    """Move the robot, and wait until its pose says so (before a goal reads it)."""
+    ack = await world.bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack, timeout=10.0)
+    assert ack.ok, ack.message
+    moved = await world.track.wait_for(lambda s: math.dist((s.x, s.y), (x, y)) < 0.05, 10.0)
+    assert moved is not None, f"the robot's pose did not follow the reset to {(x, y)}"
+
+
 async def charging(bus: Bus) -> BatteryState:
     """The next battery message (1 Hz of sim time) after now."""
     battery = bus.latest("battery", BatteryState)
@@ -85,8 +93,7 @@ async def test_ten_seeded_poses_dock_charging_and_undock(world: World, bus: Bus)
     truth = bus.latest(SIM_POSE, PoseStamped)
     errors: list[tuple[float, float]] = []
     for x, y, yaw in seeded_poses(SEED, POSES):
-        ack = await bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack, timeout=10.0)
-        assert ack.ok, ack.message
+        await teleport(world, x, y, yaw)
         done = await send(bus, DockRobot, DockRobot.Goal(dock_id="home_dock"), 240.0)
         assert done.error_code == 0, ((x, y, yaw), done.error_msg)
         errors.append(off_the_dock(await truth.wait_latest(5.0)))

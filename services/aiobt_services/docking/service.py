@@ -24,7 +24,7 @@ from .frames import RobotFrames
 from .server import DockingServer
 
 log = logging.getLogger("aiobt_services.docking.service")
-ODOMETRY_KEPT = 25  # half a second of odometry at 50 Hz: to place a detection by its stamp
+ODOMETRY_KEPT = 60  # 1.2 s of odometry at 50 Hz: to place a detection (up to 1 s old) by its stamp
 SHOWN = ("dock_pose", "filtered_dock_pose", "staging_pose")
 
 
