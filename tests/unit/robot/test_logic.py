@@ -141,4 +141,3 @@ def test_obstacle_distance_is_to_its_footprint_not_its_bounding_circle() -> None
     pillar = ObstacleSpec("p", "cylinder", Pose2D(1.0, 1.0), radius=0.25)
     assert pillar.distance_to(1.0, 2.0) == pytest.approx(0.75)
     assert pillar.distance_to(1.1, 1.0) == 0.0
-
