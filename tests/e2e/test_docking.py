@@ -45,7 +45,7 @@ SEED, POSES = 36, 10
 def _module_stack() -> Iterator[NavStack]:
     config = StackConfig(world="office", speed=SPEED, seed=7, services=(*SERVICES, "docking"),
                          extra={"docking": ["--dock-database", "office", "--sim-time"],
-                                "robot": ["--battery", "0.202"]})  # fmt: skip
+                                "robot": ["--battery", "0.205"]})  # fmt: skip
     with running_stack(config) as stack:
         yield stack
 

@@ -1,5 +1,5 @@
-"""Nav2's route, docking and following actions (served by ``aiobt route`` and
-``aiobt docking``; following: no server yet).
+"""Nav2's route, docking and following actions (served by ``aiobt route``,
+``aiobt docking`` and ``aiobt following``).
 
 Their BT leaves exist with Nav2's ports so that Nav2's trees load; against no
 server they fail after ``server_timeout`` with a clear "no server" message, and
