@@ -13,7 +13,7 @@ from typing import Any
 import pytest
 
 from aiobt.msgs import BatteryState, PoseStamped, PowerSupplyStatus
-from aiobt.msgs.docking import DockingState, DockList
+from aiobt.msgs.docking import DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, DockRobotError, UndockRobot
 from aiobt.msgs.sim import Ack
 from aiobt.testing.bus import ServiceProcess
@@ -97,3 +97,15 @@ async def test_a_database_that_does_not_parse(spawn: Spawn, bus: Bus, bus_settin
     assert refused.error_code == DockRobotError.DOCK_NOT_IN_DB
     assert problem in refused.error_msg
     assert server.running
+
+    # reload_database: a good one is taken and shown; a bad one is refused, the good kept
+    reload, reply = ReloadDockDatabase, ReloadDockDatabase.Response
+    good = await bus.call(reload.service_name, reload.Request(filepath="office"), reply)
+    assert good.success, good.message
+    docks = await bus.latest("docks", DockList, latched=True).wait_latest(5.0)
+    assert [d.name for d in docks.docks] == ["home_dock"]
+    bad = await bus.call(reload.service_name, reload.Request(filepath=str(broken)), reply)
+    assert not bad.success
+    assert problem in bad.message
+    unknown = await send(bus, DockRobot, DockRobot.Goal(dock_id="kitchen"))
+    assert "known: home_dock)" in unknown.error_msg
