@@ -13,8 +13,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry.smooth import (
+    RotateParams,
+    SmoothControlLaw,
+    SmoothControlParams,
+    rotate_to_heading,
+)
 
-from .control_law import ControlLawParams, SmoothControlLaw
 from .errors import FailedToControl
 
 Collides = Callable[[list[Pose2D]], bool]  # any of these poses (robot's frame) on an obstacle
@@ -24,7 +29,8 @@ Collides = Callable[[list[Pose2D]], bool]  # any of these poses (robot's frame) 
 class ControllerParams:
     """``controller.*`` beyond the law's, Nav2's defaults."""
 
-    law: ControlLawParams = field(default_factory=ControlLawParams)
+    law: SmoothControlParams = field(default_factory=SmoothControlParams)
+    rotate: RotateParams = field(default_factory=RotateParams)
     use_collision_detection: bool = True
     projection_time: float = 5.0
     simulation_time_step: float = 0.1
@@ -45,7 +51,7 @@ class DockController:
     def command(self, target: Pose2D, backward: bool, docking: bool) -> Velocity:
         """Toward ``target``, given in the robot's frame; FailedToControl when the way
         there collides."""
-        cmd = self.law.velocity(target, None, backward)
+        cmd = self.law.velocity(target, backward=backward)
         if not self.trajectory_free(target, backward, docking):
             raise FailedToControl("Failed to get control")
         return cmd
@@ -67,4 +73,4 @@ class DockController:
         return not (checked and self.collides(checked))
 
     def rotate(self, angle_to_go: float, angular_now: float, dt: float) -> Velocity:
-        return Velocity(0.0, self.law.rotate_to_heading(angle_to_go, angular_now, dt))
+        return Velocity(0.0, rotate_to_heading(self.params.rotate, angle_to_go, angular_now, dt))

@@ -11,18 +11,19 @@ from __future__ import annotations
 import argparse
 import dataclasses
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
+from aiobt.geometry.smooth import RotateParams, SmoothControlParams
 from aiobt.system.plugin_params import comma_list, dotted_param, params_from
 from aiobt.system.service import non_negative, positive
 
-from .control_law import ControlLawParams
 from .controller import ControllerParams
 from .database import database_path
 from .params import DockingParams
 from .plugins import ChargingDock, DockWiring, PluginFactory
 from .simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 
+T = TypeVar("T")
 PLUGIN_TYPES: dict[str, tuple[type[Any], PluginFactory]] = {  # Nav2's type: params, class
     "opennav_docking::SimpleChargingDock": (SimpleChargingDockParams, SimpleChargingDock),
 }
@@ -103,18 +104,22 @@ def check_scopes(args: argparse.Namespace) -> None:
 
 
 def controller_params(args: argparse.Namespace) -> ControllerParams:
-    """``controller.*``: the law's and the collision check's."""
+    """``controller.*``: the law's, the turn in place's and the collision check's."""
     given = {_law_name(k): v for k, v in scoped(args, "controller").items()}
-    law_keys = {f.name for f in dataclasses.fields(ControlLawParams)}
-    own_keys = {f.name for f in dataclasses.fields(ControllerParams)} - {"law"}
-    for key in set(given) - law_keys - own_keys:
-        known = ", ".join(sorted(k.rstrip("_") for k in law_keys | own_keys))
+    law_keys = {f.name for f in dataclasses.fields(SmoothControlParams)}
+    rotate_keys = {f.name for f in dataclasses.fields(RotateParams)}
+    own_keys = {f.name for f in dataclasses.fields(ControllerParams)} - {"law", "rotate"}
+    for key in set(given) - law_keys - rotate_keys - own_keys:
+        known = ", ".join(sorted(k.rstrip("_") for k in law_keys | rotate_keys | own_keys))
         raise ValueError(f"controller.{key}: no such parameter (known: {known})")
-    law = params_from(ControlLawParams, "controller", {k: given[k] for k in law_keys & set(given)})
-    own: ControllerParams = params_from(
-        ControllerParams, "controller", {k: given[k] for k in own_keys & set(given)}
-    )
-    return dataclasses.replace(own, law=law)
+
+    def part(cls: type[T], keys: set[str]) -> T:
+        made: T = params_from(cls, "controller", {k: given[k] for k in keys & set(given)})
+        return made
+
+    own = part(ControllerParams, own_keys)
+    law = part(SmoothControlParams, law_keys)
+    return dataclasses.replace(own, law=law, rotate=part(RotateParams, rotate_keys))
 
 
 def _law_name(key: str) -> str:

@@ -7,10 +7,10 @@ import argparse
 import math
 from dataclasses import fields
 
-from aiobt.geometry.smooth import SmoothControlParams
+from aiobt.geometry.smooth import RotateParams, SmoothControlParams
 from aiobt.system.service import non_negative, positive
 
-from .params import FollowingParams, RotateParams
+from .params import FollowingParams
 
 NO_COLLISION_DETECTION = (  # Nav2's words
     "Collision detection is not supported in the following server. "

@@ -6,21 +6,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, fields
 
-from aiobt.geometry.smooth import SmoothControlParams
+from aiobt.geometry.smooth import RotateParams, SmoothControlParams
 
 # The control law aims this far short of the desired distance, so that it never
 # reaches the end of its spiral before the robot is at the desired distance
 # (Nav2's ``backward_projection``).
 BACKWARD_PROJECTION = 0.25
 POSITIVE = ("controller_frequency", "detection_timeout", "rotate_to_object_timeout")
-
-
-@dataclass(slots=True, frozen=True)
-class RotateParams:
-    """``controller.rotate_to_heading_*``: the in-place turn of the search."""
-
-    rotate_to_heading_angular_vel: float = 1.0
-    rotate_to_heading_max_angular_accel: float = 3.2
 
 
 @dataclass(slots=True, frozen=True)

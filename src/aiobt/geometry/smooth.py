@@ -5,7 +5,8 @@ path's curvature and near the target.
 
 Everything is in the robot's frame: the target is a :class:`Pose2D` relative to the
 robot (Nav2 transforms it into ``base_frame`` first). Parameter names and defaults
-are those of Nav2's docking ``controller.*`` parameters.
+are those of Nav2's docking ``controller.*`` parameters. :func:`rotate_to_heading` is
+the two servers' turn in place (``Controller::rotateToTarget``).
 """
 
 from __future__ import annotations
@@ -106,3 +107,33 @@ class SmoothControlLaw:
             current.y + cmd.v * dt * math.sin(current.yaw),
             wrap_angle(current.yaw + cmd.w * dt),
         )
+
+
+@dataclass(slots=True, frozen=True)
+class RotateParams:
+    """``controller.rotate_to_heading_*``: the turn in place (Nav2's defaults)."""
+
+    rotate_to_heading_angular_vel: float = 1.0
+    rotate_to_heading_max_angular_accel: float = 3.2
+
+    def __post_init__(self) -> None:
+        for name in self.__slots__:
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0.0):
+                raise ValueError(f"controller.{name} must be > 0, got {value}")
+
+
+def rotate_to_heading(
+    params: RotateParams, angle_to_go: float, angular_now: float, dt: float
+) -> float:
+    """Nav2's ``rotateToTarget``: turn at ``rotate_to_heading_angular_vel`` towards a
+    heading ``angle_to_go`` away, within the acceleration limit of ``angular_now``, then
+    capped to what still stops on the heading."""
+    accel = params.rotate_to_heading_max_angular_accel
+    sign = 1.0 if angle_to_go > 0.0 else -1.0
+    step = accel * dt
+    w = min(
+        max(sign * params.rotate_to_heading_angular_vel, angular_now - step), angular_now + step
+    )
+    stop = math.sqrt(2.0 * accel * abs(angle_to_go))
+    return sign * stop if abs(w) > stop else w

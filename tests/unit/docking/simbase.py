@@ -13,11 +13,11 @@ from dataclasses import dataclass, field
 
 from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry.smooth import SmoothControlParams
 from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped
 from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.collisions import ScanCollisions
-from aiobt_services.docking.control_law import ControlLawParams
 from aiobt_services.docking.controller import ControllerParams, DockController
 from aiobt_services.docking.database import DockInstance
 from aiobt_services.docking.detection import Detection
@@ -110,7 +110,7 @@ def docking_server(base: SimBase, navigate: object, params: DockingParams | None
     given = SHIPPED["simple_charging_dock"] | (dock_params or {})
     chosen = params_from(SimpleChargingDockParams, "simple_charging_dock", given)
     plugin = SimpleChargingDock("simple_charging_dock", chosen, wiring)
-    law = ControlLawParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
+    law = SmoothControlParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
     costmap = ScanCollisions(LocalCostmap(), lambda: base.scan, frames, clock)
     controller = DockController(ControllerParams(law), costmap.collides)
     motion = Motion(params or DockingParams(), controller, frames, clock, base.drive,

@@ -9,10 +9,15 @@ import numpy as np
 import pytest
 
 from aiobt.geometry import Pose2D, wrap_angle
+from aiobt.geometry.smooth import (
+    RotateParams,
+    SmoothControlLaw,
+    SmoothControlParams,
+    rotate_to_heading,
+)
 from aiobt.msgs import Odometry, PoseStamped
 from aiobt.msgs.geometry import Header, Pose
 from aiobt.system.plugin_params import params_from
-from aiobt_services.docking.control_law import ControlLawParams, SmoothControlLaw
 from aiobt_services.docking.detection import (
     Detection,
     PoseFilter,
@@ -37,14 +42,14 @@ def drive_to_line(law: SmoothControlLaw, start: Pose2D, target: Pose2D, x_stop: 
 
 
 def test_the_law_spirals_onto_the_line_of_the_target() -> None:
-    law = SmoothControlLaw(ControlLawParams())
+    law = SmoothControlLaw(SmoothControlParams())
     end = drive_to_line(law, Pose2D(0.0, 0.3, 0.4), Pose2D(2.25, 0.0, 0.0), 2.0)
     assert abs(end.y) < 0.02
     assert abs(end.yaw) < 0.05
 
 
 def test_the_law_keeps_nav2s_limits() -> None:
-    law = SmoothControlLaw(ControlLawParams())
+    law = SmoothControlLaw(SmoothControlParams())
     far = law.velocity(Pose2D(3.0, 0.0, 0.0))
     assert far.v == pytest.approx(0.25)  # v_linear_max
     sharp = law.velocity(Pose2D(0.3, 0.3, math.pi / 2))
@@ -54,9 +59,10 @@ def test_the_law_keeps_nav2s_limits() -> None:
 
 
 def test_rotate_to_heading_stops_on_it() -> None:
-    law = SmoothControlLaw(ControlLawParams())
-    assert law.rotate_to_heading(1.0, 0.0, 0.02) == pytest.approx(3.2 * 0.02)  # accel limited
-    assert law.rotate_to_heading(-0.001, -1.0, 0.02) == pytest.approx(-math.sqrt(2 * 3.2 * 0.001))
+    rotate = RotateParams()
+    assert rotate_to_heading(rotate, 1.0, 0.0, 0.02) == pytest.approx(3.2 * 0.02)  # accel limited
+    slowing = rotate_to_heading(rotate, -0.001, -1.0, 0.02)
+    assert slowing == pytest.approx(-math.sqrt(2 * 3.2 * 0.001))
 
 
 def odom(x: float, y: float, yaw: float, stamp: float) -> Odometry:
