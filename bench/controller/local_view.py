@@ -50,6 +50,8 @@ from aiobt_services.controller.session import (
 )
 from bench.controller.control_cycle import full_costmap, time_cycles
 
+TRUTH = ("--pose-source", "truth")  # the robot's {ns}/pose is the truth (no localization)
+
 CYCLE = re.compile(
     r"(\d+) cycles, rate ([\d.]+) of [\d.]+ Hz, cycle p50 ([\d.]+) ms p99 ([\d.]+) ms"
 )
@@ -96,7 +98,8 @@ async def configuration(
     settings = BusSettings(mode="client", connect=(endpoint,), namespace=f"b{uuid.uuid4().hex[:8]}")
     common = ["--connect", endpoint, "--namespace", settings.namespace]
     robot = ServiceProcess(
-        ["-m", "aiobt_services.robot", "--world", "small", "--speed", "4", *common]
+        # without localization: the robot's pose is the truth's
+        ["-m", "aiobt_services.robot", "--world", "small", "--speed", "4", *TRUTH, *common]
     )
     controller = Interpreted(python, ["-m", "aiobt_services.controller", "--sim-time", *common])
     try:

@@ -17,22 +17,23 @@ import asyncio
 
 from aiobt.msgs import Empty, NavigateToPose
 from aiobt.testing.navwatch import RobotTrack
-from aiobt.testing.stack import NavStack, running_stack
+from aiobt.testing.stack import NavStack, StackConfig, running_stack
 from aiobt.transport import open_bus
 from aiobt_services.localization.messages import LocalizationStats
 from bench.nav.goals import Optimum, pick_goals, static_grid
 from bench.nav.run import HEADER, START, Leg, loadavg, row, run_leg, summary
 from bench.system.procstat import percent_of_core, sample
 
-from .stack import LocalizedStackConfig
 from .tracking import Tracking
 
 
-def config(speed: float, seed: int, params: str, sets: list[str]) -> LocalizedStackConfig:
-    flags = [] if params == "nav2" else ["--params-file", params]
+def config(speed: float, seed: int, params: str, sets: list[str]) -> StackConfig:
+    """The stack (localization in it, the robot with no pose in map) with these AMCL
+    params: a shipped params file's name (``nav2``: Nav2's defaults) or a path."""
+    flags = ["--params-file", params]
     for item in sets:
         flags += ["--set", item]
-    return LocalizedStackConfig(world="office", speed=speed, seed=seed, localization=flags)
+    return StackConfig(world="office", speed=speed, seed=seed, extra={"localization": flags})
 
 
 async def run(stack: NavStack, goals: list[tuple[float, float, float]], limit: float) -> None:

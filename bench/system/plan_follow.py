@@ -32,6 +32,8 @@ from aiobt.transport import ActionError, Bus, BusSettings, open_bus
 from aiobt_services.robot.mapfile import MapInfo, load_map
 from aiobt_services.robot.worlds import OFFICE
 
+TRUTH = ("--pose-source", "truth")  # the robot's {ns}/pose is the truth (no localization)
+
 ARRIVED_WITHIN = 0.25  # m: the default goal checker's tolerance
 CLEARANCE = 0.5  # m from any wall: the robot (0.22) plus room to turn
 
@@ -72,7 +74,17 @@ def stack_commands(endpoint: str, namespace: str, speed: str) -> dict[str, list[
     """The service processes' arguments (``python ARGS``) of the whole stack."""
     common = ["--connect", endpoint, "--namespace", namespace]
     return {
-        "robot": ["-m", "aiobt_services.robot", "--world", "office", "--speed", speed, *common],
+        # without localization: the robot's pose is the truth's
+        "robot": [
+            "-m",
+            "aiobt_services.robot",
+            "--world",
+            "office",
+            "--speed",
+            speed,
+            *TRUTH,
+            *common,
+        ],
         "planner": ["-m", "aiobt_services.planner", *common],
         "controller": ["-m", "aiobt_services.controller", "--sim-time", *common],
         "behaviors": ["-m", "aiobt_services.behaviors", "--sim-time", *common],

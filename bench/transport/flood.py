@@ -40,6 +40,8 @@ from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
 from aiobt.testing.flood import MIB, Call, Figures, Flood, flood_and_measure
 from aiobt.transport import Bus, BusSettings, open_bus
 
+TRUTH = ("--pose-source", "truth")  # the robot's {ns}/pose is the truth (no localization)
+
 POSE = '{"x": 0.5, "y": 0.5, "yaw": 0.0}'
 SINK = Flood("flood_sink", "PoseStamped", POSE)
 
@@ -85,7 +87,8 @@ async def run(args: argparse.Namespace) -> None:
             return proc
 
         async with open_bus(settings) as bus:
-            robot_argv = ["-m", "aiobt_services.robot", *where, "--world", "small"]
+            # the planner's start without localization: the robot's pose is the truth's
+            robot_argv = ["-m", "aiobt_services.robot", *where, "--world", "small", *TRUTH]
             robot = await start(started, bus, [*robot_argv, "--speed", str(args.speed)], "robot")
             planner = await start(started, bus, ["-m", "aiobt_services.planner", *where], "planner")
             clock = bus.subscribe("clock", Clock, queue_size=1)

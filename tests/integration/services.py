@@ -7,6 +7,10 @@ import pytest
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 
+# the robot's own {ns}/pose (the truth: a perfect localization), for tests of a service
+# that reads the pose without the localization service in the loop
+TRUTH = ("--pose-source", "truth")
+
 
 def common(settings: BusSettings) -> list[str]:
     """The flags that put a service on the test's router and namespace."""

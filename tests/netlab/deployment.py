@@ -1,7 +1,8 @@
 """The deployment of docs/deployment.md, in namespaces: robot host, base host, a laptop.
 
     host    address(es)                  runs
-    robot   198.18.0.1                   router-robot, robot, controller, behaviors
+    robot   198.18.0.1                   router-robot, robot, localization, controller,
+                                         behaviors
     link    198.18.0.2, 198.18.0.6       the proxy: 198.18.0.6:7447 -> 198.18.0.1:7447
     base    198.18.0.5, 198.18.0.10      router-base, planner, navigator
     laptop  198.18.0.9                   the zenoh CLI, scenarios (tests.netlab.scenario)
@@ -43,7 +44,7 @@ PORT = 7447
 LOCAL = f"tls/127.0.0.1:{PORT}"  # where a host's own services reach its router
 NAMESPACE = "robot"
 HOSTS = {
-    "robot": ("robot", "controller", "behaviors"),
+    "robot": ("robot", "localization", "controller", "behaviors"),
     "base": ("planner", "navigator"),
 }
 # the services `aiobt up` runs by default but the safety chain (off in a share, as in

@@ -32,6 +32,7 @@ from aiobt.msgs import (
     ReinitializeGlobalLocalization,
     TFMessage,
 )
+from aiobt.system.realtime import realtime_if_asked
 from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
 from aiobt.transport import Bus, BusSettings, Subscription
 from aiobt.transport.announce import announce
@@ -155,6 +156,7 @@ def _wire(bus: Bus, node: LocalizationNode, worker: ScanWorker) -> Subscription[
 
 
 async def serve(args: argparse.Namespace, params: AmclParams) -> None:
+    realtime = realtime_if_asked(args.realtime_priority)  # before the bus: its threads too
     stop = stop_on_signals()
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
@@ -164,9 +166,10 @@ async def serve(args: argparse.Namespace, params: AmclParams) -> None:
         maps = bus.subscribe(params.map_topic, OccupancyGrid, latched=True, queue_size=1)
         scans = _wire(bus, node, worker)
         announce(bus, "localization", sim_time=args.sim_time)
-        log.info("localization up on namespace '%s': %d..%d particles, %d beams%s",
+        log.info("localization up on namespace '%s': %d..%d particles, %d beams%s%s",
                  bus.namespace, params.min_particles, params.max_particles, params.max_beams,
-                 "" if params.set_initial_pose else "; waiting for initialpose")  # fmt: skip
+                 "" if params.set_initial_pose else "; waiting for initialpose",
+                 realtime)  # fmt: skip
         async with asyncio.TaskGroup() as tasks:
             jobs = [
                 tasks.create_task(_follow_map(bus, node, maps)),

@@ -9,6 +9,8 @@ from typing import Any
 
 import yaml
 
+from aiobt.system.catalog import realtime_priority
+from aiobt.system.realtime import add_realtime_argument
 from aiobt.transport import add_bus_arguments
 
 from .params import AmclParams, ParamError
@@ -40,6 +42,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="one AMCL parameter, the value in YAML (e.g. --set recovery_alpha_fast=0.1); "
         "after the params file; repeatable",
     )
+    add_realtime_argument(parser, realtime_priority("localization"))
 
 
 def params_from_args(args: argparse.Namespace) -> AmclParams:

@@ -117,11 +117,11 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     add(
         "--pose-source",
         choices=("truth", "none"),
-        default="truth",
-        help="truth: publish {ns}/pose from the simulation's truth (the stand-in for a "
-        "localization) and take initialpose and reinitialize_global_localization; none: "
-        "publish no pose in map, as a real base, and leave those to the localization "
-        "service (default: %(default)s)",
+        default="none",
+        help="none: publish no pose in map, as a real base, and leave {ns}/pose, "
+        "initialpose and reinitialize_global_localization to the localization service; "
+        "truth: publish {ns}/pose from the simulation's truth (a perfect localization, for "
+        "tests of one service) and take those two (default: %(default)s)",
     )
     add("--pose-noise", type=float, default=0.0, help="std of localization error, m")
     add("--pose-noise-yaw", type=float, default=0.0, help="std of localization error, rad")

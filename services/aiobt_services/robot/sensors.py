@@ -87,7 +87,8 @@ class NoiseConfig:
 
 @dataclass(slots=True)
 class WheelOdometry:
-    """Integrates what the wheels did (so it drifts when they slip or push a wall)."""
+    """Integrates what the wheels did (so it drifts when they slip; against an obstacle the
+    motors stall and the wheels turn only as the body moves)."""
 
     pose: Pose2D = field(default_factory=Pose2D)
     linear: float = 0.0

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import numpy.typing as npt
 
-from aiobt.geometry import Pose2D
+from aiobt.geometry import Pose2D, wrap_angle
 
 from .bumper import Bumper, ContactEvent
 from .dock import build_station
@@ -150,7 +150,8 @@ class Simulation:
         else:
             self._empty_logged = False
         body_speed = linear * (1.0 - cfg.noise.slip)
-        yaw = self._true.yaw
+        before = self._true
+        yaw = before.yaw
         self._physics.call(
             "resetBaseVelocity",
             self._robot,
@@ -164,7 +165,10 @@ class Simulation:
         pose = self._physics.planar_pose(self._robot)
         self._physics.place(self._robot, pose, cfg.robot.z)  # keep the base flat
         self._true = pose
-        self.odometry.update(linear, angular, dt, cfg.noise, self._rng)
+        wheels = (linear, angular)
+        if self._bumper.touching:  # pushing an obstacle: the motors stall, the wheels turn
+            wheels = self._achieved(before, pose, dt)  # with the body, no further
+        self.odometry.update(*wheels, dt, cfg.noise, self._rng)
         on_dock = self.dock_station is not None and self.dock_station.charging_contact(pose)
         self.battery.update(linear, angular, on_dock, dt)
         return self._contact_events()
@@ -300,6 +304,13 @@ class Simulation:
         if body == self._dock_body:
             return "dock"
         return next((oid for oid, o in self._obstacles.items() if o.body == body), None)
+
+    def _achieved(self, before: Pose2D, after: Pose2D, dt: float) -> tuple[float, float]:
+        """The wheel speeds that rolled the body from ``before`` to ``after`` (slip aside)."""
+        forward = (after.x - before.x) * math.cos(before.yaw)
+        forward += (after.y - before.y) * math.sin(before.yaw)
+        turned = wrap_angle(after.yaw - before.yaw)
+        return forward / dt / (1.0 - self.config.noise.slip), turned / dt
 
     def _contact_events(self) -> list[ContactEvent]:
         points = self._physics.call("getContactPoints", bodyA=self._robot)

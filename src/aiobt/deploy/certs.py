@@ -33,6 +33,7 @@ from cryptography.x509.oid import ExtendedKeyUsageOID, NameOID
 
 SERVICES = (
     "robot",
+    "localization",
     "controller",
     "behaviors",
     "planner",

@@ -31,9 +31,15 @@ class ServiceSpec:
 
 SERVICES: tuple[ServiceSpec, ...] = (
     # the robot (the hardware's stand-in: its clock is everyone's) and the controller at
-    # Nav2's 90; the planner below (a search may take tens of ms); the navigator, which
-    # asks for the plans, below them all (aiobt.system.realtime says why)
+    # Nav2's 90; localization (the controller's pose) just below; the planner below (a
+    # search may take tens of ms); the navigator, which asks for the plans, below them all
+    # (aiobt.system.realtime says why)
     ServiceSpec("robot", "the pybullet robot service", realtime_priority=90, simulation=True),
+    ServiceSpec(
+        "localization",
+        "Nav2's AMCL: the robot's pose in map from odometry and lidar",
+        realtime_priority=80,
+    ),
     ServiceSpec("planner", "the planner service", realtime_priority=70),
     ServiceSpec("controller", "the controller service", realtime_priority=90),
     ServiceSpec("behaviors", "the behavior service"),

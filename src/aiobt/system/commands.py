@@ -14,6 +14,10 @@ from pathlib import Path
 
 from aiobt.system.catalog import service
 from aiobt.system.config import SystemConfig
+from aiobt.system.world_start import Start, WorldError, start_from_args, world_start
+
+# the localization's shipped params for the simulated robot (its README says why)
+LOCALIZATION_PARAMS = ("--params-file", "sim_robot")
 
 
 def available(name: str) -> bool:
@@ -58,7 +62,28 @@ def service_command(name: str, config: SystemConfig) -> list[str]:
         command.append("--sim-time")
     if config.safety_chain and name in ("controller", "behaviors"):
         command += ["--cmd-vel-topic", "cmd_vel_nav"]  # through smoother and monitor
+    if name == "localization" and config.services["robot"].enabled:
+        command += [*LOCALIZATION_PARAMS, *initial_pose_flags(simulated_start(config))]
     return command + list(config.services[name].args)
+
+
+def simulated_start(config: SystemConfig) -> Start | None:
+    """Where the simulation ``config`` runs puts the robot: the robot's ``--start``, else
+    the world's; None when the world's file or the flag cannot be read (the robot then
+    stops at start naming it, and localization waits for an initialpose)."""
+    try:
+        return start_from_args(config.services["robot"].args) or world_start(config.world)
+    except WorldError:
+        return None
+
+
+def initial_pose_flags(start: Start | None) -> list[str]:
+    """AMCL's ``set_initial_pose`` at ``start``: the localization's flags (none without)."""
+    if start is None:
+        return []
+    x, y, yaw = start
+    return ["--set", "set_initial_pose=true",
+            "--set", f"initial_pose={{x: {x:g}, y: {y:g}, yaw: {yaw:g}}}"]  # fmt: skip
 
 
 def process_argv(command: list[str]) -> list[str]:

@@ -21,6 +21,7 @@
       window: 60.0
     services:                 # per service: run it or not, and extra flags
       robot:      {enabled: true, args: []}
+      localization: {enabled: true, args: []}   # told the world's start (the robot's --start)
       planner:    {enabled: true, args: []}
       controller: {enabled: true, args: []}
       behaviors:  {enabled: true, args: []}

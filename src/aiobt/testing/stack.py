@@ -1,4 +1,5 @@
-"""The whole navigation stack as processes: robot, planner, controller, behaviors, navigator.
+"""The whole navigation stack as processes: robot, localization, planner, controller,
+behaviors, navigator.
 
 Used by the end-to-end tests and the navigation benchmark. Every service is a
 ``python -m aiobt.cli.main <service>`` child process connected to one router
@@ -23,6 +24,8 @@ from dataclasses import dataclass, field
 
 from aiobt.system.catalog import SAFETY_CHAIN
 from aiobt.system.catalog import SERVICES as CATALOG
+from aiobt.system.commands import LOCALIZATION_PARAMS, initial_pose_flags
+from aiobt.system.world_start import start_from_args, world_start
 from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
 from aiobt.transport import Bus, BusSettings
 
@@ -65,6 +68,10 @@ class StackConfig:
         args += ["--namespace", namespace, "--lease-ms", str(self.lease_ms)]
         if service == "robot":
             args += ["--world", self.world, "--speed", str(self.speed), "--seed", str(self.seed)]
+        if service == "localization":  # seeded as the robot, told the world's start
+            start = start_from_args(self.extra.get("robot", [])) or world_start(self.world)
+            args += [*LOCALIZATION_PARAMS, *initial_pose_flags(start)]
+            args += ["--set", f"random_seed={self.seed}"]
         if service in SIM_TIME:
             args += ["--sim-time", "--clock-timeout", str(self.clock_timeout)]
         if self.safety_chain and service in ("controller", "behaviors"):

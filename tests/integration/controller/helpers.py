@@ -14,6 +14,7 @@ from aiobt.geometry import PlanarPath
 from aiobt.msgs import ActionResult, Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings, ClientGoal
+from tests.integration.services import TRUTH
 
 R = TypeVar("R", bound=ActionResult)
 
@@ -42,7 +43,17 @@ async def start(
     clock: ``sim_time=False``); returns the robot."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     robot = spawn(
-        ["-m", "aiobt_services.robot", "--world", world, "--speed", speed, *robot_args, *common]
+        [
+            "-m",
+            "aiobt_services.robot",
+            "--world",
+            world,
+            "--speed",
+            speed,
+            *TRUTH,
+            *robot_args,
+            *common,
+        ]
     )
     clock = ["--sim-time"] if sim_time else []
     ours = spawn(["-m", f"aiobt_services.{service}", *clock, *common, *extra])

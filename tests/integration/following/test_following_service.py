@@ -28,7 +28,7 @@ from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 from aiobt_services.robot.target_path import seeded_loop
 
-from ..services import common, up
+from ..services import TRUTH, common, up
 from .truth import Watch
 
 pytestmark = pytest.mark.integration
@@ -45,7 +45,7 @@ async def start_stack(spawn: Spawn, bus: Bus, settings: BusSettings) -> None:
     behind, ahead = path.pose_at(path.length - DESIRED), path.pose_at(0.0)
     yaw = math.atan2(ahead.y - behind.y, ahead.x - behind.x)
     start = [str(v) for v in (behind.x, behind.y, yaw)]
-    robot = spawn(["-m", "aiobt_services.robot", "--speed", SPEED, "--start", *start,
+    robot = spawn(["-m", "aiobt_services.robot", "--speed", SPEED, "--start", *start, *TRUTH,
                    *common(settings)])  # fmt: skip
     following = spawn(["-m", "aiobt_services.following", "--sim-time", *FOLLOWING,
                        *common(settings)])  # fmt: skip

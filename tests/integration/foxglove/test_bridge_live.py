@@ -16,6 +16,7 @@ from aiobt.geometry import PlanarPath
 from aiobt.msgs import FollowPath, Path, PoseStamped
 from aiobt.testing.bus import ServiceProcess, free_port, wait_port
 from aiobt.transport import Bus, BusSettings
+from tests.integration.services import TRUTH
 
 from .wsclient import FoxgloveClient
 
@@ -63,7 +64,7 @@ async def drive(bus: Bus) -> FollowPath.Result:
 async def test_client_receives_scan_and_moving_pose(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
-    robot_args = ["-m", "aiobt_services.robot", "--world", "small", "--speed", "2"]
+    robot_args = ["-m", "aiobt_services.robot", "--world", "small", "--speed", "2", *TRUTH]
     common = ["--connect", bus_settings.connect[0], "--namespace", bus_settings.namespace]
     robot = spawn([*robot_args, *common])
     controller = spawn(["-m", "aiobt_services.controller", "--sim-time", *common])

@@ -8,16 +8,15 @@ from __future__ import annotations
 import pytest
 
 from aiobt.msgs import PoseStamped
-from aiobt.testing.stack import NavStack
+from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import open_bus
 from aiobt.transport.keys import SIM_POSE
-from bench.localization.stack import LocalizedStackConfig
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e, pytest.mark.timeout(300)]
 
 
 async def test_no_navigation_service_subscribes_to_the_truth(router_endpoint: str) -> None:
-    config = LocalizedStackConfig(world="office", speed=1.0)
+    config = StackConfig(world="office", speed=1.0)
     with NavStack.launch(router_endpoint, config) as stack:
         async with open_bus(stack.settings()) as bus:
             await stack.wait_ready(bus, timeout=120.0)

@@ -11,6 +11,7 @@ from aiobt.core.status import Status
 from aiobt.msgs import PoseStamped
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
+from tests.integration.services import TRUTH
 from tests.unit.nav.support import nav_tree, run_to_end
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e, pytest.mark.timeout(200)]
@@ -23,7 +24,7 @@ async def start_services(spawn: Spawn, bus: Bus, settings: BusSettings) -> None:
     """The robot (small world, 2x real time) and every service, on sim time where they can."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     procs = {"robot": spawn(["-m", "aiobt_services.robot", "--world", "small", "--speed", "2",
-                             *common])}  # fmt: skip
+                             *TRUTH, *common])}  # fmt: skip
     for name in SERVICES:
         sim_time = [] if name == "planner" else ["--sim-time"]
         procs[name] = spawn(["-m", f"aiobt_services.{name}", *sim_time, *common])

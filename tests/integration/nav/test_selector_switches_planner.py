@@ -14,6 +14,7 @@ from aiobt.nav.shared_topics import shared_topics
 from aiobt.transport import Bus, BusSettings
 from tests.integration.nav.test_selector_cli import put_and_wait
 from tests.integration.robot.test_robot_service import Spawn
+from tests.integration.services import TRUTH
 from tests.unit.nav.support import nav_tree, run_to_end
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e, pytest.mark.timeout(200)]
@@ -29,7 +30,7 @@ PLAN = """
 async def start_robot_and_planner(spawn: Spawn, bus: Bus, settings: BusSettings) -> None:
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     procs = {
-        "robot": spawn(["-m", "aiobt_services.robot", "--world", "small", *common]),
+        "robot": spawn(["-m", "aiobt_services.robot", "--world", "small", *TRUTH, *common]),
         "planner": spawn(["-m", "aiobt_services.planner", *common]),
     }
     for name, proc in procs.items():

@@ -22,12 +22,13 @@ from aiobt.msgs import (
 )
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
+from tests.integration.services import TRUTH
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 SPEED = "4"
 SERVICES = (
-    ("robot", ["-m", "aiobt_services.robot", "--world", "small", "--speed", SPEED]),
+    ("robot", ["-m", "aiobt_services.robot", "--world", "small", "--speed", SPEED, *TRUTH]),
     ("planner", ["-m", "aiobt_services.planner"]),
     ("controller", ["-m", "aiobt_services.controller", "--sim-time"]),
     ("behaviors", ["-m", "aiobt_services.behaviors", "--sim-time"]),

@@ -31,7 +31,7 @@ from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 
-from ..services import common, up
+from ..services import TRUTH, common, up
 
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]
@@ -85,7 +85,8 @@ async def test_plans_around_a_new_obstacle_and_clearing_removes_it(
     # the box's edge exactly where it is: a lidar without its default range noise and dropouts
     # (a 1 cm error can shift a marked cell, and the path's clearance with it, by 5 cm)
     exact = ["--lidar-noise", "0", "--lidar-dropout", "0"]
-    robot = spawn(["-m", "aiobt_services.robot", "--speed", "4", *exact, *common(bus_settings)])
+    robot = spawn(["-m", "aiobt_services.robot", "--speed", "4", *exact, *TRUTH,
+                   *common(bus_settings)])  # fmt: skip
     # clear only up to 1 m: a removed obstacle 2 m away stays marked until cleared
     planner = spawn(["-m", "aiobt_services.planner", "--raytrace-range", "1.0",
                      *common(bus_settings)])  # fmt: skip

@@ -40,7 +40,9 @@ INNER_EAST_WALL = 2.35  # small world: inner face of the east wall
 
 
 async def start_robot(spawn: Spawn, bus: Bus, settings: BusSettings, *extra: str) -> ServiceProcess:
-    args = ["-m", "aiobt_services.robot", "--world", "small", "--connect", settings.connect[0]]
+    # the robot's own pose in map (a perfect localization): these tests read {ns}/pose
+    args = ["-m", "aiobt_services.robot", "--world", "small", "--pose-source", "truth",
+            "--connect", settings.connect[0]]  # fmt: skip
     proc = spawn([*args, "--namespace", settings.namespace, *extra])
     if not await bus.presence(bus.keys.topic("nodes/robot")).wait(20.0):
         pytest.fail(f"robot did not come up:\n{proc.output()}")

@@ -22,6 +22,7 @@ from aiobt.msgs.safety import CollisionMonitorState
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 from aiobt_services.collision_monitor.main import DEFAULT_PARAMS
+from tests.integration.services import TRUTH
 
 Spawn = Callable[[Sequence[str]], ServiceProcess]
 ROBOT_RADIUS = 0.22
@@ -51,7 +52,7 @@ async def start_chain(
     """The processes (a part given as None is not started), once each is up."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     robot = ["-m", "aiobt_services.robot", "--world", "small", "--speed", speed, *START,
-             *EXACT_ODOMETRY]  # fmt: skip
+             *EXACT_ODOMETRY, *TRUTH]  # fmt: skip
     procs = {"robot": spawn([*robot, *common])}
     parts = {"velocity_smoother": smoother, "collision_monitor": monitor, "controller": controller}
     for name, extra in parts.items():

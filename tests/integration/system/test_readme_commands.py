@@ -51,6 +51,7 @@ RUN_HERE = (  # how the tests below find the README lines they run
     ".venv/bin/aiobt validate trees/nav2/*.xml",
     ".venv/bin/aiobt router --listen",
     ".venv/bin/aiobt robot --connect",
+    ".venv/bin/aiobt localization --connect",
     "for s in planner controller behaviors navigator",
     ".venv/bin/aiobt run mission.xml --plugin mypkg.nodes",
     ".venv/bin/aiobt run trees/nav2/navigate_to_pose_w_replanning_and_recovery",
@@ -88,7 +89,9 @@ def system(shell: Shell) -> Iterator[Terminal]:
     (shell.cwd / "system.yaml").write_text(yaml.safe_dump(config))
     line = readme_line(".venv/bin/aiobt up --config system.yaml")
     with shell.start(line, "--web-port", "0") as up:
-        up.wait_for("        up * robot, planner, controller, behaviors, navigator up")
+        up.wait_for(
+            "        up * robot, localization, planner, controller, behaviors, navigator up"
+        )
         yield up
         assert up.interrupt(within=20.0) == 0, up.text()
 
@@ -110,7 +113,9 @@ def test_the_tour_with_the_system_up(shell: Shell, system: Terminal) -> None:
     status = shell.run(readme_line(".venv/bin/aiobt status"))
     assert status.splitlines()[0].startswith(f"router {shell.endpoint} (Zenoh id ")
     services = {row.split()[1] for row in status.splitlines()[2:] if row.startswith("robot ")}
-    assert services == {"robot", "planner", "controller", "behaviors", "navigator", "web"}
+    assert services == {
+        "robot", "localization", "planner", "controller", "behaviors", "navigator", "web",
+    }  # fmt: skip
     lines = shell.run(readme_line(".venv/bin/aiobt navigate 1.5 1.5 1.57")).splitlines()
     assert any(line.startswith("distance remaining") for line in lines)  # live feedback
     assert lines[-1].startswith("goal reached, "), lines
@@ -164,9 +169,11 @@ def test_two_machines_one_router_here_on_one(shell: Shell) -> None:
         with (
             machines.start(readme_line(".venv/bin/aiobt router --listen")) as router,
             machines.start(readme_line(".venv/bin/aiobt robot --connect")) as robot,
+            machines.start(readme_line(".venv/bin/aiobt localization --connect")) as loc,
         ):
             router.wait_for(f"listening on {machines.endpoint}")
             robot.wait_for("robot up on namespace 'robot'")
+            loc.wait_for("localization up on namespace 'robot'")
             loop = readme_line("for s in planner controller behaviors navigator")
             with machines.start(loop + "; wait") as rest:  # wait: the loop's shell stays
                 for name in ("planner", "controller", "behaviors", "navigator"):
@@ -174,7 +181,7 @@ def test_two_machines_one_router_here_on_one(shell: Shell) -> None:
                 status = machines.run(".venv/bin/aiobt status")
                 rows = [row.split() for row in status.splitlines()[2:]]
                 assert {row[1] for row in rows} == {
-                    "robot", "planner", "controller", "behaviors", "navigator"
+                    "robot", "localization", "planner", "controller", "behaviors", "navigator"
                 }, status  # fmt: skip
                 assert all(row[3] == "sim" for row in rows if row[1] != "robot"), status
                 rest.interrupt()  # its shell's code is the interrupted wait's

@@ -17,7 +17,7 @@ from aiobt.msgs import ComputePathToPose, PoseStamped
 from aiobt.testing.bus import ServiceProcess, free_endpoint, port_of, spawn_service, wait_port
 from aiobt.transport import Bus, BusSettings, open_bus
 
-from ..services import common, up
+from ..services import TRUTH, common, up
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(120)]
 Spawn = Callable[[Sequence[str]], ServiceProcess]
@@ -57,7 +57,7 @@ async def test_the_event_loop_zenohs_threads_and_the_threads_it_starts_run_fifo(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
     robot = spawn(["-m", "aiobt_services.robot", "--speed", "2", "--realtime-priority",
-                   *common(bus_settings)])  # fmt: skip
+                   *TRUTH, *common(bus_settings)])  # fmt: skip
     planner = spawn(["-m", "aiobt_services.planner", "--realtime-priority", *common(bus_settings)])
     controller = spawn(["-m", "aiobt_services.controller", "--sim-time", "--realtime-priority",
                         "80", *common(bus_settings)])  # fmt: skip

@@ -31,9 +31,9 @@ def test_up_brings_every_service_up_and_stops_everything_in_under_3_s(
     config.write_text(f"world: small\nspeed: 2\nrouter: {{listen: '{endpoint}'}}\n")
     with SystemProcess(["up", "--config", str(config), "--namespace", "upt"]) as up:
         ready = up.wait_line("     up * ")
-        assert "robot, planner, controller, behaviors" in ready
+        assert "robot, localization, planner, controller, behaviors" in ready
         assert "up on namespace 'upt' (sim time x2)" in ready
-        for name in ("router", "robot", "planner", "controller", "behaviors"):
+        for name in ("router", "robot", "localization", "planner", "controller", "behaviors"):
             up.wait_line(f"{name:>10} * up", timeout=1.0)
         assert len(processes_mentioning(endpoint)) >= 5
         code, seconds = up.stop(signal.SIGTERM)
@@ -47,7 +47,7 @@ def test_a_sigkilled_up_leaves_no_process_behind(endpoint: str) -> None:
     with SystemProcess(["up", "--listen", endpoint, "--world", "small"]) as up:
         up.wait_line("     up * ")
         children = [int(line.split(":", 1)[0]) for line in processes_mentioning(endpoint)]
-        assert len(children) >= 6  # router, robot, planner, controller, behaviors, navigator
+        assert len(children) >= 7  # router, robot, localization, planner, controller, ...
         up.proc.kill()
         assert up.proc.wait(10) == -signal.SIGKILL
         left = wait_gone(children, timeout=30.0)

@@ -3,7 +3,7 @@
 import math
 
 from aiobt.msgs import PoseStamped
-from bench.localization.stack import LocalizedStackConfig
+from bench.localization.nav_track import config
 from bench.localization.tracking import Tracking
 
 
@@ -24,12 +24,11 @@ def test_errors_pair_estimates_with_the_truth_of_the_same_stamp() -> None:
     assert errors.heading_rms_deg < 0.2  # across +-pi: 0.002 rad, not 2 pi
 
 
-def test_the_stack_runs_localization_and_a_robot_without_a_pose_in_map() -> None:
-    config = LocalizedStackConfig(localization=["--params-file", "sim_robot"])
-    robot = config.command("robot", "tcp/127.0.0.1:1", "ns")
-    loc = config.command("localization", "tcp/127.0.0.1:1", "ns")
-    assert robot[-2:] == ["--pose-source", "none"]
-    assert loc[:2] == ["-m", "aiobt_services.localization"]
-    assert loc[-2:] == ["--params-file", "sim_robot"]
-    assert "set_initial_pose=true" in loc
-    assert config.services.index("robot") < config.services.index("localization")
+def test_the_stack_runs_localization_with_the_params_asked_for() -> None:
+    stack = config(speed=4.0, seed=3, params="nav2", sets=["max_beams=30"])
+    robot = stack.command("robot", "tcp/127.0.0.1:1", "ns")
+    loc = stack.command("localization", "tcp/127.0.0.1:1", "ns")
+    assert "--pose-source" not in robot  # its default: no pose in map
+    assert loc[-4:] == ["--params-file", "nav2", "--set", "max_beams=30"]  # after the defaults
+    assert "initial_pose={x: 2, y: 9.75, yaw: 0}" in loc
+    assert stack.services.index("robot") < stack.services.index("localization")

@@ -9,9 +9,11 @@ import math
 
 import numpy as np
 
+from aiobt.geometry import Pose2D
 from aiobt.msgs import Msg, PoseStamped
 from aiobt.transport.keys import SIM_POSE
 from aiobt_services.robot.mapfile import load_map
+from aiobt_services.robot.obstacles import ObstacleSpec
 from aiobt_services.robot.options import add_robot_arguments, sim_config
 from aiobt_services.robot.runner import SimRunner
 from aiobt_services.robot.sensors import LidarConfig, lidar_ranges
@@ -43,7 +45,7 @@ def test_the_command_line_defaults_give_odometry_and_lidar_error() -> None:
     assert cfg.noise.odom_linear > 0
     assert cfg.lidar.noise > 0
     assert cfg.lidar.dropout > 0
-    assert _defaults().pose_source == "truth"
+    assert _defaults().pose_source == "none"  # no pose in map: localization's
 
 
 def test_odometry_drifts_from_the_truth_by_slip_and_turn_scale() -> None:
@@ -58,6 +60,24 @@ def test_odometry_drifts_from_the_truth_by_slip_and_turn_scale() -> None:
         assert travelled > 0.5
         # odometry overstates the turn by about the scale error (2 %), up to the white noise
         assert abs(odom.yaw / turned - 1.02) < 0.01
+
+
+def test_against_an_obstacle_the_wheels_stall_and_the_odometry_stands_too() -> None:
+    cfg = sim_config(_defaults())
+    with Simulation(load_map(SMALL), cfg) as sim:
+        sim.spawn(ObstacleSpec("wall", "box", Pose2D(0.8, 0.0)))  # low enough: bumped, not seen
+        for _ in range(300):  # 3 s at 0.5 m/s: into the box after about 1 s
+            sim.command(0.5, 0.0)
+            sim.step()
+        assert sim.in_contact == ["wall"]
+        pushed_from = sim.odometry.pose.x
+        for _ in range(300):  # 3 s more, pushing
+            sim.command(0.5, 0.0)
+            sim.step()
+        assert sim.in_contact == ["wall"]
+        # wheels spinning in place would add 1.5 m; stalled ones, what the body moved
+        assert abs(sim.odometry.pose.x - pushed_from) < 0.05
+        assert sim.odometry.pose.x < sim.true_pose.x + 0.1  # short of the box: slip only
 
 
 def test_dropouts_remove_the_given_share_of_returns() -> None:

@@ -19,7 +19,7 @@ def _write(tmp_path: Path, text: str) -> Path:
 
 def test_defaults_run_every_service_on_wall_time() -> None:
     config = load_config(None)
-    assert config.enabled() == ["robot", "planner", "controller", "behaviors",
+    assert config.enabled() == ["robot", "localization", "planner", "controller", "behaviors",
                                 "velocity_smoother", "collision_monitor", "navigator"]  # fmt: skip
     assert config.namespace == "robot"
     assert not config.uses_sim_time

@@ -29,8 +29,8 @@ def test_the_base_host_s_share(certs: str) -> None:
                 "host": "base",
                 "access_control": "deploy/access-control.json5",
             },
-            "services": {"robot": {"enabled": False}, "controller": {"enabled": False},
-                         "behaviors": {"enabled": False}},
+            "services": {"robot": {"enabled": False}, "localization": {"enabled": False},
+                         "controller": {"enabled": False}, "behaviors": {"enabled": False}},
         }
     )  # fmt: skip
     assert config.enabled() == ["planner", "navigator"]

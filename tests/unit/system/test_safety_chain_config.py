@@ -12,8 +12,8 @@ import yaml
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import ConfigError, config_from_dict
 
-CHAIN = ["robot", "planner", "controller", "behaviors", "velocity_smoother", "collision_monitor",
-         "navigator"]  # fmt: skip
+CHAIN = ["robot", "localization", "planner", "controller", "behaviors", "velocity_smoother",
+         "collision_monitor", "navigator"]  # fmt: skip
 
 
 def test_on_by_default_the_chain_runs_between_the_commands_and_the_base() -> None:
@@ -32,7 +32,9 @@ def test_on_by_default_the_chain_runs_between_the_commands_and_the_base() -> Non
 
 def test_off_the_commands_go_to_the_base() -> None:
     config = config_from_dict({"safety_chain": False})
-    assert config.enabled() == ["robot", "planner", "controller", "behaviors", "navigator"]
+    assert config.enabled() == [
+        "robot", "localization", "planner", "controller", "behaviors", "navigator",
+    ]  # fmt: skip
     assert "--cmd-vel-topic" not in service_command("controller", config)
     assert "--cmd-vel-topic" not in service_command("behaviors", config)
 
