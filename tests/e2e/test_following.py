@@ -25,6 +25,7 @@ from aiobt.msgs.follow_target import (
 )
 from aiobt.msgs.remote_actions import FollowObjectError
 from aiobt.msgs.sim import Ack
+from aiobt.testing.localize import set_estimate
 from aiobt.testing.stack import SERVICES, NavStack, StackConfig, running_stack
 from aiobt.transport import Bus
 from aiobt_services.robot.target_path import seeded_loop
@@ -69,6 +70,7 @@ async def behind_the_box(bus: Bus) -> None:
     yaw = math.atan2(ahead.y - behind.y, ahead.x - behind.x)
     placed = await bus.call("reset_pose", PoseStamped.from_xy_yaw(behind.x, behind.y, yaw), Ack)
     assert placed.ok, placed.message
+    await set_estimate(bus, behind.x, behind.y, yaw)  # as a user would after carrying it
     started = await bus.call("follow_target/start", StartTarget(seed=SEED, hold=0.5),
                              TargetStarted, timeout=10.0)  # fmt: skip
     assert started.ok, started.message

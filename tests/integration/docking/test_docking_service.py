@@ -20,7 +20,7 @@ from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
 from aiobt.transport.keys import SIM_POSE
 
-from ..services import common, up
+from ..services import TRUTH, common, up
 
 pytestmark = pytest.mark.integration
 Spawn = Callable[[Sequence[str]], ServiceProcess]
@@ -30,7 +30,7 @@ HOME = DockRobot.Goal(dock_id="home_dock", navigate_to_staging_pose=False)
 
 async def start(spawn: Spawn, bus: Bus, settings: BusSettings, *docking: str) -> None:
     robot = spawn(["-m", "aiobt_services.robot", "--world", "office", "--speed", "4",
-                   "--battery", "0.5", "--seed", "5", *common(settings)])  # fmt: skip
+                   "--battery", "0.5", "--seed", "5", *TRUTH, *common(settings)])  # fmt: skip
     await up(bus, "robot", robot)
     server = spawn(["-m", "aiobt_services.docking", "--sim-time", *docking, *common(settings)])
     await up(bus, "docking", server)
@@ -86,7 +86,7 @@ async def test_a_database_that_does_not_parse(spawn: Spawn, bus: Bus, bus_settin
     broken = tmp_path / "docks.yaml"
     broken.write_text("docks:\n  home_dock:\n    type: simple_charging_dock\n    pose: [1, 2]\n")
     robot = spawn(["-m", "aiobt_services.robot", "--world", "office", "--speed", "4",
-                   *common(bus_settings)])  # fmt: skip
+                   *TRUTH, *common(bus_settings)])  # fmt: skip
     await up(bus, "robot", robot)
     server = spawn(["-m", "aiobt_services.docking", "--sim-time", "--dock-database", str(broken),
                     *common(bus_settings)])  # fmt: skip
