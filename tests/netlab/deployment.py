@@ -1,10 +1,9 @@
 """The deployment of docs/deployment.md, in namespaces: robot host, base host, a laptop.
 
     host    address(es)                  runs
-    robot   198.18.0.1                   router-robot, robot, localization, controller,
-                                         behaviors
+    robot   198.18.0.1                   router-robot, robot, controller, behaviors (...)
     link    198.18.0.2, 198.18.0.6       the proxy: 198.18.0.6:7447 -> 198.18.0.1:7447
-    base    198.18.0.5, 198.18.0.10      router-base, planner, navigator
+    base    198.18.0.5, 198.18.0.10      router-base, planner, navigator (...)
     laptop  198.18.0.9                   the zenoh CLI, scenarios (tests.netlab.scenario)
 
 Each host runs its share with ``aiobt up --config <host>.yaml`` (mutual TLS with the
@@ -13,6 +12,7 @@ joins the robot router through the proxy in the ``link`` namespace, so every byt
 between the hosts passes it (the hosts have no other route to each other), and the
 faults of :class:`~tests.netlab.control.ProxyControl` apply to the routers' link.
 The laptop reaches the base router only (its default route is the base host).
+Which services each host runs is the catalog's (``ServiceSpec.host``).
 """
 
 from __future__ import annotations
@@ -28,8 +28,9 @@ from typing import Any
 import yaml
 
 from aiobt.deploy.certs import CertPlan, write_certs
-from aiobt.deploy.zenoh_configs import write_config
+from aiobt.deploy.zenoh_configs import write_configs
 from aiobt.system import catalog
+from aiobt.system.config import config_from_dict
 from tests.netlab.control import ProxyControl
 from tests.netlab.hosts import HostProcess, NetLab
 
@@ -43,15 +44,9 @@ LAPTOP, BASE_LAPTOP = "198.18.0.9", "198.18.0.10"
 PORT = 7447
 LOCAL = f"tls/127.0.0.1:{PORT}"  # where a host's own services reach its router
 NAMESPACE = "robot"
-HOSTS = {
-    "robot": ("robot", "localization", "controller", "behaviors"),
-    "base": ("planner", "navigator"),
-}
-# the services `aiobt up` runs by default but the safety chain (off in a share, as in
-# deploy/*-host.yaml; route stays off too)
-SERVICES = tuple(
-    spec.name for spec in catalog.SERVICES if spec.enabled and spec.name not in catalog.SAFETY_CHAIN
-)
+# each host's share: the catalog's services on that host, as on (or off) as by default
+HOSTS = {host: catalog.on_host(host) for host in catalog.HOSTS}
+SERVICES = tuple(config_from_dict({}).enabled())  # what `aiobt up` runs by default
 UP_TIMEOUT = 120.0  # s for each host's share to be up on 2 loaded cores
 DEFAULT_LEASE_MS = 1000  # deploy/*-host.yaml's
 # the lab's: on 2 cores shared with other work, a starved process must not be taken for
@@ -64,9 +59,7 @@ def make_certs(directory: Path) -> Path:
     at the proxy's (the base router goes through it), the base router at its own."""
     plan = CertPlan(hosts={"robot": (ROBOT, LINK_BASE), "base": (BASE,)})
     write_certs(directory, plan)
-    routers = {"router-robot", "router-base"}
-    for name in plan.names():
-        write_config(directory, name, router=name in routers)
+    write_configs(directory, plan)
     return directory
 
 
@@ -92,11 +85,13 @@ def host_config(
         router["args"] += ["--downsampling", str(downsampling)]
     if host == "base":
         router["connect"] = [f"tls/{LINK_BASE}:{PORT}"]
-    services: dict[str, Any] = {name: {"enabled": name in HOSTS[host]} for name in SERVICES}
+    services: dict[str, Any] = {
+        spec.name: {"enabled": spec.enabled and spec.host == host} for spec in catalog.SERVICES
+    }
     if lease_ms != DEFAULT_LEASE_MS:
         for name in HOSTS[host]:
             services[name]["args"] = ["--lease-ms", str(lease_ms)]
-    return {"namespace": NAMESPACE, "safety_chain": False, "router": router, "services": services}
+    return {"namespace": NAMESPACE, "router": router, "services": services}
 
 
 @dataclass

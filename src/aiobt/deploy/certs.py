@@ -5,9 +5,10 @@ routers accept only sessions whose certificate chains to it, and the access-cont
 file (``deploy/access-control.json5``) grants rights by the certificate's common
 name. So the common names here are the ones that file names:
 
-- one per service or person: ``robot``, ``controller``, ``behaviors``, ``planner``,
-  ``navigator``, ``web``, ``teleop``, ``laptop``, and ``supervisor`` (the session of
-  ``aiobt up`` itself, which only watches);
+- one per service of the catalog (``robot``, ``controller``, ``planner``, ...:
+  ``aiobt.system.catalog``), and one per other client: ``web``, ``teleop``,
+  ``laptop``, and ``supervisor`` (the session of ``aiobt up`` itself, which only
+  watches);
 - one per host's router: ``router-<host>`` (``router-robot``, ``router-base``), whose
   subject alternative names are the addresses the other router and the host's own
   services dial (always ``localhost``, ``127.0.0.1`` and ``::1``), since Zenoh checks
@@ -31,18 +32,13 @@ from cryptography.hazmat.primitives import hashes, serialization
 from cryptography.hazmat.primitives.asymmetric import ec
 from cryptography.x509.oid import ExtendedKeyUsageOID, NameOID
 
-SERVICES = (
-    "robot",
-    "localization",
-    "controller",
-    "behaviors",
-    "planner",
-    "navigator",
-    "web",
-    "teleop",
-    "laptop",
-    "supervisor",
-)
+from aiobt.system import catalog
+
+# who else has a session: the web view, a person driving by hand, a laptop sending goals,
+# and `aiobt up`'s own (it only watches)
+CLIENTS = ("web", "teleop", "laptop", "supervisor")
+SERVICES = (*catalog.SERVICE_NAMES, *CLIENTS)
+"""Every identity but the routers: each service of the catalog, then :data:`CLIENTS`."""
 DEFAULT_HOSTS = ("robot", "base")
 LOOPBACK_NAMES = ("localhost", "127.0.0.1", "::1")
 CA_NAME = "ca"

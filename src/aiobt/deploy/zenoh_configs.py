@@ -4,7 +4,9 @@
 service joins a mutual-TLS deployment with ``--config DIR/<name>.json5 --connect
 tls/HOST:7447`` and nothing else; a router's file also says where it listens from
 (its certificate, for the sessions it accepts) and requires a client certificate.
-Paths in the files are absolute, so they work from any working directory.
+Paths in the files are absolute, so they work from any working directory; with
+``seen_at`` they name the directory where the processes that read them find it
+(``/certs`` in docker-compose.yml's containers, which mount it there).
 Endpoints, the mode of a service and the access-control rules are not in them:
 they belong to the deployment (flags, ``aiobt up``'s config, deploy/).
 """
@@ -15,7 +17,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from aiobt.deploy.certs import CA_NAME, cert_path, key_path
+from aiobt.deploy.certs import CA_NAME, CertPlan, cert_path, key_path, router_name
 
 TLS_KEY = "transport/link/tls"
 
@@ -51,8 +53,16 @@ def config_text(tls: dict[str, Any], *, router: bool) -> str:
     )
 
 
-def write_config(directory: Path, name: str, *, router: bool) -> Path:
-    tls = router_tls(directory, name) if router else client_tls(directory, name)
+def write_configs(directory: Path, plan: CertPlan, seen_at: Path | None = None) -> list[Path]:
+    """Every identity's config file of ``plan``, in ``directory``, naming the files as
+    they are seen at ``seen_at`` (default: ``directory`` itself, absolute)."""
+    routers = {router_name(host) for host in plan.hosts}
+    return [write_config(directory, n, router=n in routers, seen_at=seen_at) for n in plan.names()]
+
+
+def write_config(directory: Path, name: str, *, router: bool, seen_at: Path | None = None) -> Path:
+    where = seen_at or directory
+    tls = router_tls(where, name) if router else client_tls(where, name)
     path = config_path(directory, name)
     path.write_text(config_text(tls, router=router), encoding="utf-8")
     return path

@@ -23,6 +23,7 @@ class ServiceSpec:
     simulation: bool = False  # it is the clock's source (takes --world and --speed, not --sim-time)
     enabled: bool = True  # run by ``aiobt up`` unless its config says otherwise
     world_flag: str | None = None  # the flag ``aiobt up`` gives its world to (not the robot's)
+    host: str = "robot"  # where it runs in a deployment across hosts (docs/deployment.md)
 
     @property
     def module(self) -> str:
@@ -40,18 +41,24 @@ SERVICES: tuple[ServiceSpec, ...] = (
         "Nav2's AMCL: the robot's pose in map from odometry and lidar",
         realtime_priority=80,
     ),
-    ServiceSpec("planner", "the planner service", realtime_priority=70),
+    ServiceSpec("planner", "the planner service", realtime_priority=70, host="base"),
     ServiceSpec("controller", "the controller service", realtime_priority=90),
     ServiceSpec("behaviors", "the behavior service"),
     ServiceSpec("velocity_smoother", "Nav2's velocity smoother (off with safety_chain: false)"),
     ServiceSpec("collision_monitor", "Nav2's collision monitor (off with safety_chain: false)"),
-    ServiceSpec("navigator", "the navigator: Nav2's bt_navigator over Zenoh", realtime_priority=60),
+    ServiceSpec(
+        "navigator",
+        "the navigator: Nav2's bt_navigator over Zenoh",
+        realtime_priority=60,
+        host="base",
+    ),
     # Nav2's optional servers, off unless enabled (as Nav2's bringup leaves them out)
     ServiceSpec(
         "route",
         "the route server: Nav2's nav2_route (routes on a graph)",
         enabled=False,
         world_flag="--graph-filepath",
+        host="base",
     ),
     ServiceSpec(
         "following",
@@ -68,6 +75,10 @@ SERVICES: tuple[ServiceSpec, ...] = (
 """In start order: the robot first (the map and the clock), the navigator last."""
 
 SERVICE_NAMES: tuple[str, ...] = tuple(spec.name for spec in SERVICES)
+HOSTS: tuple[str, ...] = ("robot", "base")
+"""A deployment across hosts: the robot computer runs what closes the loop on the robot
+(driver, controller, behaviors, the safety chain, localization), the base station what
+plans and decides (planner, navigator, route). Each service says which (``host``)."""
 SAFETY_CHAIN: tuple[str, ...] = ("velocity_smoother", "collision_monitor")
 """Between the controller/behaviors and the base: run unless ``safety_chain: false``."""
 
@@ -78,6 +89,13 @@ def service(name: str) -> ServiceSpec:
         if spec.name == name:
             return spec
     raise KeyError(f"no service '{name}' (known: {', '.join(SERVICE_NAMES)})")
+
+
+def on_host(host: str) -> tuple[str, ...]:
+    """The services ``host`` runs in a deployment across hosts, on by default or not."""
+    if host not in HOSTS:
+        raise KeyError(f"no host '{host}' (known: {', '.join(HOSTS)})")
+    return tuple(spec.name for spec in SERVICES if spec.host == host)
 
 
 def realtime_priority(name: str) -> int:

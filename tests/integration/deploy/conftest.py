@@ -7,8 +7,8 @@ from pathlib import Path
 
 import pytest
 
-from aiobt.deploy.certs import CertPlan, write_certs
-from aiobt.deploy.zenoh_configs import write_config
+from aiobt.deploy.certs import SERVICES, CertPlan, write_certs
+from aiobt.deploy.zenoh_configs import write_configs
 from aiobt.testing.bus import ServiceProcess, running_router
 from aiobt.transport.endpoints import free_port
 
@@ -16,12 +16,14 @@ REPO = Path(__file__).resolve().parents[3]
 ACCESS_CONTROL = REPO / "deploy" / "access-control.json5"
 
 
+# every identity, and localization's before the catalog runs it (the rules name it)
+IDENTITIES = tuple(dict.fromkeys((*SERVICES, "localization")))
+
+
 def make_certs(directory: Path, plan: CertPlan | None = None, renew: bool = False) -> Path:
-    plan = plan or CertPlan()
+    plan = plan or CertPlan(services=IDENTITIES)
     write_certs(directory, plan, renew=renew)
-    routers = {f"router-{host}" for host in plan.hosts}
-    for name in plan.names():
-        write_config(directory, name, router=name in routers)
+    write_configs(directory, plan)
     return directory
 
 

@@ -59,7 +59,7 @@ async def put_reaches(receiver: Bus, sender: Bus, topic: str, message: Msg) -> b
     return bool(arrived)
 
 
-@pytest.mark.parametrize("driver", ["controller", "behaviors", "teleop"])
+@pytest.mark.parametrize("driver", ["controller", "behaviors", "collision_monitor", "teleop"])
 async def test_the_drivers_may_put_cmd_vel(
     certs: Path, secure_router: tuple[ServiceProcess, str], driver: str
 ) -> None:
@@ -91,6 +91,35 @@ async def test_only_the_robot_publishes_its_sensors(
     ):
         assert await put_reaches(web, robot, "odom", Odometry())
         assert not await put_reaches(web, controller, "odom", Odometry())
+
+
+@pytest.mark.parametrize(
+    ("sender", "topic", "arrives"),
+    [("velocity_smoother", "cmd_vel_smoothed", True), ("controller", "cmd_vel_nav", True),
+     ("web", "cmd_vel_smoothed", False), ("laptop", "cmd_vel_nav", False),
+     ("localization", "cmd_vel", False)],
+)  # fmt: skip
+async def test_the_safety_chain_s_commands_are_the_drivers_only(
+    certs: Path, secure_router: tuple[ServiceProcess, str], sender: str, topic: str, arrives: bool
+) -> None:
+    """With the chain on, the commands go cmd_vel_nav -> cmd_vel_smoothed -> cmd_vel: a
+    put on either of the first two drives the base as surely as one on cmd_vel."""
+    _, endpoint = secure_router
+    async with as_(certs, "robot", endpoint) as robot, as_(certs, sender, endpoint) as source:
+        assert await put_reaches(robot, source, topic, Twist.planar(0.3, 0.0)) is arrives
+
+
+@pytest.mark.parametrize(
+    ("sender", "arrives"),
+    [("robot", True), ("localization", True), ("controller", False), ("laptop", False)],
+)
+async def test_the_pose_is_the_robot_s_or_localization_s(
+    certs: Path, secure_router: tuple[ServiceProcess, str], sender: str, arrives: bool
+) -> None:
+    _, endpoint = secure_router
+    async with as_(certs, "web", endpoint) as web, as_(certs, sender, endpoint) as source:
+        pose = PoseStamped.from_xy_yaw(1.0, 2.0)
+        assert await put_reaches(web, source, "pose", pose) is arrives
 
 
 async def test_a_certificate_named_nowhere_may_do_nothing(

@@ -1,8 +1,10 @@
 """docker-compose.yml cannot rot: its commands are `aiobt up`'s, and they run and navigate.
 
 No Docker here: each service's command runs as a local process against a local
-router configured like the compose router (deploy/zenoh-router.json5, user and
-password from zenoh.env.example), and a goal is sent through the navigator.
+router configured like the compose router (deploy/zenoh-router.json5: mutual TLS,
+the access-control rules inline; the certificates of `aiobt certs`), and a goal is
+sent through the navigator. The lighter option, user and password
+(docker-compose.userpass.yml), is held to `aiobt up`'s commands too.
 """
 
 from __future__ import annotations
@@ -10,25 +12,32 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import json
-import re
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 import pytest
-import yaml
 
 from aiobt.embed import connect
+from aiobt.msgs import Twist
 from aiobt.system.catalog import SERVICES
 from aiobt.system.commands import service_command
-from aiobt.system.config import config_from_dict
-from aiobt.testing.bus import ServiceProcess, free_endpoint, port_of, spawn_service, wait_port
-from aiobt.transport import BusSettings, BusUnavailable
+from aiobt.testing.bus import ServiceProcess, port_of, spawn_service, wait_port
+from aiobt.transport import BusSettings, BusUnavailable, open_bus
+from aiobt.transport.endpoints import free_port
+from tests.compose_files import (
+    IN_CONTAINERS,
+    REPO,
+    ROUTER_TLS,
+    in_containers,
+    load,
+    make_certs,
+    up_config,
+)
 
 pytestmark = [pytest.mark.integration]
-REPO = Path(__file__).resolve().parents[3]
-COMPOSE: dict[str, Any] = yaml.safe_load((REPO / "docker-compose.yml").read_text())
-ROUTER_IN_COMPOSE = "tcp/router:7447"
+COMPOSE = load("docker-compose.yml")
+USERPASS = load("docker-compose.userpass.yml")
 
 
 def _env_file() -> dict[str, str]:
@@ -45,87 +54,113 @@ def _services(profile: str | None) -> dict[str, list[str]]:
     }
 
 
+@pytest.fixture(scope="module")
+def certs(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    return make_certs(tmp_path_factory.mktemp("compose-certs"))
+
+
 @pytest.mark.parametrize("profile", [None, "two-robots"])
-def test_every_service_runs_the_command_aiobt_up_runs(profile: str | None) -> None:
+def test_every_service_runs_the_command_aiobt_up_runs(profile: str | None, certs: Path) -> None:
     services = _services(profile)
     # every service of the one list (aiobt.system.catalog) on by default, once per robot
     on = sorted(s.name for s in SERVICES if s.enabled)
     assert sorted(command[0] for command in services.values()) == on
     for command in services.values():
-        namespace = command[command.index("--namespace") + 1]
-        config = config_from_dict(
-            {"namespace": namespace, "router": {"listen": ROUTER_IN_COMPOSE}}, "compose"
-        )
-        assert command == service_command(command[0], config)
+        config = up_config(certs, namespace=command[command.index("--namespace") + 1])
+        assert command == in_containers(service_command(command[0], config), certs)
     namespaces = {c[c.index("--namespace") + 1] for c in services.values()}
     assert namespaces == ({"robot"} if profile is None else {"robot2"})
 
 
 @pytest.mark.parametrize("name", [spec.name for spec in SERVICES if not spec.enabled])
-def test_a_service_off_by_default_runs_under_its_own_profile(name: str) -> None:
+def test_a_service_off_by_default_runs_under_its_own_profile(name: str, certs: Path) -> None:
     spec = COMPOSE["services"][name]
     assert spec["profiles"] == [name]
-    config = config_from_dict({"router": {"listen": ROUTER_IN_COMPOSE}}, "compose")
-    assert spec["command"] == service_command(name, config)
+    assert spec["command"] == in_containers(service_command(name, up_config(certs)), certs)
 
 
-def test_the_router_checks_passwords_and_no_credential_is_baked_in() -> None:
+def test_the_router_requires_certificates_of_the_ca_and_no_key_is_in_the_repository() -> None:
     router = COMPOSE["services"]["router"]
     assert router["image"].startswith("eclipse/zenoh:")
-    assert COMPOSE["secrets"]["zenoh_users"] == {"environment": "ZENOH_USERS"}
+    assert f"./deploy/compose-certs:{IN_CONTAINERS}:ro" in router["volumes"]
     config = (REPO / "deploy" / "zenoh-router.json5").read_text()
-    assert 'dictionary_file: "/run/secrets/zenoh_users"' in config
+    assert "enable_mtls: true" in config
+    assert '"tls/0.0.0.0:7447"' in config
     assert "multicast: { enabled: false }" in config
+    assert "usrpwd" not in config
+    for ignore in (".gitignore", ".dockerignore"):
+        assert "deploy/compose-certs" in (REPO / ignore).read_text(), ignore
+
+
+def test_the_lighter_option_checks_passwords_and_runs_the_commands_aiobt_up_runs() -> None:
+    services = {n: s for n, s in USERPASS["services"].items() if n != "router"}
+    assert sorted(services) == sorted(n for n in COMPOSE["services"] if n != "router")
+    for name, spec in services.items():
+        command = spec["command"]
+        config = up_config(None, namespace=command[command.index("--namespace") + 1])
+        assert command == service_command(command[0], config), name
+        assert spec["env_file"] == ["zenoh.env"]
+    router = USERPASS["services"]["router"]
+    assert router["volumes"] == ["./deploy/zenoh-router-userpass.json5:/etc/zenoh/router.json5:ro"]
+    assert USERPASS["secrets"]["zenoh_users"] == {"environment": "ZENOH_USERS"}
+    router_config = (REPO / "deploy" / "zenoh-router-userpass.json5").read_text()
+    assert 'dictionary_file: "/run/secrets/zenoh_users"' in router_config
     password = _env_file()["AIOBT_ZENOH_PASSWORD"]
-    for baked in ("Dockerfile", "docker-compose.yml", "deploy/zenoh-router.json5"):
+    for baked in ("Dockerfile", "docker-compose.yml", "docker-compose.userpass.yml",
+                  "deploy/zenoh-router-userpass.json5"):  # fmt: skip
         assert password not in (REPO / baked).read_text(), baked
     assert "zenoh.env" in (REPO / ".dockerignore").read_text().split()
 
 
 @pytest.fixture
-def compose_router(tmp_path: Path) -> Iterator[str]:
-    """A router with the compose router's config, on a free loopback port."""
-    users = tmp_path / "users.txt"
-    users.write_text(_env_file()["ZENOH_USERS"] + "\n")
+def compose_router(tmp_path: Path, certs: Path) -> Iterator[tuple[ServiceProcess, str]]:
+    """A router with the compose router's config (its certificates where ``certs`` has
+    them), on a free loopback port."""
     config = (REPO / "deploy" / "zenoh-router.json5").read_text()
-    config = config.replace("/run/secrets/zenoh_users", str(users))
-    endpoint = free_endpoint()
-    config = re.sub(r'"tcp/0\.0\.0\.0:7447"', json.dumps(endpoint), config)
+    config = config.replace(f'"{IN_CONTAINERS}/', f'"{certs}/')
+    endpoint = f"tls/127.0.0.1:{free_port()}"
+    config = config.replace('"tls/0.0.0.0:7447"', json.dumps(endpoint))
     path = tmp_path / "router.json5"
     path.write_text(config)
     router = spawn_service(["-m", "aiobt.cli.router", "--config", str(path)])
     try:
         assert wait_port(port_of(endpoint), 20.0), router.output()
-        yield endpoint
+        yield router, endpoint
     finally:
         router.cleanup()
 
 
 @pytest.mark.timeout(240)
-async def test_the_compose_services_run_locally_and_navigate(
-    compose_router: str, monkeypatch: pytest.MonkeyPatch
+async def test_the_compose_services_run_locally_with_tls_and_the_rules_and_navigate(
+    compose_router: tuple[ServiceProcess, str], certs: Path
 ) -> None:
-    credentials = {k: v for k, v in _env_file().items() if k.startswith("AIOBT_")}
+    router, endpoint = compose_router
     started: list[ServiceProcess] = []
     with contextlib.ExitStack() as cleanup:
         for command in _services(None).values():
-            local = [compose_router if arg == ROUTER_IN_COMPOSE else arg for arg in command]
-            proc = spawn_service(["-m", "aiobt.cli.main", *local], env=credentials)
+            local = [endpoint if arg == ROUTER_TLS else arg for arg in command]
+            local = [arg.replace(IN_CONTAINERS, str(certs)) for arg in local]
+            proc = spawn_service(["-m", "aiobt.cli.main", *local])
             cleanup.callback(proc.cleanup)
             started.append(proc)
-        settings = BusSettings(connect=(compose_router,), namespace="robot", connect_timeout=3.0)
-        with pytest.raises(BusUnavailable):  # no credentials: the router refuses
-            async with connect(settings=settings):
+        anonymous = BusSettings(connect=(endpoint,), namespace="robot", connect_timeout=3.0)
+        with pytest.raises(BusUnavailable):  # no certificate of the CA: the router refuses
+            async with connect(settings=anonymous):
                 pass
-        for key, value in credentials.items():
-            monkeypatch.setenv(key, value)
+        laptop = BusSettings(
+            connect=(endpoint,), config_file=str(certs / "laptop.json5"), connect_timeout=10.0
+        )
         try:
-            outcome = await _navigate(settings)
+            outcome = await _navigate(laptop)
             assert outcome.succeeded, outcome
         except BaseException:
-            for proc in started:
+            for proc in [router, *started]:
                 print(f"--- {' '.join(proc.args)}\n{proc.output()[-3000:]}")
             raise
+        assert "denied" not in router.output(), router.output()  # the rules let it work
+        async with open_bus(laptop) as bus:  # ... and they are in force
+            bus.publisher("cmd_vel", Twist, reliable=True).put(Twist.planar(0.3, 0.0))
+            assert router.wait_for_output("denied Put from laptop", 10.0), router.output()
 
 
 async def _navigate(settings: BusSettings) -> Any:

@@ -22,6 +22,7 @@ from aiobt.deploy.certs import (
     parse_host,
     write_certs,
 )
+from aiobt.system import catalog
 
 EXPECTED = {*SERVICES, "router-robot", "router-base"}
 
@@ -135,3 +136,21 @@ def test_the_command_writes_certificates_and_each_identity_s_zenoh_config(
 
 def _without_comment(path: Path) -> str:
     return "".join(line for line in path.read_text().splitlines() if not line.startswith("//"))
+
+
+def test_seen_at_names_the_files_where_the_containers_mount_them(tmp_path: Path) -> None:
+    directory = tmp_path / "compose-certs"
+    args = ["certs", str(directory), "--host", "compose=router", "--seen-at", "/certs"]
+    assert main(args) == 0
+    router = json.loads(_without_comment(directory / "router-compose.json5"))
+    assert router["transport"]["link"]["tls"]["listen_certificate"] == "/certs/router-compose.pem"
+    planner = json.loads(_without_comment(directory / "planner.json5"))
+    assert planner["transport"]["link"]["tls"]["connect_private_key"] == "/certs/planner-key.pem"
+    assert "router" in _alt_names(_cert(directory, "router-compose"))
+    assert main(["certs", str(tmp_path / "other"), "--seen-at", "certs"]) == 2  # not absolute
+
+
+def test_a_certificate_for_every_service_of_the_catalog(tmp_path: Path) -> None:
+    write_certs(tmp_path, CertPlan())
+    for spec in catalog.SERVICES:
+        assert _common_name(_cert(tmp_path, spec.name)) == spec.name

@@ -41,3 +41,14 @@ def test_the_shipped_share_is_the_one_the_harness_runs(tmp_path: Path, host: str
     assert _as_in_the_lab(shipped, tmp_path) == deployment.host_config(tmp_path, host)
     config = config_from_dict(shipped | {"router": shipped["router"] | {"certs": str(tmp_path)}})
     assert config.enabled() == [s for s in deployment.SERVICES if s in deployment.HOSTS[host]]
+
+
+def test_the_two_shares_run_every_default_service_once(tmp_path: Path) -> None:
+    write_certs(tmp_path, CertPlan())
+    shares = [
+        config_from_dict(deployment.host_config(tmp_path, host)).enabled()
+        for host in ("robot", "base")
+    ]
+    assert sorted(shares[0] + shares[1]) == sorted(config_from_dict({}).enabled())
+    assert {"robot", "controller", "behaviors"} <= set(shares[0])  # the loop on the robot
+    assert {"planner", "navigator"} <= set(shares[1])

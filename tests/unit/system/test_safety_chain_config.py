@@ -7,10 +7,10 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
-import yaml
 
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import ConfigError, config_from_dict
+from tests import compose_files
 
 CHAIN = ["robot", "localization", "planner", "controller", "behaviors", "velocity_smoother",
          "collision_monitor", "navigator"]  # fmt: skip
@@ -53,12 +53,12 @@ def test_a_wrong_type_is_refused_by_name() -> None:
         config_from_dict({"safety_chain": "yes"})
 
 
-def test_compose_runs_the_chain_as_aiobt_up_does() -> None:
-    repo = Path(__file__).resolve().parents[3]
-    services = yaml.safe_load((repo / "docker-compose.yml").read_text())["services"]
+def test_compose_runs_the_chain_as_aiobt_up_does(tmp_path: Path) -> None:
+    services = compose_files.load("docker-compose.yml")["services"]
+    certs = compose_files.make_certs(tmp_path)
     for prefix, namespace in (("", "robot"), ("robot2-", "robot2")):
-        config = config_from_dict({"namespace": namespace,
-                                   "router": {"listen": "tcp/router:7447"}})  # fmt: skip
+        config = compose_files.up_config(certs, namespace=namespace)
         for name in ("controller", "behaviors", "velocity-smoother", "collision-monitor"):
             command = services[prefix + name]["command"]
-            assert command == service_command(command[0], config), prefix + name
+            expected = compose_files.in_containers(service_command(command[0], config), certs)
+            assert command == expected, prefix + name
