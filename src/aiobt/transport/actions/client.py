@@ -13,6 +13,7 @@ from aiobt.msgs import ActionDef, ActionResult, GoalState, MessageError, Msg, de
 from aiobt.transport import _z
 from aiobt.transport.actions import protocol as p
 from aiobt.transport.actions.client_goal import ClientGoal, settle
+from aiobt.transport.actions.lost import LostGoals
 from aiobt.transport.bridge import JSON, LoopBridge, PayloadTooLarge, callback
 from aiobt.transport.keys import ActionKeys
 from aiobt.transport.presence import Presence
@@ -76,6 +77,7 @@ class ActionClient(Generic[G, R, F]):
         # goals whose stream ended without a result while the server was still announced:
         # judged when its token ends (a moment later) or after TOKEN_GRACE
         self.ended_unjudged: set[ClientGoal[G, R, F]] = set()
+        self.lost_goals = LostGoals(keys.base, self.request_cancel)  # canceled when it is back
         self._querier = session.declare_querier(
             keys.goal, consolidation=zenoh.ConsolidationMode.NONE, timeout=_GOAL_STREAM_TIMEOUT
         )  # declared once: every goal reuses its route
@@ -178,8 +180,10 @@ class ActionClient(Generic[G, R, F]):
         (sent just before a clean shutdown withdrew the token) arrives within a moment:
         Zenoh does not order the token's end and the goal stream's replies. Goals whose
         stream already ended without a result are judged at once (a killed server's
-        goal is failed within milliseconds)."""
+        goal is failed within milliseconds). The token back: the goals lost meanwhile
+        are canceled (a cut-off server ran them on: :mod:`.lost`)."""
         if present:
+            self.lost_goals.server_back()
             return
         loop = asyncio.get_running_loop()
         for handle in list(self._goals.values()):
@@ -211,6 +215,7 @@ class ActionClient(Generic[G, R, F]):
 
     def close(self) -> None:
         self._presence.remove_listener(self._on_presence)
+        self.lost_goals.close()
         for handle in list(self._goals.values()):  # before their streams end with the querier
             handle.lost("the client closed")
         _z.undeclare(self._querier)

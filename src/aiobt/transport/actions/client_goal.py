@@ -188,6 +188,9 @@ class ClientGoal(Generic[G, R, F]):
         else:
             why = "the server is gone: its session closed and its liveliness token ended"
         self.lost(why)
+        self._client.lost_goals.add(self.goal_id)  # canceled when the server is back ...
+        if self._client.server_present:  # ... as it is
+            self._client.lost_goals.server_back()
 
     def lost(self, why: str) -> None:
         if not self.done:
