@@ -20,6 +20,8 @@ session there; it runs this instead, with an identity of the deployment:
   comes and goes, with ``t``, this machine's ``time.monotonic()``;
 - ``rates SECONDS``: how many messages of each of the robot's streams arrived in that
   time (and the latched map's count); event ``rates``;
+- ``through``, ``blocked``: tests/e2e's through-poses and blocked-corridor scenarios
+  (:mod:`tests.netlab.scenes`);
 - ``drive-watch``: on the robot's host, until SIGTERM: how long the robot drove (its
   odometry moving) after the last ``cmd_vel`` it was given; event ``drive`` with the
   longest such stretch and the longest gap between two commands.
@@ -40,6 +42,7 @@ from typing import Any
 from aiobt.msgs import LaserScan, Msg, NavigateToPose, OccupancyGrid, Odometry, PoseStamped, Twist
 from aiobt.testing.navwatch import RobotTrack, start_navigation
 from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
+from tests.netlab import scenes
 
 MOVING = 0.3  # m from the start: the robot is under way
 DRIVING = 0.02  # m/s in the odometry: the base is moving
@@ -201,6 +204,9 @@ async def main_async(args: argparse.Namespace) -> None:
             await reach(bus, args.x, args.y, args.tolerance, args.timeout)
         elif args.what == "map":
             await wait_map(bus, args.timeout, args.pose)
+        elif args.what in ("through", "blocked"):
+            scene = scenes.through if args.what == "through" else scenes.blocked
+            await scene(bus, say, args.timeout)
         else:
             await drive_watch(bus, stop)
 
@@ -231,6 +237,8 @@ def main() -> None:
     grid = sub.add_parser("map")
     grid.add_argument("--timeout", type=float, default=30.0)
     grid.add_argument("--pose", action="store_true")
+    for scene in ("through", "blocked"):
+        sub.add_parser(scene).add_argument("--timeout", type=float, default=150.0)
     sub.add_parser("drive-watch")
     asyncio.run(main_async(parser.parse_args()))
 
