@@ -20,8 +20,8 @@ session there; it runs this instead, with an identity of the deployment:
   comes and goes, with ``t``, this machine's ``time.monotonic()``;
 - ``rates SECONDS``: how many messages of each of the robot's streams arrived in that
   time (and the latched map's count); event ``rates``;
-- ``through``, ``blocked``: tests/e2e's through-poses and blocked-corridor scenarios
-  (:mod:`tests.netlab.scenes`);
+- ``through``, ``blocked``: tests/e2e's through-poses and blocked-corridor scenarios;
+  ``goal-watch``: every action goal's statuses (:mod:`tests.netlab.scenes`);
 - ``drive-watch``: on the robot's host, until SIGTERM: how long the robot drove (its
   odometry moving) after the last ``cmd_vel`` it was given; event ``drive`` with the
   longest such stretch and the longest gap between two commands.
@@ -204,6 +204,8 @@ async def main_async(args: argparse.Namespace) -> None:
             await reach(bus, args.x, args.y, args.tolerance, args.timeout)
         elif args.what == "map":
             await wait_map(bus, args.timeout, args.pose)
+        elif args.what == "goal-watch":
+            await scenes.goal_watch(bus, say, stop)
         elif args.what in ("through", "blocked"):
             scene = scenes.through if args.what == "through" else scenes.blocked
             await scene(bus, say, args.timeout)
@@ -240,6 +242,7 @@ def main() -> None:
     for scene in ("through", "blocked"):
         sub.add_parser(scene).add_argument("--timeout", type=float, default=150.0)
     sub.add_parser("drive-watch")
+    sub.add_parser("goal-watch")
     asyncio.run(main_async(parser.parse_args()))
 
 

@@ -10,21 +10,25 @@ costmaps, the robot at the start) and reports in JSON lines.
   the state, where the robot is, how far from the corridor's middle it crossed x 12
   (it must go round through the rooms) and the bumper's contacts. The wall is
   removed after.
+- ``goal-watch``: until SIGTERM, every status every action server puts, per server
+  and goal id, in order; event ``goals`` (``{server: {goal_id: [state, ...]}}``).
 """
 
 from __future__ import annotations
 
+import asyncio
 import math
 from collections.abc import Callable
 from typing import Any
 
-from aiobt.msgs import NavigateThroughPoses, PoseStamped
+from aiobt.msgs import GoalStatus, NavigateThroughPoses, PoseStamped
 from aiobt.msgs.sim import BumperEvent
 from aiobt.testing.navwatch import RobotTrack
 from aiobt.transport import Bus
+from aiobt.transport.topics import declare_subscription
 from tests.e2e.test_navigate import ROOMS
 from tests.e2e.test_obstacles import CORRIDOR_EAST
-from tests.e2e.world import World
+from tests.e2e.world import ACTIONS, World
 
 Say = Callable[..., None]
 MOVING = 0.3  # m driven: the plan is made and followed
@@ -86,3 +90,31 @@ async def blocked(bus: Bus, say: Say, timeout: float) -> None:  # noqa: ASYNC109
     )
     await world.remove(wall)
     track.close()
+
+
+async def goal_watch(bus: Bus, say: Say, stop: asyncio.Event) -> None:
+    history: dict[str, dict[str, list[str]]] = {action.name: {} for action in ACTIONS}
+
+    def recorder(server: str) -> Callable[[GoalStatus], None]:
+        def record(status: GoalStatus) -> None:
+            history[server].setdefault(status.goal_id, []).append(status.status.name)
+
+        return record
+
+    subs = [
+        declare_subscription(
+            bus.session,
+            bus.bridge,
+            bus.keys.action(action.name).any_status,
+            GoalStatus,
+            callback_fn=recorder(action.name),
+            latched=False,
+            queue_size=1000,
+        )
+        for action in ACTIONS
+    ]
+    say("watching")
+    await stop.wait()
+    say("goals", history={server: goals for server, goals in history.items() if goals})
+    for sub in subs:
+        sub.close()

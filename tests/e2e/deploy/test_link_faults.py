@@ -112,6 +112,60 @@ def test_a_10_s_cut_heals_by_itself_within_5_s(deployed: Deployment) -> None:
     assert monitor.output().count("RUNNING") > seen, monitor.output()[-2000:]
 
 
+TERMINAL = {"SUCCEEDED", "CANCELED", "ABORTED"}
+
+
+@pytest.mark.timeout(400)
+def test_after_a_10_s_cut_mid_goal_no_goal_runs_twice(deployed: Deployment) -> None:
+    """The link is cut while the robot follows its path; it heals 10 s later. Every
+    action server's statuses, watched on its own host (so none is missed): no goal id
+    is executed twice (Zenoh re-sends no query after the heal; a server refuses a goal
+    id it has seen), nothing runs after its end, and no goal on the robot host is left
+    running (the navigator cancels a FollowPath it lost once the controller is back,
+    if its own retry did not preempt it first). The navigation ends with one result.
+    Known: a FollowPath sent as the link comes back can go unanswered for the leaf's
+    server_timeout, then reach the controller late: it starts, and the cancel its
+    client sent on giving up ends it at once (CANCELING, CANCELED), so it runs once."""
+    watchers = {host: deployed.scenario(host, "web", ["goal-watch"]) for host in ("robot", "base")}
+    presence = deployed.scenario("base", "web", ["presence", "robot/nodes/controller"])
+    for process in (*watchers.values(), presence):
+        assert process.wait_for_output('"event": "watching"', 60.0), deployed.logs()
+    nav = navigate(deployed, EAST, START)
+    assert nav.wait_for_output('"event": "moving"', 120.0), deployed.logs()
+    cut = time.monotonic()
+    deployed.proxy.cut()
+    assert presence.wait_for_output('"event": "gone"', 15.0), presence.output()
+    time.sleep(max(0.0, 10.0 - (time.monotonic() - cut)))  # the fault: 10 s of cut link
+    deployed.proxy.restore()
+    first = result_of(deployed, nav, 200.0)
+    assert first["state"] in ("SUCCEEDED", "ABORTED"), first
+    after = result_of(deployed, navigate(deployed, EAST, START), 200.0)
+    assert after["state"] == "SUCCEEDED", (after, deployed.logs())
+    presence.stop()
+    histories = {}
+    for host, watcher in watchers.items():
+        watcher.stop()
+        found = event(watcher, "goals")
+        assert found is not None, watcher.output()
+        histories[host] = found["history"]
+    print(f"first navigation: {first}; goals: {histories}")
+    for host, servers in histories.items():
+        for server, goals in servers.items():
+            for goal_id, states in goals.items():
+                assert states.count("EXECUTING") <= 1, (host, server, goal_id, states)
+                ends = [i for i, state in enumerate(states) if state in TERMINAL]
+                assert len(ends) <= 1, (host, server, goal_id, states)
+                assert not ends or ends[0] == len(states) - 1, (host, server, goal_id, states)
+    # none left running: each goal's end was seen on one host at least (a status put
+    # during the cut does not cross it)
+    for server, goals in histories["robot"].items():
+        for goal_id, states in goals.items():
+            seen = states + histories["base"].get(server, {}).get(goal_id, [])
+            assert TERMINAL & set(seen), (server, goal_id, states)
+    laptop_goals = histories["base"]["navigate_to_pose"]
+    assert len(laptop_goals) == 2, laptop_goals  # the two navigations, each once
+
+
 def _alive(process: HostProcess) -> list[float]:
     return [float(e["t"]) for e in events(process) if e["event"] == "alive"]
 
