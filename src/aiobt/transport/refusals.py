@@ -3,7 +3,7 @@
 Zenoh (Rust) decides whether a session's user and password are good and tells
 only its log (``tracing`` lines on the process's stdout, off by default). The
 router turns on just the lines about accepted TCP links and their session
-handshakes, reads its stdout through a pipe, and logs each refused session
+handshakes, reads its stdout back (:mod:`log_tail`), and logs each refused session
 with the peer's address: the first at once, then one counted line at most
 every ``interval`` seconds. Zenoh's warnings and errors (every line, when
 ``RUST_LOG`` chose them) are passed on to the real stdout, without the Rust
@@ -12,27 +12,25 @@ source places they carry.
 
 from __future__ import annotations
 
-import contextlib
-import fcntl
 import logging
 import os
 import re
 import sys
-import threading
 import time
 from collections.abc import Callable
+from functools import partial
 from typing import IO
 
 import zenoh
 
 from aiobt.transport.access_refusals import ACL_LOG_FILTER, TLS_LOG_FILTER, AccessRefusals
 from aiobt.transport.diagnose import clean
+from aiobt.transport.log_tail import LogTail
 
 # Zenoh's warnings and errors, and the two debug lines a refusal is made of
 ZENOH_LOG_FILTER = (
     "warn,zenoh_link_tcp::unicast=debug,zenoh_transport::unicast::establishment::accept=debug"
 )
-_PIPE_SIZE = 1 << 20
 _ANSI = re.compile(r"\x1b\[[0-9;]*m")
 _ACCEPTED = re.compile(r"Accepted TCP connection on \S+: (\S+)")
 _REFUSED = re.compile(r"establishment::accept: (\w+) extension - Recv \w+\. ([^.]+)\.")
@@ -103,29 +101,22 @@ def watch_refusals(logger: logging.Logger, *, access_control: bool = False) -> R
     access-control denials are read too (:mod:`access_refusals`)."""
     access = AccessRefusals(logger)
     refusals = Refusals(logger, forward_all=bool(os.environ.get("RUST_LOG")), access=access)
-    read_fd, write_fd = os.pipe()
-    # Zenoh writes its log from the threads that route messages: with access control, a
-    # line per message. A full pipe would block them until this process's reader runs;
-    # the largest pipe an unprivileged process may have (1 MiB on Linux) gives it seconds
-    with contextlib.suppress(OSError, AttributeError):
-        fcntl.fcntl(write_fd, fcntl.F_SETPIPE_SZ, _PIPE_SIZE)
     original = os.dup(1)
-    os.dup2(write_fd, 1)
-    os.close(write_fd)
     out = os.fdopen(original, "w", buffering=1)
     sys.stdout = out
+    # Zenoh writes its log from the threads that route messages: with access control, a
+    # line per message. Into a file in memory, never a pipe that a busy machine lets fill
+    # and then makes them wait on (:mod:`log_tail`)
+    LogTail(1, partial(_pass_on, refusals, out))
     log_filter = ZENOH_LOG_FILTER + f",{TLS_LOG_FILTER}"
     zenoh.init_log_from_env_or(log_filter + f",{ACL_LOG_FILTER}" if access_control else log_filter)
-    reader = os.fdopen(read_fd, "r", errors="replace")
-    threading.Thread(target=_pump, args=(reader, out, refusals), daemon=True).start()
     return refusals
 
 
-def _pump(reader: IO[str], out: IO[str], refusals: Refusals) -> None:
-    for line in reader:
-        try:
-            passed = refusals.on_line(line)
-            if passed is not None:
-                out.write(passed + "\n")
-        except Exception:  # a log line must never stop the router's log
-            refusals.logger.exception("cannot read Zenoh's log line %r", line)
+def _pass_on(refusals: Refusals, out: IO[str], line: str) -> None:
+    try:
+        passed = refusals.on_line(line)
+        if passed is not None:
+            out.write(passed + "\n")
+    except Exception:  # a log line must never stop the router's log
+        refusals.logger.exception("cannot read Zenoh's log line %r", line)
