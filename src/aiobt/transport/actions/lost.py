@@ -77,6 +77,10 @@ class LostGoals:
                 await asyncio.sleep(RETRY_PAUSE)
         return None
 
+    async def settled(self) -> None:
+        """Wait for the cancels under way."""
+        await asyncio.gather(*self._tasks)
+
     def close(self) -> None:
         for task in list(self._tasks):
             task.cancel()
