@@ -10,6 +10,7 @@ import pytest
 import yaml
 
 from aiobt.deploy.certs import CertPlan, write_certs
+from aiobt.system import catalog
 from aiobt.system.config import config_from_dict
 from tests.netlab import deployment
 
@@ -52,3 +53,8 @@ def test_the_two_shares_run_every_default_service_once(tmp_path: Path) -> None:
     assert sorted(shares[0] + shares[1]) == sorted(config_from_dict({}).enabled())
     assert {"robot", "controller", "behaviors"} <= set(shares[0])  # the loop on the robot
     assert {"planner", "navigator"} <= set(shares[1])
+
+
+def test_a_host_the_catalog_does_not_know_is_refused_by_name() -> None:
+    with pytest.raises(KeyError, match="no host 'lab' \\(known: robot, base\\)"):
+        catalog.on_host("lab")
