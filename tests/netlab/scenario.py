@@ -24,13 +24,15 @@ session there; it runs this instead, with an identity of the deployment:
   ``goal-watch``: every action goal's statuses (:mod:`tests.netlab.scenes`);
 - ``drive-watch``: on the robot's host, until SIGTERM: how long the robot drove (its
   odometry moving) after the last ``cmd_vel`` it was given; event ``drive`` with the
-  longest such stretch and the longest gap between two commands.
+  longest such stretch and the longest gap between two commands (:func:`drive_figures`).
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import bisect
+import itertools
 import json
 import math
 import random
@@ -46,6 +48,7 @@ from tests.netlab import scenes
 
 MOVING = 0.3  # m from the start: the robot is under way
 DRIVING = 0.02  # m/s in the odometry: the base is moving
+ORDER_GRACE = 0.25  # s a command may come in after the first motion it caused
 
 
 def say(event: str, **fields: Any) -> None:
@@ -163,26 +166,34 @@ async def wait_map(bus: Bus, timeout: float, pose: bool) -> None:  # noqa: ASYNC
 
 
 async def drive_watch(bus: Bus, stop: asyncio.Event) -> None:
-    last_cmd: list[float] = []
-    worst = {"stale_drive": 0.0, "cmd_gap": 0.0, "commands": 0}
-
-    def on_cmd(_: Twist) -> None:
-        now = time.monotonic()
-        if last_cmd:
-            worst["cmd_gap"] = max(worst["cmd_gap"], now - last_cmd[0])
-        last_cmd[:] = [now]
-        worst["commands"] += 1
+    commands: list[float] = []
+    moving: list[float] = []
 
     def on_odom(odom: Odometry) -> None:
-        moving = abs(odom.twist.linear.x) > DRIVING or abs(odom.twist.angular.z) > 2 * DRIVING
-        if moving and last_cmd:
-            worst["stale_drive"] = max(worst["stale_drive"], time.monotonic() - last_cmd[0])
+        if abs(odom.twist.linear.x) > DRIVING or abs(odom.twist.angular.z) > 2 * DRIVING:
+            moving.append(time.monotonic())
 
-    bus.subscribe("cmd_vel", Twist, callback=on_cmd)
+    bus.subscribe("cmd_vel", Twist, callback=lambda _: commands.append(time.monotonic()))
     bus.subscribe("odom", Odometry, callback=on_odom)
     say("watching")
     await stop.wait()
-    say("drive", **worst)
+    say("drive", **drive_figures(commands, moving))
+
+
+def drive_figures(commands: list[float], moving: list[float]) -> dict[str, float]:
+    """The longest the base was seen moving since the last command before it, and the
+    longest gap between commands (arrival times, s). A motion followed within
+    ``ORDER_GRACE`` by a command is the start of a new stream of commands, seen out of
+    order: the robot's odometry and the controller's command reach this process by
+    different routes, so the first motion can come in before the command that made it."""
+    stale = 0.0
+    for t in moving:
+        i = bisect.bisect_right(commands, t)
+        if i == 0 or (i < len(commands) and commands[i] - t <= ORDER_GRACE):
+            continue
+        stale = max(stale, t - commands[i - 1])
+    gaps = [b - a for a, b in itertools.pairwise(commands)]
+    return {"stale_drive": stale, "cmd_gap": max(gaps, default=0.0), "commands": len(commands)}
 
 
 async def main_async(args: argparse.Namespace) -> None:
