@@ -92,8 +92,8 @@ async def _follow_map(bus: Bus, node: LocalizationNode, sub: Subscription[Occupa
 
 
 class ScanWorker:
-    """Reads scans one at a time off the loop's other work, waiting briefly for the
-    odometry of the scan's own stamp."""
+    """Reads scans one at a time, waiting briefly for the odometry of the scan's own
+    stamp; the filter's update runs on a worker thread."""
 
     def __init__(self, node: LocalizationNode, outputs: Outputs) -> None:
         self.node, self.outputs = node, outputs
@@ -109,9 +109,14 @@ class ScanWorker:
             began, updates = time.perf_counter(), stats.updates  # wall time: a measurement
             await self._odom_up_to(scan.header.stamp)
             try:
-                self.outputs.send(self.node.on_scan(scan))
+                job = self.node.scan_job(scan)
             except ScanError as exc:
                 log.warning("scan at %.3f refused: %s", scan.header.stamp, exc)
+                continue
+            if job is None:
+                continue
+            # off the event loop: odometry (and so {ns}/pose) flows on while it runs
+            self.outputs.send(await asyncio.to_thread(self.node.update, job))
             if stats.updates > updates:
                 stats.record_latency(time.perf_counter() - began)
 

@@ -6,6 +6,7 @@ service's ``main`` wires these methods to keys; tests call them directly.
 from __future__ import annotations
 
 import logging
+import threading
 import time
 from dataclasses import dataclass, field
 
@@ -22,10 +23,17 @@ from aiobt.msgs import (
 from . import convert, se2
 from .amcl import Amcl
 from .initial_pose import InitialPoseError, covariance_from_6x6
-from .laser_model import ScanError, check_scan_shape, effective_range_limits, select_beams
+from .laser_model import (
+    Beams,
+    ScanError,
+    check_scan_shape,
+    effective_range_limits,
+    select_beams,
+)
 from .likelihood_field import LikelihoodField, MapError
 from .odom_buffer import OdomBuffer
 from .params import AmclParams
+from .se2 import FloatArray
 
 log = logging.getLogger("aiobt_services.localization.node")
 
@@ -36,6 +44,15 @@ class Reply:
 
     ok: bool
     message: str
+
+
+@dataclass(slots=True, frozen=True)
+class ScanJob:
+    """One scan as the filter takes it: its stamp, the odometry then, its beams."""
+
+    stamp: float
+    odom_pose: FloatArray
+    beams: Beams
 
 
 @dataclass(slots=True)
@@ -69,6 +86,10 @@ class LocalizationNode:
         self.stats = UpdateStats()
         self._map_seen = False
         self._frame = params.global_frame_id
+        # the filter's state: a scan's update may run on a worker thread; the map, an
+        # initial pose and the services change it under this lock too (the pose stream,
+        # on_odom, only reads map_to_odom, replaced whole)
+        self.lock = threading.RLock()
 
     @property
     def has_map(self) -> bool:
@@ -88,7 +109,8 @@ class LocalizationNode:
             )  # fmt: skip
         except MapError as exc:
             return Reply(False, f"map refused: {exc}")
-        self.amcl.set_map(field_)
+        with self.lock:
+            self.amcl.set_map(field_)
         first, self._map_seen = not self._map_seen, True
         log.info("map %dx%d at %g m/cell: likelihood field ready", *grid.array.shape[::-1],
                  grid.info.resolution)  # fmt: skip
@@ -111,15 +133,21 @@ class LocalizationNode:
     # -- scans ---------------------------------------------------------------
     def on_scan(self, scan: LaserScan) -> list[tuple[str, Msg]]:
         """One scan through the filter (:class:`ScanError` for a malformed one)."""
+        job = self.scan_job(scan)
+        return [] if job is None else self.update(job)
+
+    def scan_job(self, scan: LaserScan) -> ScanJob | None:
+        """What the filter needs of ``scan``: its beams and the odometry at its stamp
+        (None if the filter cannot use it yet). Reads the odometry: call it where
+        :meth:`on_odom` runs."""
         self.stats.scans += 1
         if not (self.has_map and self.amcl.initialized):
-            return []
+            return None
         check_scan_shape(len(scan.ranges), scan.angle_min, scan.angle_max, scan.angle_increment)
         odom_pose = self.odom.at(scan.header.stamp, tolerance=self.params.transform_tolerance)
         if odom_pose is None:
             self.stats.skipped_no_odom += 1
-            return []
-        start = time.thread_time()
+            return None
         low, high = effective_range_limits(
             scan.range_min, scan.range_max, self.params.laser_min_range, self.params.laser_max_range
         )
@@ -127,10 +155,17 @@ class LocalizationNode:
             scan.ranges_array(), scan.angles_array(),
             max_beams=self.params.max_beams, range_min=low, range_max=high,
         )  # fmt: skip
-        outcome = self.amcl.on_scan(odom_pose, beams)
-        if outcome.updated:
-            self.stats.record(time.thread_time() - start)
-        return self._outputs(outcome.estimate is not None, scan.header.stamp, outcome.updated)
+        return ScanJob(scan.header.stamp, odom_pose, beams)
+
+    def update(self, job: ScanJob) -> list[tuple[str, Msg]]:
+        """The filter's update from one scan; safe on another thread than :meth:`on_odom`
+        (the service runs it on one, so the pose stream goes on meanwhile)."""
+        with self.lock:
+            start = time.thread_time()
+            outcome = self.amcl.on_scan(job.odom_pose, job.beams)
+            if outcome.updated:
+                self.stats.record(time.thread_time() - start)
+            return self._outputs(outcome.estimate is not None, job.stamp, outcome.updated)
 
     def _outputs(self, estimated: bool, stamp: float, updated: bool) -> list[tuple[str, Msg]]:
         out: list[tuple[str, Msg]] = []
@@ -169,7 +204,8 @@ class LocalizationNode:
             pose = self.amcl.check_pose(x, y, yaw, cov, where)
         except InitialPoseError as exc:
             return Reply(False, str(exc))
-        self.amcl.initialize(pose)
+        with self.lock:
+            self.amcl.initialize(pose)
         log.info("%s: pose set to (%.3f, %.3f, %.3f)", where, x, y, yaw)
         return Reply(True, f"pose set to ({x:.3f}, {y:.3f}, {yaw:.3f})")
 
@@ -178,14 +214,16 @@ class LocalizationNode:
             return Reply(
                 False, "no map yet: global localization spreads particles over its free space"
             )
-        self.amcl.global_localization()
+        with self.lock:
+            self.amcl.global_localization()
         log.info("global localization: %d particles over the free space", len(self.amcl.particles))
         return Reply(True, "particles spread over the free space")
 
     def request_nomotion_update(self) -> Reply:
         if not self.amcl.initialized:
             return Reply(False, "no pose yet: set initialpose or reinitialize global localization")
-        self.amcl.request_nomotion_update()
+        with self.lock:
+            self.amcl.request_nomotion_update()
         return Reply(True, "the next scan updates the filter")
 
 

@@ -2,6 +2,7 @@
 poses (bad ones refused, nothing changed) and the services."""
 
 import math
+import threading
 
 import numpy as np
 import pytest
@@ -131,3 +132,33 @@ def test_scans_wait_for_odometry_at_their_stamp_and_nomotion_forces_an_update() 
     assert node.on_scan(_scan(1.0, truth)) == []  # no motion: no update
     assert node.request_nomotion_update().ok
     assert node.on_scan(_scan(1.0, truth))
+
+
+def test_the_pose_stream_goes_on_while_an_update_holds_the_filter() -> None:
+    node = _node()
+    assert node.on_initialpose(
+        PoseWithCovarianceStamped.model_validate({"x": 1.0, "y": 3.0, "yaw": 0.5})
+    ).ok
+    job = node.scan_job(_scan(0.0, (1.0, 3.0, 0.5)))
+    assert job is None  # no odometry at the scan's stamp yet
+    node.on_odom(_odom(0.0, 0.0, 0.0, 0.0))
+    job = node.scan_job(_scan(0.0, (1.0, 3.0, 0.5)))
+    assert job is not None
+    assert node.update(job)  # the first estimate
+    holding, release = threading.Event(), threading.Event()
+
+    def long_update() -> None:  # as the service's worker thread, mid-update
+        with node.lock:
+            holding.set()
+            release.wait(3.0)
+
+    worker = threading.Thread(target=long_update)
+    worker.start()
+    try:
+        assert holding.wait(10.0)
+        poses = [node.on_odom(_odom(0.02 * i, 0.01 * i, 0.0, 0.0)) for i in range(1, 6)]
+        assert all(p and p[0][0] == "pose" for p in poses)
+        assert worker.is_alive()  # they came while the update still held the filter
+    finally:
+        release.set()
+        worker.join(10.0)
