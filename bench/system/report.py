@@ -73,7 +73,7 @@ CYCLES = re.compile(
 LAG = re.compile(r"fell more than [\d.]+ s behind (\d+) time\(s\), ([\d.]+) s of sim time given up")
 HOLDS = re.compile(r"waited (\d+) time\(s\), ([\d.]+) s in all, for a late cmd_vel")
 Goal = tuple[float, float, float]
-REALTIME = ("robot", "controller", "planner", "navigator")  # the services ``--realtime`` raises
+REALTIME = ("robot", "localization", "controller", "planner", "navigator")  # ``--realtime`` raises
 
 NAVIGATOR_PRIORITY = realtime_priority("navigator")
 

@@ -125,7 +125,9 @@ def test_busy_must_not_be_negative(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_a_priority_names_a_raised_service_and_a_fifo_level() -> None:
     assert priorities(["planner=90", "robot=80"]) == {"planner": 90, "robot": 80}
-    with pytest.raises(ValueError, match="'router=80': NAME must be one of robot, controller"):
+    with pytest.raises(
+        ValueError, match="'router=80': NAME must be one of robot, localization, controller"
+    ):
         priorities(["router=80"])
     with pytest.raises(ValueError, match="'planner=100': N must be a SCHED_FIFO level"):
         priorities(["planner=100"])
