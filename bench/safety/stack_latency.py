@@ -25,7 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
-from aiobt.msgs import NavigateToPose, PoseStamped, Twist
+from aiobt.msgs import PoseStamped, Twist
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.realtime import raise_priority
 from aiobt.testing.bus import start_router
@@ -33,6 +33,7 @@ from aiobt.testing.navwatch import navigate
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import Bus, open_bus
 from bench.nav.goals import pick_goals, static_grid
+from bench.nav.run import navigator_client
 
 from .chain_latency import SERVICES, cpu_seconds
 
@@ -73,10 +74,7 @@ async def drive(
     if realtime:  # the instrument as the controller: before the bus, its threads too
         raise_priority(realtime_priority("controller"))
     async with open_bus(stack.settings()) as bus:
-        await stack.wait_ready(bus, timeout=120.0)
-        client = bus.action_client(NavigateToPose.name, NavigateToPose)
-        if not await client.wait_for_server(60.0):
-            raise SystemExit(f"no navigate_to_pose server:\n{stack.logs()}")
+        client = await navigator_client(stack, bus)
         matcher = Matcher(bus)
         pids = {name: stack.processes[name].pid for name in SERVICES}
         cpu0 = {name: cpu_seconds(pid) for name, pid in pids.items()}
