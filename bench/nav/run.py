@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from aiobt.msgs import NavigateToPose, PoseStamped
 from aiobt.testing.navwatch import NavClient, RobotTrack, navigate
 from aiobt.testing.stack import NavStack, StackConfig, running_stack
-from aiobt.transport import ActionError, ServiceError, open_bus
+from aiobt.transport import ActionError, Bus, ServiceError, open_bus
 
 from .goals import Optimum, pick_goals, static_grid
 
@@ -72,13 +72,19 @@ async def run_leg(
                end.stamp - began_sim, time.monotonic() - began_wall, recoveries)  # fmt: skip
 
 
+async def navigator_client(stack: NavStack, bus: Bus) -> NavClient:
+    """The navigator's NavigateToPose client once every service is up (else exits)."""
+    await stack.wait_ready(bus, timeout=120.0)
+    client = bus.action_client(NavigateToPose.name, NavigateToPose)
+    if not await client.wait_for_server(60.0):
+        raise SystemExit(f"no navigate_to_pose server:\n{stack.logs()}")
+    return client
+
+
 async def run_all(stack: NavStack, goals: list[Goal], limit: float) -> list[Leg]:
     optimum = Optimum(static_grid())
     async with open_bus(stack.settings()) as bus:
-        await stack.wait_ready(bus, timeout=120.0)
-        client = bus.action_client(NavigateToPose.name, NavigateToPose)
-        if not await client.wait_for_server(60.0):
-            raise SystemExit(f"no navigate_to_pose server:\n{stack.logs()}")
+        client = await navigator_client(stack, bus)
         track = RobotTrack(bus)
         try:
             if await track.wait_for(lambda _: True, 30.0) is None:

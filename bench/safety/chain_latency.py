@@ -7,8 +7,10 @@ distinct values the smoother passes through unchanged (0.3 m/s rising by 0.1 mm/
 command) and times each to its arrival on ``{ns}/cmd_vel`` through both links,
 against the same message's own arrival back from the router (the direct hop the
 chain replaces). Also the CPU of the two services (``/proc``) while driving.
+``--realtime``: the robot, the two services and this process (as the controller)
+under ``SCHED_FIFO`` at their ``--realtime-priority`` defaults.
 
-    .venv/bin/python -m bench.safety.chain_latency --speeds 1 10 --seconds 20
+    .venv/bin/python -m bench.safety.chain_latency --speeds 1 10 --seconds 20 [--realtime]
 """
 
 from __future__ import annotations
@@ -23,6 +25,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from aiobt.msgs import Twist
+from aiobt.system.catalog import realtime_priority
+from aiobt.system.realtime import raise_priority
 from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
 from aiobt.transport import Bus, BusSettings, SimClockFollower, open_bus
 
@@ -58,9 +62,10 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-async def measure(endpoint: str, speed: float, seconds: float) -> Figures:
+async def measure(endpoint: str, speed: float, seconds: float, realtime: bool) -> Figures:
     ns = f"bench{uuid.uuid4().hex[:8]}"
     common = ["--connect", endpoint, "--namespace", ns]
+    common += ["--realtime-priority"] if realtime else []
     robot = ["-m", "aiobt.cli.main", "robot", "--world", "office", "--speed", f"{speed:g}"]
     procs: dict[str, ServiceProcess] = {"robot": spawn_service([*robot, *common])}
     for name in SERVICES:
@@ -113,14 +118,10 @@ async def _drive(
     return Figures(speed, len(keys), count - ramp, p(lat_d), p(lat_c), cpu)
 
 
-def _first(arrivals: dict[float, float], msg: Twist) -> None:
-    arrivals.setdefault(msg.linear.x, time.perf_counter())
-
-
-async def main_async(speeds: list[float], seconds: float) -> None:
+async def main_async(speeds: list[float], seconds: float, realtime: bool) -> None:
     with running_router() as (_, endpoint):
         for speed in speeds:
-            figures = await measure(endpoint, speed, seconds)
+            figures = await measure(endpoint, speed, seconds, realtime)
             print("\n".join(figures.lines()), flush=True)
 
 
@@ -128,8 +129,11 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--speeds", type=float, nargs="+", default=[1.0, 10.0])
     parser.add_argument("--seconds", type=float, default=20.0, help="sim s of driving per speed")
+    parser.add_argument("--realtime", action="store_true", help="SCHED_FIFO on the way")
     args = parser.parse_args()
-    asyncio.run(main_async(args.speeds, args.seconds))
+    if args.realtime:  # this process plays the controller; before its bus: its threads too
+        raise_priority(realtime_priority("controller"))
+    asyncio.run(main_async(args.speeds, args.seconds, args.realtime))
 
 
 if __name__ == "__main__":

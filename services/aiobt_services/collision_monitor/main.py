@@ -16,6 +16,8 @@ from pathlib import Path
 import yaml
 
 from aiobt.core.clock import Clock
+from aiobt.system.catalog import realtime_priority
+from aiobt.system.realtime import add_realtime_argument
 from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
 from aiobt.transport import Bus, add_bus_arguments
 
@@ -30,7 +32,9 @@ DEFAULT_PARAMS = Path(__file__).with_name("default.yaml")
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
     add_clock_arguments(parser)
-    add = parser.add_argument_group("collision monitor").add_argument
+    group = parser.add_argument_group("collision monitor")
+    add_realtime_argument(group, realtime_priority("collision_monitor"))
+    add = group.add_argument
     add(
         "--params-file",
         type=Path,
@@ -64,7 +68,9 @@ async def serve(args: argparse.Namespace, params: MonitorParams) -> None:
     names = ", ".join(f"{z.name} ({z.action_type})" for z in params.polygons)
     detail = f": {params.cmd_vel_in_topic} -> {params.cmd_vel_out_topic}, polygons {names}"
     # on sim time, the robot's time from its odometry (read anyway): no clock as well
-    await serve_on_clock(args, "collision_monitor", start, detail, log, odometry=params.odom_topic)
+    await serve_on_clock(
+        args, "collision_monitor", start, detail, log, args.realtime_priority, params.odom_topic
+    )
 
 
 def run(args: argparse.Namespace) -> int:

@@ -13,6 +13,8 @@ import argparse
 import logging
 
 from aiobt.core.clock import Clock
+from aiobt.system.catalog import realtime_priority
+from aiobt.system.realtime import add_realtime_argument
 from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
 from aiobt.transport import Bus, add_bus_arguments
 
@@ -27,7 +29,9 @@ _DEFAULT = SmootherParams()
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_bus_arguments(parser)
     add_clock_arguments(parser)
-    add = parser.add_argument_group("velocity smoother (Nav2's parameters)").add_argument
+    group = parser.add_argument_group("velocity smoother (Nav2's parameters)")
+    add_realtime_argument(group, realtime_priority("velocity_smoother"))
+    add = group.add_argument
     add(
         "--smoothing-frequency",
         type=float,
@@ -97,7 +101,7 @@ async def serve(args: argparse.Namespace, params: SmootherParams) -> None:
         SmootherService(bus, clock, VelocitySmoother(params), topics).start()
 
     detail = f": {topics.cmd_in} -> {topics.cmd_out} at {params.smoothing_frequency:g} Hz"
-    await serve_on_clock(args, "velocity_smoother", start, detail, log)
+    await serve_on_clock(args, "velocity_smoother", start, detail, log, args.realtime_priority)
 
 
 def run(args: argparse.Namespace) -> int:

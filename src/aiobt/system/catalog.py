@@ -44,8 +44,17 @@ SERVICES: tuple[ServiceSpec, ...] = (
     ServiceSpec("planner", "the planner service", realtime_priority=70, host="base"),
     ServiceSpec("controller", "the controller service", realtime_priority=90),
     ServiceSpec("behaviors", "the behavior service"),
-    ServiceSpec("velocity_smoother", "Nav2's velocity smoother (off with safety_chain: false)"),
-    ServiceSpec("collision_monitor", "Nav2's collision monitor (off with safety_chain: false)"),
+    # the safety chain, on the controller's way to the base: at the controller's 90
+    ServiceSpec(
+        "velocity_smoother",
+        "Nav2's velocity smoother (off with safety_chain: false)",
+        realtime_priority=90,
+    ),
+    ServiceSpec(
+        "collision_monitor",
+        "Nav2's collision monitor (off with safety_chain: false)",
+        realtime_priority=90,
+    ),
     ServiceSpec(
         "navigator",
         "the navigator: Nav2's bt_navigator over Zenoh",

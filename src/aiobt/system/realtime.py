@@ -3,8 +3,9 @@
 Nav2's controller server can run its control loop's thread under ``SCHED_FIFO`` at
 priority 90, "to better ensure resources to time sensitive portions of the codebase"
 (off by default; the user grants the right with an ``rtprio`` limit). Here the
-option is ``--realtime-priority [N]`` on the robot, the controller, the planner, the
-navigator and ``aiobt router``.
+option is ``--realtime-priority [N]`` on the robot, the controller, the velocity
+smoother and the collision monitor (between the controller and the base), the
+planner, the navigator and ``aiobt router``.
 
 On a loaded machine a ``SCHED_FIFO`` thread that wakes runs at once, ahead of every
 ordinary process, instead of waiting its turn: the control loop keeps its rate and

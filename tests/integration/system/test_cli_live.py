@@ -46,7 +46,8 @@ def aiobt(endpoint: str, *args: str, timeout: float = 120.0) -> subprocess.Compl
 
 
 def test_status_lists_every_service_with_version_and_clock(system: str) -> None:
-    expected = {"robot", "localization", "planner", "controller", "behaviors", "navigator"}
+    expected = {"robot", "localization", "planner", "controller", "behaviors",
+                "velocity_smoother", "collision_monitor", "navigator"}  # fmt: skip
     for _ in range(10):  # a starved process can miss its lease for a moment: ask again
         done = aiobt(system, "status")
         assert done.returncode == 0, done.stderr

@@ -90,7 +90,8 @@ def system(shell: Shell) -> Iterator[Terminal]:
     line = readme_line(".venv/bin/aiobt up --config system.yaml")
     with shell.start(line, "--web-port", "0") as up:
         up.wait_for(
-            "        up * robot, localization, planner, controller, behaviors, navigator up"
+            "        up * robot, localization, planner, controller, behaviors, "
+            "velocity_smoother, collision_monitor, navigator up"
         )
         yield up
         assert up.interrupt(within=20.0) == 0, up.text()
@@ -114,7 +115,8 @@ def test_the_tour_with_the_system_up(shell: Shell, system: Terminal) -> None:
     assert status.splitlines()[0].startswith(f"router {shell.endpoint} (Zenoh id ")
     services = {row.split()[1] for row in status.splitlines()[2:] if row.startswith("robot ")}
     assert services == {
-        "robot", "localization", "planner", "controller", "behaviors", "navigator", "web",
+        "robot", "localization", "planner", "controller", "behaviors", "velocity_smoother",
+        "collision_monitor", "navigator", "web",
     }  # fmt: skip
     lines = shell.run(readme_line(".venv/bin/aiobt navigate 1.5 1.5 1.57")).splitlines()
     assert any(line.startswith("distance remaining") for line in lines)  # live feedback

@@ -70,7 +70,9 @@ def test_the_tour_config_is_a_valid_system_config() -> None:
 def test_the_realtime_config_gives_each_service_its_default_priority() -> None:
     _, config = _blocks("yaml")
     loaded = config_from_dict(yaml.safe_load(config), "README")
-    for name, level in (("robot", 90), ("controller", 90), ("planner", 70), ("navigator", 60)):
+    levels = (("robot", 90), ("controller", 90), ("velocity_smoother", 90),
+              ("collision_monitor", 90), ("planner", 70), ("navigator", 60))  # fmt: skip
+    for name, level in levels:
         argv = service_command(name, loaded)
         args = _full_parser(argv).parse_args(argv)  # SystemExit on an unknown flag
         assert args.realtime_priority == level, name
