@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import yaml
-
 from aiobt.cli.main import COMMANDS
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import config_from_dict
@@ -22,13 +20,6 @@ def test_off_by_default_and_on_when_enabled() -> None:
     assert COMMANDS["docking"][0] == "aiobt_services.docking.main"
     command = service_command("docking", config)
     assert command[5:] == ["--dock-database", "office", "--sim-time"]
-
-
-def test_compose_runs_the_command_aiobt_up_runs_under_its_profile() -> None:
-    spec = yaml.safe_load((REPO / "docker-compose.yml").read_text())["services"]["docking"]
-    assert spec["profiles"] == ["docking"]
-    config = config_from_dict({"router": {"listen": "tcp/router:7447"}})
-    assert spec["command"] == service_command("docking", config)
 
 
 def test_a_shipped_world_names_its_database() -> None:

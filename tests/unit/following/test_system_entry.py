@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import yaml
-
 from aiobt.cli.main import COMMANDS
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import config_from_dict
@@ -22,10 +20,3 @@ def test_off_by_default_and_on_when_enabled() -> None:
     command = service_command("following", config)
     assert command == ["following", "--connect", "tcp/127.0.0.1:7447", "--namespace", "robot",
                        "--sim-time"]  # fmt: skip
-
-
-def test_compose_runs_the_command_aiobt_up_runs_under_its_profile() -> None:
-    spec = yaml.safe_load((REPO / "docker-compose.yml").read_text())["services"]["following"]
-    assert spec["profiles"] == ["following"]
-    config = config_from_dict({"router": {"listen": "tcp/router:7447"}}, "compose")
-    assert spec["command"] == service_command("following", config)

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import yaml
-
 from aiobt.cli.main import COMMANDS
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import config_from_dict
@@ -23,14 +21,6 @@ def test_off_by_default_and_on_when_enabled() -> None:
     command = service_command("route", config)
     assert command[:5] == ["route", "--connect", "tcp/127.0.0.1:7447", "--namespace", "robot"]
     assert command[5:] == ["--graph-filepath", "office", "--sim-time"]
-
-
-def test_compose_runs_the_command_aiobt_up_runs_under_its_profile() -> None:
-    compose = yaml.safe_load((REPO / "docker-compose.yml").read_text())
-    spec = compose["services"]["route"]
-    assert spec["profiles"] == ["route"]
-    config = config_from_dict({"router": {"listen": "tcp/router:7447"}})
-    assert spec["command"] == service_command("route", config)
 
 
 def test_the_world_names_its_graph() -> None:
