@@ -23,17 +23,23 @@ from aiobt_services.localization.messages import LocalizationStats
 from bench.nav.goals import Optimum, pick_goals, static_grid
 from bench.nav.run import HEADER, START, Leg, loadavg, row, run_leg, summary
 from bench.system.procstat import percent_of_core, sample
+from bench.system.report import REALTIME
 
 from .tracking import Tracking
 
 
-def config(speed: float, seed: int, params: str, sets: list[str]) -> StackConfig:
+def config(
+    speed: float, seed: int, params: str, sets: list[str], realtime: bool = False
+) -> StackConfig:
     """The stack (localization in it, the robot with no pose in map) with these AMCL
-    params: a shipped params file's name (``nav2``: Nav2's defaults) or a path."""
+    params: a shipped params file's name (``nav2``: Nav2's defaults) or a path;
+    ``realtime``: the services ``bench.system.report --realtime`` raises, raised."""
+    extra = {name: ["--realtime-priority"] for name in REALTIME} if realtime else {}
     flags = ["--params-file", params]
     for item in sets:
         flags += ["--set", item]
-    return StackConfig(world="office", speed=speed, seed=seed, extra={"localization": flags})
+    extra["localization"] = [*extra.get("localization", []), *flags]
+    return StackConfig(world="office", speed=speed, seed=seed, extra=extra)
 
 
 async def run(stack: NavStack, goals: list[tuple[float, float, float]], limit: float) -> None:
@@ -90,10 +96,16 @@ def main() -> None:
         "--set", action="append", default=[], metavar="NAME=VALUE",
         help="an AMCL parameter for the service, e.g. min_particles=2000 (repeatable)",
     )  # fmt: skip
+    parser.add_argument(
+        "--realtime", action="store_true",
+        help="the robot, localization, controller, planner and navigator under SCHED_FIFO "
+        "(--realtime-priority; root or CAP_SYS_NICE)",
+    )  # fmt: skip
     args = parser.parse_args()
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     print(f"load average at start: {loadavg()}")
-    with running_stack(config(args.speed, args.seed, args.params, args.set)) as stack:
+    stack_config = config(args.speed, args.seed, args.params, args.set, args.realtime)
+    with running_stack(stack_config) as stack:
         asyncio.run(run(stack, goals, args.timeout))
 
 

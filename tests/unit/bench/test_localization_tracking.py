@@ -32,3 +32,14 @@ def test_the_stack_runs_localization_with_the_params_asked_for() -> None:
     assert loc[-4:] == ["--params-file", "nav2", "--set", "max_beams=30"]  # after the defaults
     assert "initial_pose={x: 2, y: 9.75, yaw: 0}" in loc
     assert stack.services.index("robot") < stack.services.index("localization")
+
+
+def test_realtime_raises_localization_with_the_others_and_keeps_its_params() -> None:
+    stack = config(speed=10.0, seed=1, params="sim_robot", sets=[], realtime=True)
+    loc = stack.command("localization", "tcp/127.0.0.1:1", "ns")
+    assert "--realtime-priority" in loc
+    assert loc[-2:] == ["--params-file", "sim_robot"]
+    assert "--realtime-priority" in stack.command("robot", "tcp/127.0.0.1:1", "ns")
+    assert "--realtime-priority" not in config(10.0, 1, "sim_robot", []).command(
+        "localization", "tcp/127.0.0.1:1", "ns"
+    )
