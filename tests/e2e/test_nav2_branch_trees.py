@@ -21,21 +21,17 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 from aiobt.msgs import GoalState, NavigateThroughPoses, PoseStamped
-from aiobt.msgs.remote_actions import ComputeRoute
 from aiobt.msgs.sim import Ack
 from aiobt.testing.localize import set_estimate
 from aiobt.testing.navwatch import ServerGoals
-from aiobt.testing.stack import SERVICES, NavStack, StackConfig, running_stack
-from aiobt.transport import Bus
 
-from .conftest import SAFETY_CHAIN, SPEED
-from .world import ACTIONS, World
+from .routed import _module_stack, route_goals  # noqa: F401  (the route server's stack)
+from .world import World
 
 pytestmark = [pytest.mark.e2e, pytest.mark.integration]
 
@@ -89,24 +85,6 @@ def kind(tree: Path) -> str:
     if "ComputePathThroughPoses" in tree.read_text(encoding="utf-8"):
         return "through"
     return "to_pose"
-
-
-@pytest.fixture(scope="module")
-def _module_stack() -> Iterator[NavStack]:
-    config = StackConfig(world="office", speed=SPEED, seed=7, services=(*SERVICES, "route"),
-                         safety_chain=SAFETY_CHAIN,
-                         extra={"route": ["--graph-filepath", "office", "--sim-time"]})  # fmt: skip
-    with running_stack(config) as stack:
-        yield stack
-
-
-@pytest.fixture
-async def goals(bus: Bus) -> Iterator[ServerGoals]:  # type: ignore[misc]
-    watcher = ServerGoals(bus, (*ACTIONS, ComputeRoute))
-    try:
-        yield watcher
-    finally:
-        watcher.close()
 
 
 async def through_poses(world: World, tree: Path) -> None:

@@ -15,7 +15,6 @@ from __future__ import annotations
 import logging
 import math
 import random
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -24,15 +23,14 @@ import pytest
 from aiobt.msgs import GoalState, PoseStamped
 from aiobt.msgs.remote_actions import ComputeRoute
 from aiobt.testing.navwatch import RobotTrack, ServerGoals
-from aiobt.testing.stack import SERVICES, NavStack, StackConfig, running_stack
 from aiobt.transport import Bus
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.worlds import WORLDS_DIR
 from aiobt_services.route.geojson import load_graph
 from aiobt_services.route.graphs import OFFICE
 
-from .conftest import SAFETY_CHAIN, SPEED
-from .world import ACTIONS, START, World
+from .routed import _module_stack, route_goals  # noqa: F401  (the route server's stack)
+from .world import START, World
 
 pytestmark = [pytest.mark.e2e, pytest.mark.integration]
 
@@ -45,24 +43,6 @@ ON_EDGE = 0.3  # m: the driven track's largest distance from the graph's edges
 SEED = 36
 GOALS = 10
 OFF_NODE = 0.9  # m from a node, for a goal
-
-
-@pytest.fixture(scope="module")
-def _module_stack() -> Iterator[NavStack]:
-    config = StackConfig(world="office", speed=SPEED, seed=7, services=(*SERVICES, "route"),
-                         safety_chain=SAFETY_CHAIN,
-                         extra={"route": ["--graph-filepath", "office", "--sim-time"]})  # fmt: skip
-    with running_stack(config) as stack:
-        yield stack
-
-
-@pytest.fixture
-async def goals(bus: Bus) -> Iterator[ServerGoals]:  # type: ignore[misc]
-    watcher = ServerGoals(bus, (*ACTIONS, ComputeRoute))
-    try:
-        yield watcher
-    finally:
-        watcher.close()
 
 
 def distance_to_graph(x: float, y: float) -> float:
