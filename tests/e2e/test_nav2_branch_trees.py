@@ -82,7 +82,8 @@ def kind(tree: Path) -> str:
         return "follow"
     if tree.stem == "odometry_calibration":
         return "calibrate"
-    if "ComputePathThroughPoses" in tree.read_text(encoding="utf-8"):
+    text = tree.read_text(encoding="utf-8")  # the navigators' keys: goal, or goals
+    if '"{goals}"' in text and '"{goal}"' not in text:
         return "through"
     return "to_pose"
 
