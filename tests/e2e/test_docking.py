@@ -22,8 +22,6 @@ import pytest
 
 from aiobt.msgs import BatteryState, GoalState, PoseStamped, PowerSupplyStatus
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
-from aiobt.msgs.sim import Ack
-from aiobt.testing.localize import set_estimate
 from aiobt.testing.navwatch import ServerGoals
 from aiobt.testing.stack import SERVICES, NavStack, StackConfig, running_stack
 from aiobt.transport import Bus
@@ -73,10 +71,9 @@ async def send(bus: Bus, action: Any, goal: Any, timeout: float) -> Any:  # noqa
 
 
 async def teleport(world: World, x: float, y: float, yaw: float) -> None:
-    """Move the robot, and wait until its pose says so (before a goal reads it)."""
-    ack = await world.bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack, timeout=10.0)
-    assert ack.ok, ack.message
-    await set_estimate(world.bus, x, y, yaw)  # as a user would after carrying the robot
+    """Move the robot (localization told, costmaps cleared), and wait until its pose is
+    within 5 cm of (x, y) (before a goal reads it)."""
+    await world.teleport(x, y, yaw)
     moved = await world.track.wait_for(lambda s: math.dist((s.x, s.y), (x, y)) < 0.05, 10.0)
     assert moved is not None, f"the robot's pose did not follow the reset to {(x, y)}"
 

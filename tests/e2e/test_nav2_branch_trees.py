@@ -26,8 +26,6 @@ from pathlib import Path
 import pytest
 
 from aiobt.msgs import GoalState, NavigateThroughPoses, PoseStamped
-from aiobt.msgs.sim import Ack
-from aiobt.testing.localize import set_estimate
 from aiobt.testing.navwatch import ServerGoals
 
 from .routed import _module_stack, route_goals  # noqa: F401  (the route server's stack)
@@ -119,14 +117,7 @@ async def follow(world: World, tree: Path) -> None:
 
 
 async def calibrate(world: World, tree: Path) -> None:
-    start = PoseStamped.from_xy_yaw(*SQUARE_START)
-    ack = await world.bus.call("reset_pose", start, Ack, timeout=10.0)
-    assert ack.ok, ack.message
-    await set_estimate(world.bus, *SQUARE_START)
-    there = await world.track.wait_for(
-        lambda s: math.dist((s.x, s.y), SQUARE_START[:2]) < 0.1, 10.0
-    )
-    assert there is not None, world.track.latest
+    await world.teleport(*SQUARE_START)
     world.track.restart()
     done = await world.navigate(*SQUARE_START, tree=str(tree), timeout=150.0)
     assert done.state is GoalState.SUCCEEDED, done.result

@@ -104,20 +104,26 @@ class World:
         listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
         for obstacle in listing.obstacles:
             await self.remove(obstacle.id)
-        for costmap in ("global_costmap", "local_costmap"):  # no mark of a removed obstacle
+        await self.teleport(*START)
+        self.track.restart()
+
+    async def teleport(self, x: float, y: float, yaw: float) -> None:
+        """The robot carried to (x, y, yaw) through the simulation; localization told, as
+        a user would (initialpose); then the costmaps cleared: no mark of a removed
+        obstacle, nor of a scan laid on the old pose while localization had not yet taken
+        the new one."""
+        ack = await self.bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack,
+                                  timeout=10.0)  # fmt: skip
+        assert ack.ok, f"reset_pose: {ack.message}"
+        await set_estimate(self.bus, x, y, yaw)
+        for costmap in ("global_costmap", "local_costmap"):
             name = ClearEntireCostmap.service_name(costmap)
             cleared = await self.bus.call(
                 name, ClearEntireCostmap.Request(), ClearCostmapResponse, timeout=30.0
             )
             assert cleared.success, f"{name}: {cleared.message}"
-        start = PoseStamped.from_xy_yaw(*START)
-        ack = await self.bus.call("reset_pose", start, Ack, timeout=10.0)
-        assert ack.ok, f"reset_pose: {ack.message}"
-        # a teleport localization is not told of: tell it, as a user would (initialpose)
-        await set_estimate(self.bus, *START)
-        there = await self.track.wait_for(lambda s: math.dist((s.x, s.y), START[:2]) < 0.1, 10.0)
-        assert there is not None, f"the robot is not at the start after reset: {self.track.latest}"
-        self.track.restart()
+        there = await self.track.wait_for(lambda s: math.dist((s.x, s.y), (x, y)) < 0.1, 10.0)
+        assert there is not None, f"the robot is not at {(x, y)} after reset: {self.track.latest}"
 
     async def navigate(
         self,

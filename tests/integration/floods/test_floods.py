@@ -63,9 +63,11 @@ def assert_unharmed(calm: Figures, flooded: Figures, sent: int) -> None:
 
 
 async def robot_under_flood(
-    spawn: Spawn, bus: Bus, settings: BusSettings, flood: tuple[str, str, str]
+    spawn: Spawn, bus: Bus, settings: BusSettings, flood: tuple[str, str, str], *extra: str
 ) -> None:
-    pid = await start(spawn, bus, settings, "robot", "--world", "small", "--speed", str(SPEED))
+    pid = await start(
+        spawn, bus, settings, "robot", "--world", "small", "--speed", str(SPEED), *extra
+    )
     clock = bus.subscribe("clock", Clock, queue_size=1)
 
     async def call() -> object:
@@ -77,7 +79,9 @@ async def robot_under_flood(
 @pytest.mark.timeout(180)
 async def test_initialpose_flood(spawn: Spawn, bus: Bus, bus_settings: BusSettings) -> None:
     pose = '{"x": 0.0, "y": 0.0, "yaw": 0.0}'
-    await robot_under_flood(spawn, bus, bus_settings, ("initialpose", "PoseStamped", pose))
+    # the robot reads initialpose only as the localization's stand-in (--pose-source truth)
+    flood = ("initialpose", "PoseStamped", pose)
+    await robot_under_flood(spawn, bus, bus_settings, flood, "--pose-source", "truth")
 
 
 @pytest.mark.timeout(180)

@@ -26,12 +26,13 @@ pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 GOAL = (1.0, 0.8, 0.0)  # small world: open floor from the start at the origin
 
 
-# channels of the services `aiobt up` leaves off by default (the safety chain's monitor, the
-# channels of the services `aiobt up` leaves off by default (the safety chain's monitor, the
-# route server, the following server) and of the localization (a stack whose robot stands in
-# for it has none): this stack may not run them, so nothing need be recorded on them
+# channels of the services `aiobt up` leaves off by default (the route, following and
+# docking servers), of the safety chain's monitor and of the localization (a stack whose
+# robot stands in for them has none): this stack may not run them, so nothing need be
+# recorded on them
 OFF_BY_DEFAULT = {
-    "/collision_monitor", "/route", "/route_graph", "/followed", "/particle_cloud", "/amcl_pose"
+    "/collision_monitor", "/route", "/route_graph", "/followed", "/docks", "/particle_cloud",
+    "/amcl_pose",
 }  # fmt: skip
 
 

@@ -13,7 +13,7 @@ from mcap.reader import make_reader
 from aiobt.testing.bus import free_port
 
 from ..system.helpers import SystemProcess, processes_mentioning
-from .wsclient import FoxgloveClient
+from .wsclient import FoxgloveClient, Received
 
 pytestmark = [pytest.mark.integration, pytest.mark.timeout(180)]
 
@@ -27,10 +27,17 @@ async def test_up_runs_the_bridge_and_closes_its_recording(endpoint: str, tmp_pa
         up.wait_line(f"Foxglove server on ws://127.0.0.1:{port}", timeout=5.0)
         fox = await FoxgloveClient.connect(f"ws://127.0.0.1:{port}")
         try:
-            await fox.wait_advertised({"/scan"}, 20.0)
+            # the scan from the robot, the pose from localization (its estimate, once the
+            # world's start is taken): both before the recording is closed
+            await fox.wait_advertised({"/scan", "/pose"}, 20.0)
             await fox.subscribe("/scan")
+            await fox.subscribe("/pose")
+            got: dict[str, Received] = {}
             async with asyncio.timeout(30.0):
-                scan = await fox.receive()
+                while len(got) < 2:
+                    message = await fox.receive()
+                    got.setdefault(message.topic, message)
+            scan = got["/scan"]
         finally:
             await fox.close()
         code, _ = up.stop(signal.SIGTERM)
