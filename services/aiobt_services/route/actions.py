@@ -5,9 +5,8 @@ robot time and the feedback come in as callables, so tests drive them with fakes
 ComputeRoute plans once and returns the route, the dense path and the planning
 time. ComputeAndTrackRoute plans, then tracks the robot along the route at
 ``tracker_update_rate`` (robot time), running the operations and publishing
-feedback (at the start with ``rerouted`` set, at each node achieved and in every
-cycle an operation ran: the query operations run, and are named, every cycle, as in
-Nav2); an operation asking for a reroute plans again from the last node passed,
+feedback (at the start with ``rerouted`` set, at each node achieved and each
+operation that acted); an operation asking for a reroute plans again from the last node passed,
 without the blocked ids; a newer goal takes the tracking over; the goal succeeds
 with the execution duration once the last node is achieved. Every failure is a result with Nav2's
 code and a message; a cancelled goal is not an error.

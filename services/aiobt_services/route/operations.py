@@ -159,8 +159,10 @@ class OperationsManager:
                 result.add(served.name, await served.perform(_with(event, op.metadata)))
             for change in self.on_change:
                 result.add(change.name, await change.perform(event))
-        for query in self.on_query:  # every cycle, and named every cycle, as Nav2 does
-            result.add(query.name, await query.perform(event))
+        for query in self.on_query:  # every cycle; named only when it acted (not Nav2's)
+            outcome = await query.perform(event)
+            if outcome.reroute or outcome.blocked_ids:
+                result.add(query.name, outcome)
         return result
 
     @staticmethod

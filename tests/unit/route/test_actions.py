@@ -220,15 +220,3 @@ async def test_a_newer_goal_takes_the_tracking_over() -> None:
     assert [r.nodes[-1].nodeid for r in planned] == [3, 2]
     assert robot.at is not None
     assert np.hypot(robot.at[0] - 4.0, robot.at[1]) < 1.0  # it ended at node 2 (4, 0)
-
-
-async def test_query_operations_are_named_in_every_cycle_s_feedback() -> None:
-    robot = Robot(0.0, 0.0)
-    grid = CostGrid(GridGeometry(100, 100, 0.1, -1.0, -1.0), np.zeros((100, 100), np.uint8))
-    handle = Handle()
-    goal = ComputeAndTrackRoute.Goal(start_id=1, goal_id=3)
-    result = await drive_along(make(robot, grid), robot, goal, handle)
-    assert result.error_code == 0
-    cycles = [f for f in handle.feedback if not f.rerouted]
-    assert len(cycles) > 20  # one per tracker cycle, not only at the nodes
-    assert all(f.operations_triggered == ["CollisionMonitor"] for f in cycles)
