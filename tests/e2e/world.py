@@ -8,6 +8,7 @@ y 8.5 at x 3.5, 10, 16.5), an open plan and a room north; start (2.0, 9.75, 0).
 
 from __future__ import annotations
 
+import asyncio
 import contextlib
 import math
 
@@ -20,6 +21,7 @@ from aiobt.msgs import (
     DriveOnHeading,
     Empty,
     FollowPath,
+    LaserScan,
     NavigateThroughPoses,
     NavigateToPose,
     PoseStamped,
@@ -115,7 +117,8 @@ class World:
         ack = await self.bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack,
                                   timeout=10.0)  # fmt: skip
         assert ack.ok, f"reset_pose: {ack.message}"
-        await set_estimate(self.bus, x, y, yaw)
+        estimate = await set_estimate(self.bus, x, y, yaw)
+        await self._settled_after(estimate.header.stamp)
         for costmap in ("global_costmap", "local_costmap"):
             name = ClearEntireCostmap.service_name(costmap)
             cleared = await self.bus.call(
@@ -124,6 +127,21 @@ class World:
             assert cleared.success, f"{name}: {cleared.message}"
         there = await self.track.wait_for(lambda s: math.dist((s.x, s.y), (x, y)) < 0.1, 10.0)
         assert there is not None, f"the robot is not at {(x, y)} after reset: {self.track.latest}"
+
+    async def _settled_after(self, stamp: float) -> None:
+        """Wait for a scan stamped after ``stamp`` (the filter's estimate at the new
+        place) and a pose after that scan: from then on the newest scan a costmap folds
+        is marked from a pose at the new place, not one from before it."""
+        scans = self.bus.subscribe("scan", LaserScan, queue_size=4)
+        try:
+            async with asyncio.timeout(10.0):
+                async for scan in scans:
+                    if scan.header.stamp > stamp:
+                        break
+        finally:
+            scans.close()
+        newer = await self.track.wait_for(lambda s: s.stamp > scan.header.stamp, 10.0)
+        assert newer is not None, f"no pose after the scan at {scan.header.stamp:.2f}"
 
     async def navigate(
         self,
