@@ -138,6 +138,8 @@ class World:
                 async for scan in scans:
                     if scan.header.stamp > stamp:
                         break
+        except TimeoutError:
+            raise AssertionError(f"no scan stamped after {stamp:.2f} within 10 s") from None
         finally:
             scans.close()
         newer = await self.track.wait_for(lambda s: s.stamp > scan.header.stamp, 10.0)
