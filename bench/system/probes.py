@@ -14,6 +14,7 @@ from typing import Generic, TypeVar
 from aiobt.msgs import Clock, ComputePathToPose, Msg, PoseStamped, Twist
 from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.transport import ActionError, Bus, Latest
+from aiobt.transport.keys import sim_namespace
 
 M = TypeVar("M", bound=Msg)
 
@@ -215,11 +216,12 @@ async def reaction(
     x = pose.x + ahead * math.cos(pose.yaw)
     y = pose.y + ahead * math.sin(pose.yaw)
     spawn = SpawnObstacle(x=x, y=y, size_x=0.3, size_y=0.8, yaw=pose.yaw)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
     async with clock.held():
         await clock.read()  # subscribed, a stamp in: the spawn's time is read at once
-        ack = await bus.call("obstacles/spawn", spawn, Ack, timeout=10.0)
+        ack = await bus.call("obstacles/spawn", spawn, Ack, timeout=10.0, namespace=sim)
         if not ack.ok:
-            raise Refused(f"obstacles/spawn at ({x:.2f}, {y:.2f}): {ack.message}")
+            raise Refused(f"sim/srv/obstacles/spawn at ({x:.2f}, {y:.2f}): {ack.message}")
         sim0, wall0 = clock.sim, time.monotonic()
         try:
             cmd = await commands.first(lambda c: c.linear.x < 0.5 * speed, 10.0)
@@ -227,7 +229,8 @@ async def reaction(
                 return None
             return (clock.sim - sim0, time.monotonic() - wall0)
         finally:
-            await bus.call("obstacles/remove", RemoveObstacle(id=ack.id), Ack, timeout=10.0)
+            remove = RemoveObstacle(id=ack.id)
+            await bus.call("obstacles/remove", remove, Ack, timeout=10.0, namespace=sim)
 
 
 def percentile(values: Sequence[float], q: float) -> float:

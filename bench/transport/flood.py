@@ -8,7 +8,7 @@ loopback. For each flood, the service is called back to back for ``--seconds``
 unflooded (calm), then for ``--seconds`` while ``aiobt.testing.flood_proc``
 publishes 10,000 messages/s on the topic from another process (flooded):
 
-- robot, ``initialpose`` and ``cmd_vel``: ``obstacles/list`` service replies and
+- robot, ``initialpose`` and ``cmd_vel``: ``sim/srv/obstacles/list`` service replies and
   the sim speed-up (sim seconds on ``{ns}/clock`` per wall second);
 - planner, ``pose``: ``is_path_valid`` replies;
 - control: the same flood on ``flood_sink``, a key only a third process
@@ -39,6 +39,7 @@ from aiobt.msgs.sim import ObstacleList
 from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
 from aiobt.testing.flood import MIB, Call, Figures, Flood, flood_and_measure
 from aiobt.transport import Bus, BusSettings, open_bus
+from aiobt.transport.keys import sim_namespace
 
 TRUTH = ("--pose-source", "truth")  # the robot's {ns}/pose is the truth (no localization)
 
@@ -97,7 +98,8 @@ async def run(args: argparse.Namespace) -> None:
                 raise SystemExit(f"the flood sink did not start:\n{sink.output()}")
 
             async def obstacles() -> object:
-                return await bus.call("obstacles/list", Empty(), ObstacleList, timeout=20.0)
+                return await bus.call("obstacles/list", Empty(), ObstacleList, timeout=20.0,
+                                      namespace=sim_namespace(bus.namespace))  # fmt: skip
 
             path = Path(header=Header(frame_id="map"), poses=[
                 PoseStamped.from_xy_yaw(0.0, 0.0, 0.0), PoseStamped.from_xy_yaw(1.0, 0.5, 0.0)

@@ -28,6 +28,7 @@ from aiobt.msgs.sim import Ack
 from aiobt.testing.localize import set_estimate
 from aiobt.testing.stack import SERVICES, NavStack, StackConfig, running_stack
 from aiobt.transport import Bus
+from aiobt.transport.keys import sim_namespace
 from aiobt_services.robot.target_path import seeded_loop
 from tests.integration.following.truth import Watch
 
@@ -68,11 +69,13 @@ async def behind_the_box(bus: Bus) -> None:
     loop = seeded_loop(OFFICE_LOOP_CENTRE, OFFICE_LOOP_RADII, SEED)
     behind, ahead = loop.pose_at(loop.length - 1.0), loop.pose_at(0.0)
     yaw = math.atan2(ahead.y - behind.y, ahead.x - behind.x)
-    placed = await bus.call("reset_pose", PoseStamped.from_xy_yaw(behind.x, behind.y, yaw), Ack)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    there = PoseStamped.from_xy_yaw(behind.x, behind.y, yaw)
+    placed = await bus.call("reset_pose", there, Ack, namespace=sim)
     assert placed.ok, placed.message
     await set_estimate(bus, behind.x, behind.y, yaw)  # as a user would after carrying it
     started = await bus.call("follow_target/start", StartTarget(seed=SEED, hold=0.5),
-                             TargetStarted, timeout=10.0)  # fmt: skip
+                             TargetStarted, timeout=10.0, namespace=sim)  # fmt: skip
     assert started.ok, started.message
 
 
@@ -89,7 +92,8 @@ async def test_a_follow_object_tree_follows_the_walking_box(
     inside = watch.inside(t0 + 3.0, t0 + DURATION, desired=1.0, band=0.3)
     assert inside >= 0.9, inside
     assert not [b for b in watch.bumps if b.pressed], watch.bumps
-    stopped = await bus.call("follow_target/stop", Empty(), Ack)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    stopped = await bus.call("follow_target/stop", Empty(), Ack, namespace=sim)
     assert stopped.ok, stopped.message
 
 

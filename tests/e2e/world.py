@@ -1,9 +1,10 @@
 """What the scenarios do to the world and ask of the navigator.
 
 :class:`World` resets the robot, spawns/moves/removes obstacles (the robot
-service's ``srv/obstacles/...``) and sends navigation goals, recording their
-feedback. The office world: a corridor at y 8.5..11, three rooms south (doors on
-y 8.5 at x 3.5, 10, 16.5), an open plan and a room north; start (2.0, 9.75, 0).
+service's ``{ns}/sim/srv/obstacles/...``, the simulation's own) and sends navigation
+goals, recording their feedback. The office world: a corridor at y 8.5..11, three rooms
+south (doors on y 8.5 at x 3.5, 10, 16.5), an open plan and a room north; start
+(2.0, 9.75, 0).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from aiobt.msgs.sim import (
 from aiobt.testing.localize import set_estimate
 from aiobt.testing.navwatch import Navigation, RobotTrack, Running, navigate, start_navigation
 from aiobt.transport import ActionError, Bus, ServiceError
+from aiobt.transport.keys import sim_namespace
 
 START = (2.0, 9.75, 0.0)
 Request = SpawnObstacle | MoveObstacle | RemoveObstacle
@@ -67,14 +69,20 @@ class World:
 
     def __init__(self, bus: Bus, track: RobotTrack) -> None:
         self.bus = bus
+        self.sim = sim_namespace(bus.namespace)  # the simulation's services
         self.track = track
         self.to_pose = bus.action_client(NavigateToPose.name, NavigateToPose)
         self.through = bus.action_client(NavigateThroughPoses.name, NavigateThroughPoses)
 
     async def _ack(self, service: str, request: Request) -> str:
-        ack = await self.bus.call(f"obstacles/{service}", request, Ack, timeout=10.0)
+        ack = await self.bus.call(f"obstacles/{service}", request, Ack, 10.0, namespace=self.sim)
         assert ack.ok, f"obstacles/{service} {request}: {ack.message}"
         return ack.id
+
+    async def _obstacles(self) -> ObstacleList:
+        return await self.bus.call(
+            "obstacles/list", Empty(), ObstacleList, timeout=10.0, namespace=self.sim
+        )
 
     async def spawn(self, x: float, y: float, **shape: float | str) -> str:
         """A box (default 0.5 x 0.5 x 1 m) at (x, y); returns its id."""
@@ -92,7 +100,7 @@ class World:
 
     async def obstacle(self, oid: str) -> ObstacleState:
         """Where obstacle ``oid`` is now."""
-        listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
+        listing = await self._obstacles()
         found = [o for o in listing.obstacles if o.id == oid]
         assert found, f"no obstacle {oid!r}: {listing}"
         return found[0]
@@ -103,7 +111,7 @@ class World:
         for client in (self.to_pose, self.through):
             with contextlib.suppress(ServiceError, ActionError, TimeoutError):
                 await client.cancel_all(timeout=5.0)
-        listing = await self.bus.call("obstacles/list", Empty(), ObstacleList, timeout=10.0)
+        listing = await self._obstacles()
         for obstacle in listing.obstacles:
             await self.remove(obstacle.id)
         await self.teleport(*START)
@@ -115,7 +123,7 @@ class World:
         obstacle, nor of a scan laid on the old pose while localization had not yet taken
         the new one."""
         ack = await self.bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack,
-                                  timeout=10.0)  # fmt: skip
+                                  timeout=10.0, namespace=self.sim)  # fmt: skip
         assert ack.ok, f"reset_pose: {ack.message}"
         estimate = await set_estimate(self.bus, x, y, yaw)
         await self._settled_after(estimate.header.stamp)

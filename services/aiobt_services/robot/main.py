@@ -1,15 +1,17 @@
 """``aiobt robot``: the pybullet robot service on Zenoh.
 
-Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), the truth on
-``{ns}/sim/pose``, ``{ns}/scan``, ``{ns}/battery``,
-``{ns}/clock``, ``{ns}/bumper``, ``{ns}/detected_dock_pose`` (the dock's marker
-as the robot's camera sees it) and the latched ``{ns}/map``; listens on
-``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves ``{ns}/srv/obstacles/{spawn,
-move,remove,list}``, ``{ns}/srv/reset_pose``,
-``{ns}/srv/reinitialize_global_localization``, ``{ns}/srv/snapshot`` and, with
-``--stepped``, ``{ns}/srv/step``; holds the liveliness token ``{ns}/nodes/robot``.
-See README.md next to this file for the message shapes. With ``target_service``: the
-followed box (``{ns}/srv/follow_target/{start,hide,stop}``, its detections on
+Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), ``{ns}/scan``,
+``{ns}/battery``, ``{ns}/clock``, ``{ns}/bumper``, ``{ns}/detected_dock_pose`` (the
+dock's marker as the robot's camera sees it) and the latched ``{ns}/map``; listens on
+``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves
+``{ns}/srv/reinitialize_global_localization``; holds the liveliness token
+``{ns}/nodes/robot``. The simulation's own keys are in its namespace ``{ns}/sim``
+(``aiobt.transport.keys.sim_namespace``): the truth on ``{ns}/sim/pose``, and the
+services ``{ns}/sim/srv/obstacles/{spawn,move,remove,list}``,
+``{ns}/sim/srv/reset_pose`` (the teleport), ``{ns}/sim/srv/snapshot`` and, with
+``--stepped``, ``{ns}/sim/srv/step``. See README.md next to this file for the
+message shapes. With ``target_service``: the followed box
+(``{ns}/sim/srv/follow_target/{start,hide,stop}``, its detections on
 ``{ns}/dynamic_pose``, its truth on ``{ns}/sim/target``).
 """
 
@@ -40,7 +42,7 @@ from aiobt.system.realtime import realtime_if_asked
 from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
 from aiobt.transport import Bus, BusSettings, add_bus_arguments
 from aiobt.transport.announce import announce
-from aiobt.transport.keys import SIM_POSE
+from aiobt.transport.keys import SIM_POSE, sim_namespace
 
 from . import convert
 from .mapfile import MapError, load_map
@@ -102,16 +104,18 @@ def _wire(bus: Bus, service: RobotService, *, localization_stand_in: bool) -> No
         bus.serve(
             "reinitialize_global_localization", Empty, m.Ack, service.reinitialize_localization
         )
-    bus.serve("obstacles/spawn", m.SpawnObstacle, m.Ack, service.spawn)
-    bus.serve("obstacles/move", m.MoveObstacle, m.Ack, service.move)
-    bus.serve("obstacles/remove", m.RemoveObstacle, m.Ack, service.remove)
-    bus.serve("obstacles/list", Empty, m.ObstacleList, service.list_obstacles)
-    bus.serve("reset_pose", PoseStamped, m.Ack, service.reset_pose)
-    bus.serve("snapshot", m.SnapshotRequest, m.Snapshot, service.snapshot)
+    sim_ns = sim_namespace(bus.namespace)  # the simulation's own services
+    bus.serve("obstacles/spawn", m.SpawnObstacle, m.Ack, service.spawn, namespace=sim_ns)
+    bus.serve("obstacles/move", m.MoveObstacle, m.Ack, service.move, namespace=sim_ns)
+    bus.serve("obstacles/remove", m.RemoveObstacle, m.Ack, service.remove, namespace=sim_ns)
+    bus.serve("obstacles/list", Empty, m.ObstacleList, service.list_obstacles, namespace=sim_ns)
+    bus.serve("reset_pose", PoseStamped, m.Ack, service.reset_pose, namespace=sim_ns)
+    bus.serve("snapshot", m.SnapshotRequest, m.Snapshot, service.snapshot, namespace=sim_ns)
 
 
 def _serve_steps(bus: Bus, runner: SimRunner) -> None:
-    """``--stepped``: sim time moves only when ``srv/step`` asks (one request at a time)."""
+    """``--stepped``: sim time moves only when ``sim/srv/step`` asks (one request at a
+    time)."""
     lock = asyncio.Lock()
 
     async def step(req: messages.StepRequest) -> messages.StepReply:
@@ -119,7 +123,8 @@ def _serve_steps(bus: Bus, runner: SimRunner) -> None:
             steps = await runner.advance(req.seconds)
         return messages.StepReply(time=runner.sim.time, steps=steps)
 
-    bus.serve("step", messages.StepRequest, messages.StepReply, step)
+    sim_ns = sim_namespace(bus.namespace)
+    bus.serve("step", messages.StepRequest, messages.StepReply, step, namespace=sim_ns)
 
 
 async def serve(args: argparse.Namespace, sim: Simulation) -> None:
@@ -130,7 +135,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             return
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
-        targets = wire_target(bus, sim, args)  # the followed box (srv/follow_target/*)
+        targets = wire_target(bus, sim, args)  # the followed box (sim/srv/follow_target/*)
         runner = SimRunner(
             sim,
             targets.tap(BusOutputs(bus, pose=args.pose_source == "truth")),
@@ -147,7 +152,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             "robot up on namespace '%s': world %s, %s, dt %g s%s",
             bus.namespace,
             sim.world.source,
-            "stepped by srv/step" if args.stepped else f"speed {speed_label(args.speed)}",
+            "stepped by sim/srv/step" if args.stepped else f"speed {speed_label(args.speed)}",
             sim.config.dt,
             realtime,
         )

@@ -34,7 +34,7 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     add(
         "--stepped",
         action="store_true",
-        help="deterministic: sim time moves only on {ns}/srv/step requests",
+        help="deterministic: sim time moves only on {ns}/sim/srv/step requests",
     )
     add("--dt", type=positive, default=0.01, help="physics step, s (default: %(default)s)")
     add("--gui", action="store_true", help="open the pybullet GUI (needs a display)")

@@ -54,7 +54,7 @@ class RobotService:
 
     # -- services --------------------------------------------------------
     def reset_pose(self, msg: PoseStamped) -> Ack:
-        """``srv/reset_pose``: move the robot there (refused if outside or blocked)."""
+        """``sim/srv/reset_pose``: move the robot there (refused if outside or blocked)."""
         return self._set_pose(msg, "teleport")
 
     def reinitialize_localization(self, _: Empty) -> Ack:

@@ -1,7 +1,7 @@
-"""``srv/follow_target/{start,hide,stop}`` on the bus: the followed box started on a
-loop (given or seeded), hidden from the tracker a while, removed; its detections on
-``{ns}/{topic}`` (``PoseStamped`` in ``base_link``, stamped with the scan's time),
-its truth on ``{ns}/sim/target`` (tests and viewers only)."""
+"""``{ns}/sim/srv/follow_target/{start,hide,stop}`` on the bus: the followed box
+started on a loop (given or seeded), hidden from the tracker a while, removed; its
+detections on ``{ns}/{topic}`` (``PoseStamped`` in ``base_link``, stamped with the
+scan's time), its truth on ``{ns}/sim/target`` (tests and viewers only)."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ from aiobt.msgs import Empty, LaserScan, Msg, PoseStamped
 from aiobt.msgs import sim as messages
 from aiobt.msgs.follow_target import HideTarget, StartTarget, TargetStarted
 from aiobt.transport import Bus
-from aiobt.transport.keys import sim_topic
+from aiobt.transport.keys import sim_namespace, sim_topic
 
 from .obstacles import ObstacleError
 from .runner import Outputs
@@ -50,9 +50,10 @@ class TargetService:
         self.target: FollowTarget | None = None
         self._detections = bus.publisher(topic, PoseStamped)
         self._truth = bus.publisher(TRUTH_TOPIC, PoseStamped)
-        bus.serve("follow_target/start", StartTarget, TargetStarted, self.start)
-        bus.serve("follow_target/hide", HideTarget, messages.Ack, self.hide)
-        bus.serve("follow_target/stop", Empty, messages.Ack, self.stop)
+        sim_ns = sim_namespace(bus.namespace)  # the simulation's own services
+        bus.serve("follow_target/start", StartTarget, TargetStarted, self.start, namespace=sim_ns)
+        bus.serve("follow_target/hide", HideTarget, messages.Ack, self.hide, namespace=sim_ns)
+        bus.serve("follow_target/stop", Empty, messages.Ack, self.stop, namespace=sim_ns)
         sim.movers.append(self.update)
 
     def update(self) -> None:
@@ -88,7 +89,7 @@ class TargetService:
             self.target = FollowTarget(self.sim, req.id, path, req.speed, req.size,
                                        req.height, req.hold, self.tracker)  # fmt: skip
         except (PathError, ObstacleError) as exc:
-            return TargetStarted(ok=False, message=f"follow_target/start: {exc}")
+            return TargetStarted(ok=False, message=f"sim/srv/follow_target/start: {exc}")
         start = path.pose_at(0.0)
         log.info("followed box '%s' on a %.1f m loop from (%.2f, %.2f) at %.2f m/s",
                  req.id, path.length, start.x, start.y, req.speed)  # fmt: skip
@@ -96,13 +97,13 @@ class TargetService:
 
     def hide(self, req: HideTarget) -> messages.Ack:
         if self.target is None:
-            return messages.Ack(ok=False, message="follow_target/hide: no box started")
+            return messages.Ack(ok=False, message="sim/srv/follow_target/hide: no box started")
         self.target.hide(req.seconds)
         return messages.Ack(ok=True, message=f"hidden for {req.seconds:g} s", id=self.target.id)
 
     def stop(self, _req: Empty) -> messages.Ack:
         if self.target is None:
-            return messages.Ack(ok=False, message="follow_target/stop: no box started")
+            return messages.Ack(ok=False, message="sim/srv/follow_target/stop: no box started")
         oid = self.target.id
         self._remove()
         return messages.Ack(ok=True, message="removed", id=oid)
@@ -114,7 +115,7 @@ class TargetService:
 
 
 def add_target_arguments(parser: argparse.ArgumentParser) -> None:
-    group = parser.add_argument_group("followed object (srv/follow_target/*)")
+    group = parser.add_argument_group("followed object (sim/srv/follow_target/*)")
     add = group.add_argument
     add("--follow-target", type=int, default=None, metavar="SEED",
         help="start the followed box at start-up on the loop of this seed")  # fmt: skip

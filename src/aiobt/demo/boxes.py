@@ -20,6 +20,7 @@ from aiobt.core.clock import Clock
 from aiobt.msgs import GetCosts, PoseStamped
 from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.transport import Bus
+from aiobt.transport.keys import sim_namespace
 
 log = logging.getLogger("aiobt.demo.boxes")
 # x, y, size_x, size_y: one east of the nook from y 0.95 to the north edge, one from
@@ -39,6 +40,7 @@ class WallIn:
 
     def __init__(self, bus: Bus, clock: Clock) -> None:
         self.bus = bus
+        self.sim = sim_namespace(bus.namespace)  # where the simulation's services are
         self.clock = clock
         self.ids: list[str] = []
 
@@ -48,7 +50,7 @@ class WallIn:
         placed = []
         for x, y, size_x, size_y in WALLS:
             box = SpawnObstacle(x=x, y=y, size_x=size_x, size_y=size_y)
-            ack = await self.bus.call("obstacles/spawn", box, Ack, CALL_TIMEOUT)
+            ack = await self.bus.call("obstacles/spawn", box, Ack, CALL_TIMEOUT, namespace=self.sim)
             if not ack.ok:
                 raise RuntimeError(f"the robot refused the box at ({x}, {y}): {ack.message}")
             self.ids.append(ack.id)
@@ -75,7 +77,9 @@ class WallIn:
         """Take the boxes away (each once; RuntimeError if the robot refuses)."""
         while self.ids:
             box = self.ids.pop()
-            ack = await self.bus.call("obstacles/remove", RemoveObstacle(id=box), Ack, CALL_TIMEOUT)
+            remove = RemoveObstacle(id=box)
+            ack = await self.bus.call("obstacles/remove", remove, Ack, CALL_TIMEOUT,
+                                      namespace=self.sim)  # fmt: skip
             if not ack.ok:
                 raise RuntimeError(f"the robot did not remove box {box}: {ack.message}")
         log.info("the boxes are gone")

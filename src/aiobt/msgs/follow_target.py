@@ -1,5 +1,6 @@
 """The robot service's followed object (a box moving along a path, detected by a
-tracker on the robot's lidar): the requests of ``srv/follow_target/{start,hide,stop}``.
+tracker on the robot's lidar): the requests of
+``{ns}/sim/srv/follow_target/{start,hide,stop}``.
 Its truth goes to ``{ns}/sim/target``, its detections to ``{ns}/dynamic_pose``."""
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ OFFICE_LOOP_RADII = (3.6, 1.8)
 
 
 class StartTarget(Msg):
-    """``srv/follow_target/start``: a box of ``size`` m moving at ``speed`` along
+    """``sim/srv/follow_target/start``: a box of ``size`` m moving at ``speed`` along
     ``waypoints`` (a closed loop through them), or, without waypoints, along a loop
     drawn from ``seed``: an ellipse of ``radii`` round ``centre`` with seeded bumps,
     a seeded start and direction. It waits ``hold`` s of sim time before moving."""
@@ -41,7 +42,7 @@ class TargetStarted(Msg):
 
 
 class HideTarget(Msg):
-    """``srv/follow_target/hide``: no detection of the box for ``seconds`` of sim
+    """``sim/srv/follow_target/hide``: no detection of the box for ``seconds`` of sim
     time (it is hidden from the tracker: occluded, out of its view)."""
 
     seconds: float = Field(gt=0.0)

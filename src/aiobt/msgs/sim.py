@@ -1,5 +1,6 @@
 """The simulation's messages: its time on ``{ns}/clock`` when services run on sim time,
-obstacle control, the bumper, and the small request/reply services of the robot service."""
+obstacle control, the bumper, and the small request/reply services of the robot service
+(the simulation's own, ``{ns}/sim/srv/...``: ``aiobt.transport.keys.sim_namespace``)."""
 
 from __future__ import annotations
 
@@ -26,7 +27,7 @@ class ObstacleMotion(Msg):
 
 
 class SpawnObstacle(Msg):
-    """``srv/obstacles/spawn``: a box (size_x x size_y) or a cylinder (radius)."""
+    """``sim/srv/obstacles/spawn``: a box (size_x x size_y) or a cylinder (radius)."""
 
     id: str = Field(default="", description="empty: the service picks one")
     shape: Literal["box", "cylinder"] = "box"
@@ -41,7 +42,7 @@ class SpawnObstacle(Msg):
 
 
 class MoveObstacle(Msg):
-    """``srv/obstacles/move``: a new pose, and a new motion (or none: it stands still)."""
+    """``sim/srv/obstacles/move``: a new pose, and a new motion (or none: it stands still)."""
 
     id: str
     x: float
@@ -51,7 +52,7 @@ class MoveObstacle(Msg):
 
 
 class RemoveObstacle(Msg):
-    """``srv/obstacles/remove``."""
+    """``sim/srv/obstacles/remove``."""
 
     id: str
 
@@ -70,7 +71,7 @@ class ObstacleState(Msg):
 
 
 class ObstacleList(Msg):
-    """Reply of ``srv/obstacles/list``."""
+    """Reply of ``sim/srv/obstacles/list``."""
 
     obstacles: list[ObstacleState] = Field(default_factory=list)
 
@@ -94,7 +95,7 @@ class BumperEvent(Msg):
 
 
 class SnapshotRequest(Msg):
-    """``srv/snapshot``: a top-down PNG; written to ``path`` on the robot's host if given."""
+    """``sim/srv/snapshot``: a top-down PNG; written to ``path`` on the robot's host if given."""
 
     scale: int = Field(default=2, ge=1, le=8, description="pixels per map cell")
     with_scan: bool = True
@@ -111,7 +112,7 @@ class Snapshot(Msg):
 
 
 class StepRequest(Msg):
-    """``srv/step`` (``--stepped`` only): advance the simulation by ``seconds``."""
+    """``sim/srv/step`` (``--stepped`` only): advance the simulation by ``seconds``."""
 
     seconds: float = Field(gt=0.0, le=3600.0)
 

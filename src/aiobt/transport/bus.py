@@ -130,9 +130,13 @@ class Bus:
         request: type[Req],
         response: type[Resp],
         handler: services.Handler[Req, Resp],
+        *,
+        namespace: str | None = None,
     ) -> services.ServiceServer[Req, Resp]:
-        """Answer ``{ns}/srv/{name}`` with ``handler(request)`` (sync or async)."""
-        key = self.keys.service(name)
+        """Answer ``{ns}/srv/{name}`` with ``handler(request)`` (sync or async);
+        ``namespace`` (default: the bus's), e.g. the simulation's
+        (:func:`~aiobt.transport.keys.sim_namespace`)."""
+        key = (Keys(namespace) if namespace else self.keys).service(name)
         server = services.ServiceServer(
             self.session, self.bridge, key, (request, response), handler
         )

@@ -2,7 +2,8 @@
 
 ``{ns}/{topic}`` for topics, ``{ns}/srv/{service}`` for services and
 ``{ns}/action/{server}/...`` for actions. A server's liveliness token sits on
-its service or action base key.
+its service or action base key. The simulation's own keys follow the same rule in
+the namespace ``{ns}/sim`` (:func:`sim_namespace`).
 """
 
 from __future__ import annotations
@@ -22,13 +23,27 @@ def check_name(name: str, what: str) -> str:
     return name
 
 
-# The simulation's own keys live under ``{ns}/sim/``: its truth, for tests, benchmarks
-# and pictures only. No navigation service reads them (a real robot has none).
+# The simulation's own keys live in a namespace of their own inside the robot's,
+# ``{ns}/sim``: its truth (``{ns}/sim/pose``, ``{ns}/sim/target``) and its services
+# (``{ns}/sim/srv/{service}``: teleport, obstacles, snapshot, step, the followed box),
+# for tests, benchmarks and pictures only. No navigation service reads or calls them (a
+# real robot has none). ``{ns}/clock`` is not one of them: a real robot on sim time
+# has it too, as ROS has ``/clock``.
 SIM_PREFIX = "sim"
 
 
+def sim_namespace(namespace: str) -> str:
+    """The simulation's namespace inside robot ``namespace``: ``{ns}/sim``. Its topics
+    are ``{ns}/sim/{topic}`` and its services ``{ns}/sim/srv/{service}``, by the
+    :class:`Keys` rule (``bus.serve(..., namespace=sim_namespace(bus.namespace))``,
+    ``bus.call(..., namespace=...)``)."""
+    return f"{check_name(namespace, 'namespace')}/{SIM_PREFIX}"
+
+
 def sim_topic(name: str) -> str:
-    """The topic name (for :meth:`Keys.topic` and the bus) of the simulation's ``name``."""
+    """The topic name relative to the robot's namespace (for :meth:`Keys.topic` and the
+    bus) of the simulation's ``name``: ``sim/{name}``, the topic ``name`` of
+    :func:`sim_namespace`."""
     return f"{SIM_PREFIX}/{check_name(name, 'sim topic')}"
 
 
@@ -51,6 +66,11 @@ class Keys:
 
     def action(self, server: str) -> ActionKeys:
         return ActionKeys(f"{self.namespace}/action/{check_name(server, 'action server')}")
+
+    @property
+    def sim(self) -> Keys:
+        """The keys of the simulation's namespace, ``{ns}/sim`` (:func:`sim_namespace`)."""
+        return Keys(sim_namespace(self.namespace))
 
 
 class ActionKeys:

@@ -25,6 +25,7 @@ from aiobt.msgs import (
 )
 from aiobt.msgs import TrackingFeedback as TrackingFeedbackMsg
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 
 from .helpers import Spawn, path_through, result_while_frozen, start, yaw_error
 
@@ -120,7 +121,8 @@ async def test_obstacle_ahead_stops_before_contact_with_no_valid_control(
     # dropped 1.1 m ahead of the moving robot: its near face at x + 1.0
     face = p.x + 1.0
     obstacle = SpawnObstacle(x=face + 0.1, y=0.0, size_x=0.2, size_y=0.6)
-    ack = await bus.call("obstacles/spawn", obstacle, Ack)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    ack = await bus.call("obstacles/spawn", obstacle, Ack, namespace=sim)
     assert ack.ok, ack.message
     result = await goal.result(timeout=40.0)
     assert goal.status is GoalState.ABORTED

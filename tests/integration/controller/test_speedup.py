@@ -19,6 +19,7 @@ from aiobt.msgs import BackUp, Clock, FollowPath, Point, PoseStamped, Spin
 from aiobt.msgs import DriveOnHeading as DriveOnHeadingAction
 from aiobt.msgs.sim import Ack, BumperEvent, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 
 from .helpers import EXACT_ODOMETRY, Spawn, path_through, start, yaw_error
 
@@ -90,7 +91,8 @@ async def test_box_spawned_on_the_path_stops_the_robot_short_at_10x(
     )
     await latest.wait_x_beyond(-1.2, timeout=30.0)  # mid-follow, at full speed
     box = SpawnObstacle(id="box", shape="box", x=box_x, y=0.0, size_x=0.2, size_y=0.6, height=0.5)
-    assert (await bus.call("obstacles/spawn", box, Ack, timeout=5.0)).ok
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    assert (await bus.call("obstacles/spawn", box, Ack, timeout=5.0, namespace=sim)).ok
     result = await goal.result(timeout=60.0)
     assert result.error_code != 0, result  # the way stays blocked: the goal fails, stopped
     await asyncio.sleep(0.5)  # let a robot that did not stop show it (wall time, 5 s of sim)

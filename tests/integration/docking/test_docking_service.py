@@ -18,7 +18,7 @@ from aiobt.msgs.remote_actions import DockRobot, DockRobotError, UndockRobot
 from aiobt.msgs.sim import Ack
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
-from aiobt.transport.keys import SIM_POSE
+from aiobt.transport.keys import SIM_POSE, sim_namespace
 
 from ..services import TRUTH, common, up
 
@@ -42,7 +42,8 @@ async def send(bus: Bus, action: Any, goal: Any) -> Any:
 
 
 async def place(bus: Bus, x: float, y: float, yaw: float) -> None:
-    ack = await bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    ack = await bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack, namespace=sim)
     assert ack.ok, ack.message
 
 

@@ -28,6 +28,7 @@ from aiobt.testing.flood import (
 )
 from aiobt.testing.flood import flood_and_measure as _flood_and_measure
 from aiobt.transport import Bus, BusSettings, Subscription
+from aiobt.transport.keys import sim_namespace
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 
@@ -71,7 +72,8 @@ async def robot_under_flood(
     clock = bus.subscribe("clock", Clock, queue_size=1)
 
     async def call() -> object:
-        return await bus.call("obstacles/list", Empty(), ObstacleList, timeout=20.0)
+        sim = sim_namespace(bus.namespace)  # the simulation's services
+        return await bus.call("obstacles/list", Empty(), ObstacleList, timeout=20.0, namespace=sim)
 
     assert_unharmed(*await flood_and_measure(spawn, settings, flood, call, clock, pid))
 

@@ -26,6 +26,7 @@ from aiobt.msgs.remote_actions import FollowObject, FollowObjectError
 from aiobt.msgs.sim import Ack
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 from aiobt_services.robot.target_path import seeded_loop
 
 from ..services import TRUTH, common, up
@@ -59,8 +60,9 @@ async def test_follows_a_walking_box_and_finds_it_again_after_it_hides(
 ) -> None:
     await start_stack(spawn, bus, bus_settings)
     watch = Watch.on(bus)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
     started = await bus.call("follow_target/start", StartTarget(seed=SEED, hold=HOLD),
-                             TargetStarted)  # fmt: skip
+                             TargetStarted, namespace=sim)  # fmt: skip
     assert started.ok, started.message
     client = bus.action_client(FollowObject.name, FollowObject)
     goal = await client.send_goal(FollowObject.Goal(pose_topic="dynamic_pose", max_duration=80.0),
@@ -74,7 +76,7 @@ async def test_follows_a_walking_box_and_finds_it_again_after_it_hides(
     await watch.until(0.0, wall=30.0)
     t0 = watch.now + HOLD
     await watch.until(t0 + 60.0, wall=120.0)
-    hidden = await bus.call("follow_target/hide", HideTarget(seconds=3.0), Ack)
+    hidden = await bus.call("follow_target/hide", HideTarget(seconds=3.0), Ack, namespace=sim)
     assert hidden.ok, hidden.message
     t_hide = watch.now
     result = await goal.result(timeout=90.0)

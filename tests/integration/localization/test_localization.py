@@ -10,6 +10,7 @@ import pytest
 from aiobt.msgs import Empty, ParticleCloud, PoseStamped, ReinitializeGlobalLocalization
 from aiobt.msgs.sim import Ack
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 
 from .stack import (
     START,
@@ -102,7 +103,9 @@ async def test_a_kidnapped_robot_is_lost_then_found_by_reinitialization(
     await drive(bus, [(5.0, 9.75)], within=30.0)
     # 3 m away into the room south, through the simulation's own service; the
     # localization is not told
-    moved = await bus.call("reset_pose", PoseStamped.from_xy_yaw(5.0, 6.75, 0.0), Ack, timeout=5.0)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    there = PoseStamped.from_xy_yaw(5.0, 6.75, 0.0)
+    moved = await bus.call("reset_pose", there, Ack, timeout=5.0, namespace=sim)
     assert moved.ok, moved.message
     end = await drive(bus, [(2.0, 7.0), (2.0, 4.5)], within=60.0)
     dist, _ = tracking.errors(since=end.header.stamp - 0.2)

@@ -30,6 +30,7 @@ from aiobt.msgs import (
 from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 
 from ..services import TRUTH, common, up
 
@@ -104,8 +105,12 @@ async def test_plans_around_a_new_obstacle_and_clearing_removes_it(
     assert await is_valid(bus, straight.path)
 
     x, y, sx, sy = BOX
+    sim = sim_namespace(bus.namespace)  # the simulation's services
     ack = await bus.call(
-        "obstacles/spawn", SpawnObstacle(id="box", x=x, y=y, size_x=sx, size_y=sy), Ack
+        "obstacles/spawn",
+        SpawnObstacle(id="box", x=x, y=y, size_x=sx, size_y=sy),
+        Ack,
+        namespace=sim,
     )
     assert ack.ok, ack.message
     await wait_validity(bus, straight.path, wanted=False)
@@ -113,7 +118,7 @@ async def test_plans_around_a_new_obstacle_and_clearing_removes_it(
     assert around.error_code == 0, around.error_msg
     assert clearance_to_box(around.path) > 0.2
 
-    ack = await bus.call("obstacles/remove", RemoveObstacle(id="box"), Ack)
+    ack = await bus.call("obstacles/remove", RemoveObstacle(id="box"), Ack, namespace=sim)
     assert ack.ok, ack.message
     await asyncio.sleep(0.5)  # a few scans: the stale marks are beyond the raytrace range
     assert not await is_valid(bus, straight.path)

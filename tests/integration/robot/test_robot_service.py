@@ -31,6 +31,7 @@ from aiobt.msgs.sim import (
 )
 from aiobt.testing.bus import ServiceProcess
 from aiobt.transport import Bus, BusSettings, ServiceError
+from aiobt.transport.keys import sim_namespace
 
 pytestmark = [pytest.mark.integration, pytest.mark.e2e]
 
@@ -116,7 +117,8 @@ async def test_obstacles_seen_by_lidar_and_bad_requests_answered(
     scan = bus.subscribe("scan", LaserScan)
     proc = await start_robot(spawn, bus, bus_settings, "--speed", "2")
     req = SpawnObstacle(id="can", shape="cylinder", x=1.0, y=0.0, radius=0.2)
-    assert (await bus.call("obstacles/spawn", req, Ack, timeout=5.0)).ok
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    assert (await bus.call("obstacles/spawn", req, Ack, timeout=5.0, namespace=sim)).ok
     deadline = time.monotonic() + 5.0
     while time.monotonic() < deadline:
         latest = await scan.next(timeout=2.0)
@@ -124,14 +126,14 @@ async def test_obstacles_seen_by_lidar_and_bad_requests_answered(
             break
     else:
         pytest.fail("the lidar never saw the spawned obstacle")
-    outside = await bus.call("obstacles/spawn", SpawnObstacle(x=30.0, y=0.0), Ack)
+    outside = await bus.call("obstacles/spawn", SpawnObstacle(x=30.0, y=0.0), Ack, namespace=sim)
     assert not outside.ok
     assert "outside the world" in outside.message
     cone = SpawnObstacle.model_construct(x=0.0, y=1.0, shape="cone")  # type: ignore[arg-type]
     with pytest.raises(ServiceError, match="shape"):
-        await bus.call("obstacles/spawn", cone, Ack)
-    assert (await bus.call("obstacles/remove", RemoveObstacle(id="can"), Ack)).ok
-    snap = await bus.call("snapshot", SnapshotRequest(scale=1), Snapshot, timeout=5.0)
+        await bus.call("obstacles/spawn", cone, Ack, namespace=sim)
+    assert (await bus.call("obstacles/remove", RemoveObstacle(id="can"), Ack, namespace=sim)).ok
+    snap = await bus.call("snapshot", SnapshotRequest(scale=1), Snapshot, 5.0, namespace=sim)
     assert snap.png.startswith(b"\x89PNG")
     assert proc.running
 
@@ -158,7 +160,8 @@ async def test_stepped_mode_moves_only_on_request(
 ) -> None:
     clock, pose = bus.subscribe("clock", Clock), bus.subscribe("pose", PoseStamped)
     await start_robot(spawn, bus, bus_settings, "--stepped")
-    reply = await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0)
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    reply = await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0, namespace=sim)
     assert reply.time == pytest.approx(1.0)
     assert reply.steps == 100
     await asyncio.sleep(0.3)  # wall time passes, sim time does not
@@ -169,17 +172,18 @@ async def test_stepped_mode_moves_only_on_request(
     assert await cmd.wait_for_subscribers(5.0)
     cmd.put(Twist(linear=Vector3(x=0.5)))
     await asyncio.sleep(0.3)
-    await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0)
+    await bus.call("step", StepRequest(seconds=1.0), StepReply, timeout=5.0, namespace=sim)
     await asyncio.sleep(0.2)
     here = pose.latest
     assert here is not None
     # one command, then the 0.5 s command timeout: ramp 0.05 + cruise 0.15 + brake 0.05 m
     assert here.x == pytest.approx(0.25, abs=0.02)
-    reset = await bus.call("reset_pose", PoseStamped.from_xy_yaw(-1.0, -1.0, 0.5), Ack)
+    there = PoseStamped.from_xy_yaw(-1.0, -1.0, 0.5)
+    reset = await bus.call("reset_pose", there, Ack, namespace=sim)
     assert reset.ok
-    refused = await bus.call("reset_pose", PoseStamped.from_xy_yaw(2.4, 0.0), Ack)
+    refused = await bus.call("reset_pose", PoseStamped.from_xy_yaw(2.4, 0.0), Ack, namespace=sim)
     assert not refused.ok
-    await bus.call("step", StepRequest(seconds=0.1), StepReply)
+    await bus.call("step", StepRequest(seconds=0.1), StepReply, namespace=sim)
     await asyncio.sleep(0.2)
     moved = pose.latest
     assert moved is not None
@@ -188,7 +192,7 @@ async def test_stepped_mode_moves_only_on_request(
     assert await initial.wait_for_subscribers(5.0)
     initial.put(PoseStamped.from_xy_yaw(1.0, 1.0))
     await asyncio.sleep(0.3)
-    await bus.call("step", StepRequest(seconds=0.1), StepReply)
+    await bus.call("step", StepRequest(seconds=0.1), StepReply, namespace=sim)
     await asyncio.sleep(0.2)
     moved = pose.latest
     assert moved is not None

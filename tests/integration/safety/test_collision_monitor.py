@@ -13,6 +13,7 @@ from aiobt.core.status import Status
 from aiobt.msgs import FollowPath, LaserScan, Twist
 from aiobt.msgs.sim import Ack, BumperEvent, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 from tests.integration.controller.helpers import path_through
 from tests.unit.nav.support import nav_tree, run_to_end
 
@@ -32,7 +33,8 @@ async def drive_then_drop_box(bus: Bus, trace: Trace, ahead: float = 1.0) -> Spa
     x = trace.poses[-1].x
     box = SpawnObstacle(id="box", shape="box", x=x + ahead + BOX_DEPTH / 2, y=0.0,
                         size_x=BOX_DEPTH, size_y=0.6, height=0.5)  # fmt: skip
-    assert (await bus.call("obstacles/spawn", box, Ack, timeout=5.0)).ok
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    assert (await bus.call("obstacles/spawn", box, Ack, timeout=5.0, namespace=sim)).ok
     return box
 
 
@@ -145,7 +147,8 @@ async def test_toggle_collision_monitor_in_a_tree_turns_it_off_and_on(
     await start_chain(spawn, bus, bus_settings, speed="2", smoother=None, controller=None,
                       monitor=["--params-file", params])  # fmt: skip
     box = SpawnObstacle(id="box", shape="box", x=-1.3, y=0.0, size_x=0.2, size_y=0.6, height=0.5)
-    assert (await bus.call("obstacles/spawn", box, Ack, timeout=5.0)).ok
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    assert (await bus.call("obstacles/spawn", box, Ack, timeout=5.0, namespace=sim)).ok
     command = bus.publisher("cmd_vel_smoothed", Twist)
 
     async def monitored() -> float:

@@ -9,6 +9,7 @@ import pytest
 from aiobt.msgs import FollowPath
 from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 from tests.integration.controller.helpers import path_through
 
 from .chain import Spawn, Trace, start_chain
@@ -30,11 +31,13 @@ async def test_the_robot_stops_for_a_person_waits_and_arrives(
     x = trace.poses[-1].x
     person = SpawnObstacle(id="person", shape="cylinder", x=x + 0.9, y=0.0, radius=0.2,
                            height=1.7)  # fmt: skip
-    assert (await bus.call("obstacles/spawn", person, Ack, timeout=5.0)).ok
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    assert (await bus.call("obstacles/spawn", person, Ack, timeout=5.0, namespace=sim)).ok
     await trace.until(lambda: trace.still_since(WAIT), 60.0, f"{WAIT} s standing")
     stopped_at = trace.poses[-1].x
     assert trace.states[-1].action == "stop"
-    assert (await bus.call("obstacles/remove", RemoveObstacle(id="person"), Ack, timeout=5.0)).ok
+    gone = await bus.call("obstacles/remove", RemoveObstacle(id="person"), Ack, 5.0, namespace=sim)
+    assert gone.ok
     result = await goal.result(timeout=60.0)
     print(f"stopped {person.x - person.radius - stopped_at - 0.22:.3f} m short; {result}")
     assert result.error_code == 0, result

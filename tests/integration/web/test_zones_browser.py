@@ -18,6 +18,7 @@ from aiobt.msgs import Twist
 from aiobt.msgs.sim import Ack, SpawnObstacle
 from aiobt.testing.browser import page_value
 from aiobt.transport import Bus, BusSettings
+from aiobt.transport.keys import sim_namespace
 from aiobt.web import WebOptions, serve_web
 from tests.integration.safety.chain import Spawn, monitor_params, start_chain
 
@@ -94,7 +95,8 @@ async def test_the_zones_are_drawn_at_the_robot_and_the_acting_one_red(
     # in the stop zone: its near face 0.45 m ahead of the robot's centre
     box = SpawnObstacle(id="box", shape="box", x=ROBOT_X + 0.55, y=0.0, size_x=0.2,
                         size_y=0.4, height=0.5)  # fmt: skip
-    assert (await bus.call("obstacles/spawn", box, Ack, timeout=10.0)).ok
+    sim = sim_namespace(bus.namespace)  # the simulation's services
+    assert (await bus.call("obstacles/spawn", box, Ack, timeout=10.0, namespace=sim)).ok
     command = bus.publisher("cmd_vel_smoothed", Twist)
     driving = asyncio.create_task(_drive(command))
     try:

@@ -1,8 +1,9 @@
 """docs/robot_contract.md holds to the robot service's code: the service's own ``serve``
 runs on a bus that records what it declares, and every key it declares is in the
 doc's tables, each table's keys are the ones it declares, with the same kind and
-model; the fields named exist on those models, with the frames the service puts in
-them; the rates and the command timeout are its defaults."""
+model; the simulation's own keys are all under ``sim/`` and nothing else is; the fields
+named exist on those models, with the frames the service puts in them; the rates and the
+command timeout are its defaults."""
 
 from __future__ import annotations
 
@@ -34,6 +35,7 @@ from aiobt_services.robot.worlds import SMALL
 DOC = Path(__file__).parents[3] / "docs" / "robot_contract.md"
 PUBLISHES, TAKES = "What a base publishes", "What a base takes"
 SIM_ONLY, STAND_IN = "Simulation only", "The localization's stand-in"
+OTHER_PARTS = "What the simulation publishes for other parts of a robot"
 
 
 @dataclass(frozen=True, slots=True)
@@ -65,8 +67,13 @@ class RecordingBus:
     def subscribe(self, name: str, model: type[Any], **_: Any) -> None:
         self._add(name, "subscribed", model)
 
-    def serve(self, name: str, request: type[Any], reply: type[Any], _handler: Any) -> None:
-        self._add(f"srv/{name}", "service", request, reply)
+    def serve(
+        self, name: str, request: type[Any], reply: type[Any], _handler: Any, *,
+        namespace: str | None = None,
+    ) -> None:  # fmt: skip
+        within = "" if namespace is None else f"{namespace.removeprefix(self.namespace + '/')}/"
+        assert namespace is None or namespace.startswith(f"{self.namespace}/"), namespace
+        self._add(f"{within}srv/{name}", "service", request, reply)
 
     def declare_token(self, name: str) -> None:
         self._add(name, "liveliness token")
@@ -119,7 +126,7 @@ def doc_tables() -> dict[str, list[Row]]:
         cells = [c.strip() for c in line.strip().strip("|").split("|")]
         if line.startswith("| `") and len(cells) > 2 and cells[1].startswith(KINDS):
             tables.setdefault(heading, []).append(Row(cells[0].strip("`"), tuple(cells[1:])))
-    headings = (PUBLISHES, TAKES, SIM_ONLY, STAND_IN)
+    headings = (PUBLISHES, TAKES, SIM_ONLY, OTHER_PARTS, STAND_IN)
     return {h: rows for h, rows in tables.items() if h.startswith(headings)}
 
 
@@ -143,12 +150,13 @@ def test_every_key_the_service_declares_is_in_the_doc_and_every_key_there_is_dec
 ) -> None:
     hardware, stand_in = declared
     tables = doc_tables()
-    assert keys_of(tables, PUBLISHES, TAKES, SIM_ONLY) == hardware.keys()
+    assert keys_of(tables, PUBLISHES, TAKES, SIM_ONLY, OTHER_PARTS) == hardware.keys()
     assert keys_of(tables, STAND_IN) == stand_in.keys() - hardware.keys()
     assert hardware.keys() <= stand_in.keys()
     assert keys_of(tables, TAKES) == {k for k, d in hardware.items() if d.kind == "subscribed"}
-    sim_only = keys_of(tables, SIM_ONLY)
-    assert {k for k in hardware if k.startswith("sim/")} <= sim_only  # the truth is sim-only
+    # the simulation's own keys (its truth, its services) are its namespace's, all of it
+    assert keys_of(tables, SIM_ONLY) == {k for k in hardware if k.startswith("sim/")}
+    assert not {k for k in stand_in.keys() - hardware.keys() if k.startswith("sim/")}
 
 
 def _model(name: str) -> type[Any]:

@@ -1,15 +1,19 @@
-"""``srv/follow_target/*`` answered over an in-process bus: a loop refused by name,
-a seeded start, hide and stop, and the detection and truth published per scan."""
+"""``{ns}/sim/srv/follow_target/*`` answered over an in-process bus: a loop refused by
+name, a seeded start, hide and stop, and the detection and truth published per scan;
+nothing of it outside the simulation's namespace."""
 
 from __future__ import annotations
 
 import argparse
 import math
 
+import pytest
+
 from aiobt.msgs import Empty, Msg, PoseStamped
 from aiobt.msgs.follow_target import HideTarget, StartTarget, TargetStarted
 from aiobt.msgs.sim import Ack
-from aiobt.transport import Bus
+from aiobt.transport import Bus, ServiceUnavailable
+from aiobt.transport.keys import sim_namespace
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.runner import SimRunner
 from aiobt_services.robot.sim import Simulation
@@ -44,20 +48,24 @@ async def test_start_hide_stop_and_what_each_scan_publishes(local_bus: Bus) -> N
         sink = Sink()
         targets = wire_target(local_bus, sim, flags("--target-dropout", "0"))
         runner = SimRunner(sim, targets.tap(sink))
+        ns = sim_namespace(local_bus.namespace)  # the simulation's services
+        with pytest.raises(ServiceUnavailable):  # not in the robot's own namespace
+            await local_bus.call("follow_target/start", StartTarget(seed=2), TargetStarted, 0.2)
         wall = StartTarget(waypoints=[(2.0, 9.75), (6.0, 9.75), (6.0, 13.0)])
-        refused = await local_bus.call("follow_target/start", wall, TargetStarted)
+        refused = await local_bus.call("follow_target/start", wall, TargetStarted, namespace=ns)
         assert not refused.ok
         assert "of a wall" in refused.message
-        started = await local_bus.call("follow_target/start", StartTarget(seed=2), TargetStarted)
+        start = StartTarget(seed=2)
+        started = await local_bus.call("follow_target/start", start, TargetStarted, namespace=ns)
         assert started.ok, started.message
         assert 15.0 < started.length < 21.0
         await runner.advance(1.0)
-        await local_bus.call("follow_target/hide", HideTarget(seconds=0.5), Ack)
+        await local_bus.call("follow_target/hide", HideTarget(seconds=0.5), Ack, namespace=ns)
         await runner.advance(0.45)
-        stopped = await local_bus.call("follow_target/stop", Empty(), Ack)
+        stopped = await local_bus.call("follow_target/stop", Empty(), Ack, namespace=ns)
         assert stopped.ok
         assert "target" not in sim.obstacles
-        again = await local_bus.call("follow_target/stop", Empty(), Ack)
+        again = await local_bus.call("follow_target/stop", Empty(), Ack, namespace=ns)
         assert not again.ok
     assert sink.topics.count("scan") == 14  # every output still goes out
     assert [m.header.stamp for m in truth][:3] == [0.1, 0.2, 0.3]
