@@ -17,10 +17,19 @@ from pathlib import Path
 import pytest
 
 from aiobt.deploy.certs import CertPlan
-from aiobt.msgs import Msg, OccupancyGrid, Odometry, PoseStamped, Twist
+from aiobt.msgs import Empty, Msg, OccupancyGrid, Odometry, PoseStamped, Twist
+from aiobt.msgs.sim import ObstacleList
 from aiobt.testing.bus import ServiceProcess, running_router
-from aiobt.transport import Bus, BusSettings, BusUnavailable, open_bus, open_session
+from aiobt.transport import (
+    Bus,
+    BusSettings,
+    BusUnavailable,
+    ServiceUnavailable,
+    open_bus,
+    open_session,
+)
 from aiobt.transport.endpoints import free_port
+from aiobt.transport.keys import SIM_POSE, sim_namespace
 
 from .conftest import ACCESS_CONTROL, make_certs
 
@@ -120,6 +129,43 @@ async def test_the_pose_is_the_robot_s_or_localization_s(
     async with as_(certs, "web", endpoint) as web, as_(certs, sender, endpoint) as source:
         pose = PoseStamped.from_xy_yaw(1.0, 2.0)
         assert await put_reaches(web, source, "pose", pose) is arrives
+
+
+@pytest.mark.parametrize(
+    ("who", "may"),
+    [("laptop", True), ("web", True), ("localization", False), ("controller", False),
+     ("following", False), ("planner", False), ("navigator", False)],
+)  # fmt: skip
+async def test_the_simulation_s_namespace_is_not_the_navigation_services_(
+    certs: Path, secure_router: tuple[ServiceProcess, str], who: str, may: bool
+) -> None:
+    """The truth reaches the laptop and a viewer, and they may call the simulation's
+    services; a navigation service may do neither, nor get them through a wider
+    subscription or query (``{ns}/**``)."""
+    _, endpoint = secure_router
+    async with as_(certs, "robot", endpoint) as robot, as_(certs, who, endpoint) as other:
+        sim = sim_namespace(robot.namespace)
+        robot.serve("obstacles/list", Empty, ObstacleList, lambda _: ObstacleList(), namespace=sim)
+        wide: list[str] = []
+        other.session.declare_subscriber(
+            f"{robot.namespace}/**", lambda s: wide.append(str(s.key_expr))
+        )
+        truth = PoseStamped.from_xy_yaw(1.0, 2.0)
+        assert await put_reaches(other, robot, SIM_POSE, truth) is may
+        assert any(key.startswith(f"{sim}/") for key in wide) is may, wide
+        if may:
+            await other.call("obstacles/list", Empty(), ObstacleList, timeout=5.0, namespace=sim)
+        else:
+            with pytest.raises(ServiceUnavailable):
+                await other.call("obstacles/list", Empty(), ObstacleList, 2.0, namespace=sim)
+        replies = await asyncio.to_thread(
+            lambda: [
+                str(r.ok.key_expr)
+                for r in other.session.get(f"{robot.namespace}/**", timeout=2.0)
+                if r.ok
+            ]
+        )
+        assert any(key.startswith(f"{sim}/") for key in replies) is may, replies
 
 
 async def test_a_certificate_named_nowhere_may_do_nothing(
