@@ -76,7 +76,7 @@ class World:
 
     async def _ack(self, service: str, request: Request) -> str:
         ack = await self.bus.call(f"obstacles/{service}", request, Ack, 10.0, namespace=self.sim)
-        assert ack.ok, f"obstacles/{service} {request}: {ack.message}"
+        assert ack.ok, f"sim/srv/obstacles/{service} {request}: {ack.message}"
         return ack.id
 
     async def _obstacles(self) -> ObstacleList:
@@ -124,7 +124,7 @@ class World:
         the new one."""
         ack = await self.bus.call("reset_pose", PoseStamped.from_xy_yaw(x, y, yaw), Ack,
                                   timeout=10.0, namespace=self.sim)  # fmt: skip
-        assert ack.ok, f"reset_pose: {ack.message}"
+        assert ack.ok, f"sim/srv/reset_pose: {ack.message}"
         estimate = await set_estimate(self.bus, x, y, yaw)
         await self._settled_after(estimate.header.stamp)
         for costmap in ("global_costmap", "local_costmap"):
