@@ -1,7 +1,8 @@
 """Docking in the whole system (issue 36): the navigation stack with ``aiobt docking``
 and the office's dock database; the robot starts with a low battery.
 
-- From 10 seeded poses within 3 m of the dock, DockRobot (sent as an application
+- From seeded poses within 3 m of the dock (ten with ``AIOBT_E2E_FULL=1``, issue
+  36's must-hold; four in CI), DockRobot (sent as an application
   would) navigates to the staging pose, docks within 0.02 m and 0.05 rad of the dock
   pose (measured on the simulation's truth, here only) and the battery reports
   CHARGING; UndockRobot leaves the dock each time.
@@ -30,14 +31,14 @@ from aiobt_services.docking.database import DATABASES_DIR, load_database
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.worlds import WORLDS_DIR
 
-from .conftest import SPEED
+from .conftest import FULL, SPEED
 from .world import ACTIONS, World
 
 pytestmark = [pytest.mark.e2e, pytest.mark.integration]
 log = logging.getLogger("tests.e2e.test_docking")
 PATROL = str(Path(__file__).resolve().parents[2] / "trees" / "patrol_then_charge.xml")
 HOME = load_database(DATABASES_DIR / "office.yaml")["home_dock"].pose
-SEED, POSES = 36, 10
+SEED, POSES = 36, 10 if FULL else 4  # the must-hold's ten; CI's budget: four
 
 
 @pytest.fixture(scope="module")
@@ -88,7 +89,7 @@ async def charging(bus: Bus) -> BatteryState:
 
 
 @pytest.mark.timeout(900)
-async def test_ten_seeded_poses_dock_charging_and_undock(world: World, bus: Bus) -> None:
+async def test_seeded_poses_dock_charging_and_undock(world: World, bus: Bus) -> None:
     truth = bus.latest(SIM_POSE, PoseStamped)
     errors: list[tuple[float, float]] = []
     for x, y, yaw in seeded_poses(SEED, POSES):

@@ -11,7 +11,9 @@ stack adds the route server, for kilted's routing trees.
 - ``follow_point`` never ends by design: it follows until cancelled, then CANCELED
   with the robot standing still;
 - ``odometry_calibration`` drives its 2 m square three times, in the open plan room,
-  and ends SUCCEEDED about where it began.
+  and ends SUCCEEDED about where it began. Its kilted and jazzy copies (40 s each;
+  they differ from main's only in the tree's ID and the error ports) run with
+  ``AIOBT_E2E_FULL=1``, as in the series before an issue closes; CI runs main's.
 
 A user's own trees run the same way: ``AIOBT_E2E_TREES=mine.xml:their_folder pytest
 tests/e2e/test_nav2_branch_trees.py`` (docs/navigator.md).
@@ -28,6 +30,7 @@ import pytest
 from aiobt.msgs import GoalState, NavigateThroughPoses, PoseStamped
 from aiobt.testing.navwatch import ServerGoals
 
+from .conftest import FULL
 from .routed import _module_stack, route_goals  # noqa: F401  (the route server's stack)
 from .world import World
 
@@ -64,6 +67,7 @@ def trees_to_run() -> list[Path]:
         f
         for f in tree_files(NAV2_TREES)
         if not (f.parent == NAV2_TREES and f.name in RUN_ELSEWHERE)
+        and (FULL or f.parent == NAV2_TREES or f.stem != "odometry_calibration")
     ]
     brought = [Path(p).resolve() for p in BROUGHT.split(os.pathsep) if p]
     return shipped + [f for p in brought for f in (tree_files(p) if p.is_dir() else [p])]

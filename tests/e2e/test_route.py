@@ -1,9 +1,10 @@
 """Nav2's routing trees run unmodified against the route server (issue 36).
 
 The module's stack adds ``aiobt route`` with the office graph to the usual services.
-- navigate_on_route_graph_w_recovery: ten seeded goals at graph nodes across the
-  office, each reached along the graph (the driven track within 0.3 m of an edge
-  between the route's first and last nodes: the first and last miles are free space);
+- navigate_on_route_graph_w_recovery: seeded goals at graph nodes across the office
+  (ten with ``AIOBT_E2E_FULL=1``, issue 36's must-hold; four in CI), each reached
+  along the graph (the driven track within 0.3 m of an edge between the route's first
+  and last nodes: the first and last miles are free space);
 - the same tree with a box dropped on an edge of the route mid-way: it routes round
   and arrives;
 - navigate_w_routing_global_planning_and_control_w_recovery reaches a goal across the
@@ -29,6 +30,7 @@ from aiobt_services.robot.worlds import WORLDS_DIR
 from aiobt_services.route.geojson import load_graph
 from aiobt_services.route.graphs import OFFICE
 
+from .conftest import FULL
 from .routed import _module_stack, route_goals  # noqa: F401  (the route server's stack)
 from .world import START, World
 
@@ -41,7 +43,7 @@ GRAPH = load_graph(OFFICE)
 log = logging.getLogger("tests.e2e.test_route")
 ON_EDGE = 0.3  # m: the driven track's largest distance from the graph's edges
 SEED = 36
-GOALS = 10
+GOALS = 10 if FULL else 4  # the must-hold's ten; CI's budget: four
 OFF_NODE = 0.9  # m from a node, for a goal
 
 
@@ -101,7 +103,7 @@ def seeded_goals(seed: int, count: int) -> list[tuple[float, float]]:
 
 
 @pytest.mark.timeout(1200)
-async def test_ten_seeded_goals_along_the_graph(world: World, goals: ServerGoals, bus: Bus):
+async def test_seeded_goals_along_the_graph(world: World, goals: ServerGoals, bus: Bus):
     worst: list[tuple[float, float, float]] = []
     for x, y in seeded_goals(SEED, GOALS):
         first, last = await route_ends(bus, x, y)

@@ -1,6 +1,11 @@
 """A robot host and a base host, a router each, joined router to router (through a
 link proxy), with mutual TLS and access control; a laptop host sends goals, and runs
-tests/e2e's navigation scenarios (to a pose, through poses, the blocked corridor)."""
+tests/e2e's navigation scenarios (to a pose, through poses, the blocked corridor).
+
+The through-poses and blocked-corridor scenarios (a minute each here; the same
+scenarios run on one host in test_navigate and test_obstacles) run with
+``AIOBT_E2E_FULL=1``, as in the series before an issue closes; CI runs the goal to a
+pose and the zenoh CLI goal across the link, for its time budget."""
 
 from __future__ import annotations
 
@@ -9,12 +14,14 @@ from typing import Any
 
 import pytest
 
+from tests.e2e.conftest import FULL
 from tests.e2e.test_navigate import ROOMS
 from tests.e2e.test_obstacles import CORRIDOR_EAST
 from tests.netlab.deployment import Deployment, event
 from tests.netlab.hosts import HostProcess
 
 pytestmark = [pytest.mark.e2e, pytest.mark.integration]
+FULL_ONLY = pytest.mark.skipif(not FULL, reason="a full-size scenario: AIOBT_E2E_FULL=1")
 START = (2.0, 9.75)
 CORRIDOR = (6.0, 9.75, 0.0)  # 4 m east along the corridor
 
@@ -61,6 +68,7 @@ def _result(deployed: Deployment, scene: HostProcess) -> dict[str, Any]:
     return result
 
 
+@FULL_ONLY
 @pytest.mark.timeout(260)
 def test_through_poses_in_three_rooms_from_the_laptop(deployed: Deployment) -> None:
     """tests/e2e/test_navigate.py's through-poses scenario, its goal from the laptop."""
@@ -73,6 +81,7 @@ def test_through_poses_in_three_rooms_from_the_laptop(deployed: Deployment) -> N
     assert remaining == sorted(remaining, reverse=True), result
 
 
+@FULL_ONLY
 @pytest.mark.timeout(260)
 def test_the_corridor_blocked_after_planning_is_gone_round(deployed: Deployment) -> None:
     """tests/e2e/test_obstacles.py's blocked corridor: the wall comes once the robot is
