@@ -15,6 +15,7 @@ dock (:class:`~.errors.DockDatabaseError`); a shipped world's name (``office``,
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -99,17 +100,56 @@ def _dock(source: str, name: str, key: yaml.Node, node: yaml.Node) -> DockInstan
     )
 
 
+def docks_from_params(
+    names: list[str], given: Mapping[str, Mapping[str, str]]
+) -> dict[str, DockInstance]:
+    """Nav2's ``parseDockParams``: each dock of ``names`` from its scope in ``given``
+    (``{"dock1": {"type": ..., "pose": "[x, y, theta]"}}``); ``frame`` defaults to map,
+    ``id`` to empty. ValueError naming the dock and its parameter."""
+    found: dict[str, DockInstance] = {}
+    for name in names:
+        if name in found:
+            raise ValueError(f"docks: dock '{name}' appears twice")
+        fields = dict(given.get(name, {}))
+        for key in set(fields) - set(KEYS):
+            raise ValueError(f"{name}.{key}: unknown dock field (known: {', '.join(KEYS)})")
+        if "type" not in fields:
+            raise ValueError(f"Dock {name} has no dock 'type' (give --param {name}.type=...)")
+        if "pose" not in fields:
+            raise ValueError(
+                f"Dock {name} has no valid 'pose' (give --param {name}.pose=[x,y,theta])"
+            )
+        try:
+            pose = _pose_of(fields["pose"].strip().strip("[]").split(","))
+        except ValueError as exc:
+            raise ValueError(f"Dock {name} has no valid 'pose': {name}.pose={fields['pose']!r} "
+                             f"{exc}") from None  # fmt: skip
+        found[name] = DockInstance(name, fields["type"], pose, fields.get("frame") or "map",
+                                   fields.get("id", ""))  # fmt: skip
+    return found
+
+
+def _pose_of(items: Sequence[object]) -> Pose2D:
+    """``[x, y, theta]`` from three items; ValueError saying what is wrong."""
+    if len(items) != 3:
+        raise ValueError("must be [x, y, theta]")
+    try:
+        x, y, theta = (float(str(item)) for item in items)
+    except ValueError:
+        raise ValueError("must hold three numbers") from None
+    if not all(math.isfinite(v) for v in (x, y, theta)):
+        raise ValueError("must be finite")
+    return Pose2D(x, y, theta)
+
+
 def _pose(source: str, name: str, node: yaml.Node) -> Pose2D:
     items = node.value if isinstance(node, yaml.SequenceNode) else []
-    if len(items) != 3:
-        raise _error(source, node, name, "'pose' must be [x, y, theta]")
+    if any(not isinstance(item, yaml.ScalarNode) for item in items):
+        raise _error(source, node, name, "'pose' must hold three numbers")
     try:
-        x, y, theta = (float(item.value) for item in items)
-    except (TypeError, ValueError):
-        raise _error(source, node, name, "'pose' must hold three numbers") from None
-    if not all(math.isfinite(v) for v in (x, y, theta)):
-        raise _error(source, node, name, "'pose' must be finite")
-    return Pose2D(x, y, theta)
+        return _pose_of([item.value for item in items])
+    except ValueError as exc:
+        raise _error(source, node, name, f"'pose' {exc}") from None
 
 
 def _scalar(source: str, name: str, node: yaml.Node | None, field: str) -> str:

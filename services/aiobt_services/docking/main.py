@@ -51,14 +51,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_local_costmap_arguments(parser.add_argument_group("local costmap (the approach's check)"))
 
 
-def database_or_explain(args: argparse.Namespace) -> tuple[dict[str, DockInstance], str]:
-    """The docks, and why there are none when the database does not load (logged)."""
+def database_or_explain(
+    args: argparse.Namespace, from_params: dict[str, DockInstance] | None = None
+) -> tuple[dict[str, DockInstance], str]:
+    """The docks (Nav2's order: the ``dock_database`` file, else the ``docks``
+    parameter), and why there are none when the database does not load (logged)."""
+    if args.dock_database is None and from_params is not None:
+        log.info("Loading docks from parameter file.")
+        return from_params, ""
     if args.dock_database is None:
         log.warning(
             "Dock database filepath nor dock parameters set. Docking actions can "
             "only be executed specifying the dock pose via the action request."
         )
         return {}, ""
+    if from_params is not None:
+        log.warning("docks: ignored, dock_database %s is given (Nav2 reads the file "
+                    "first; --dock-database '' uses the docks)", args.dock_database)  # fmt: skip
     try:
         docks = load_database(args.dock_database)
     except DockDatabaseError as exc:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import argparse
 import dataclasses
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, TypeVar
 
 from aiobt.geometry.smooth import RotateParams, SmoothControlParams
@@ -18,7 +19,7 @@ from aiobt.system.plugin_params import comma_list, dotted_param, params_from
 from aiobt.system.service import non_negative, positive
 
 from .controller import ControllerParams
-from .database import database_path
+from .database import DockInstance, database_path, docks_from_params
 from .params import DockingParams
 from .plugins import ChargingDock, DockWiring, PluginFactory
 from .simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
@@ -63,12 +64,17 @@ class Settings:
     docking: DockingParams
     controller: ControllerParams
     plugins: list[PluginSpec]
+    docks: dict[str, DockInstance] | None = None  # Nav2's ``docks`` parameter, if given
 
 
 def add_docking_arguments(group: argparse._ArgumentGroup) -> None:
     add, d = group.add_argument, DockingParams()
-    add("--dock-database", type=database_path, default=None, metavar="PATH_OR_WORLD",
-        help="dock database (YAML): a path, or a shipped world's name (office, small)")  # fmt: skip
+    add("--dock-database", type=_database_flag, default=None, metavar="PATH_OR_WORLD",
+        help="dock database (YAML): a path, or a shipped world's name (office, small); "
+        "'' for none (then --docks)")  # fmt: skip
+    add("--docks", type=comma_list, default=None, metavar="NAMES",
+        help="instead of --dock-database, comma-separated docks given by --param "
+        "NAME.type=..., NAME.pose=[x,y,theta], NAME.frame (map), NAME.id")  # fmt: skip
     add("--dock-plugins", type=comma_list, default=DEFAULT_PLUGIN,
         help="comma-separated dock plugin names (default: %(default)s)")  # fmt: skip
     add("--param", type=dotted_param, action="append", default=[], metavar="SCOPE.NAME=VALUE",
@@ -89,6 +95,10 @@ def docking_params(args: argparse.Namespace) -> DockingParams:
     )
 
 
+def _database_flag(text: str) -> Path | None:
+    return database_path(text) if text else None
+
+
 def scoped(args: argparse.Namespace, scope: str) -> dict[str, str]:
     given = {key: value for name, key, value in args.param if name == scope}
     return SHIPPED.get(scope, {}) | given
@@ -96,11 +106,13 @@ def scoped(args: argparse.Namespace, scope: str) -> dict[str, str]:
 
 def check_scopes(args: argparse.Namespace) -> None:
     """ValueError naming a --param for neither the controller nor a plugin loaded."""
+    docks = args.docks or []
     for scope, key, _ in args.param:
-        if scope != "controller" and scope not in args.dock_plugins:
+        if scope != "controller" and scope not in args.dock_plugins and scope not in docks:
             loaded = ", ".join(args.dock_plugins)
             raise ValueError(f"--param {scope}.{key}: '{scope}' is neither 'controller' nor "
-                             f"among the dock_plugins ({loaded})")  # fmt: skip
+                             f"among the dock_plugins ({loaded}) nor the docks "
+                             f"({', '.join(docks) or 'none'})")  # fmt: skip
 
 
 def controller_params(args: argparse.Namespace) -> ControllerParams:
@@ -144,7 +156,10 @@ def plugin_specs(args: argparse.Namespace) -> list[PluginSpec]:
 def settings_from(args: argparse.Namespace) -> Settings:
     """ValueError naming the parameter that is wrong."""
     check_scopes(args)
-    return Settings(docking_params(args), controller_params(args), plugin_specs(args))
+    docks = None
+    if args.docks is not None:
+        docks = docks_from_params(args.docks, {name: scoped(args, name) for name in args.docks})
+    return Settings(docking_params(args), controller_params(args), plugin_specs(args), docks)
 
 
 def make_plugins(specs: list[PluginSpec], wiring: DockWiring) -> dict[str, ChargingDock]:

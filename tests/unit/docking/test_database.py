@@ -7,7 +7,12 @@ from pathlib import Path
 
 import pytest
 
-from aiobt_services.docking.database import DATABASES_DIR, load_database, parse_database
+from aiobt_services.docking.database import (
+    DATABASES_DIR,
+    docks_from_params,
+    load_database,
+    parse_database,
+)
 from aiobt_services.docking.errors import DockDatabaseError
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.worlds import WORLDS_DIR
@@ -72,3 +77,43 @@ def test_each_shipped_world_has_its_dock_in_its_database(world: str) -> None:
     home = load_database(DATABASES_DIR / f"{world}.yaml")["home_dock"]
     assert (home.pose.x, home.pose.y) == pytest.approx((dock.x, dock.y))
     assert math.cos(home.pose.yaw - dock.yaw) == pytest.approx(1.0)
+
+
+# -- Nav2's ``docks`` parameter (its UtilsTests.parseDockParams1-3) -------------------
+
+
+def test_docks_from_params_with_nav2s_defaults() -> None:
+    docks = docks_from_params(
+        ["dockC", "dockD"],
+        {
+            "dockC": {"frame": "mapA", "type": "typeA", "pose": "[0.3, 0.3, 0.3]"},
+            "dockD": {"type": "typeB", "pose": "0.3,0.3,0.3", "id": "D"},
+        },
+    )
+    c, d = docks["dockC"], docks["dockD"]
+    assert (c.frame, d.frame) == ("mapA", "map")
+    assert (c.type, c.pose.x, c.pose.y, c.pose.yaw) == ("typeA", 0.3, 0.3, 0.3)
+    assert (c.id, d.id) == ("", "D")
+
+
+@pytest.mark.parametrize(
+    ("given", "problem"),
+    [
+        ({}, "Dock dockA has no dock 'type'"),  # parseDockParams1: no type set
+        ({"dockA": {"type": "t"}}, "Dock dockA has no valid 'pose'"),
+        ({"dockA": {"type": "t", "pose": "[0.3, 0.3]"}}, r"dockA.pose='\[0.3, 0.3\]' must be"),
+        ({"dockA": {"type": "t", "pose": "[a, 0, 0]"}}, "must hold three numbers"),
+        ({"dockA": {"type": "t", "pose": "[inf, 0, 0]"}}, "must be finite"),
+        ({"dockA": {"type": "t", "pose": "[0, 0, 0]", "yaw": "1"}}, "dockA.yaw: unknown dock"),
+    ],
+)
+def test_a_bad_dock_parameter_names_the_dock_and_field(
+    given: dict[str, dict[str, str]], problem: str
+) -> None:
+    with pytest.raises(ValueError, match=problem):
+        docks_from_params(["dockA"], given)
+
+
+def test_a_dock_named_twice_is_refused() -> None:
+    with pytest.raises(ValueError, match="dock 'a' appears twice"):
+        docks_from_params(["a", "a"], {"a": {"type": "t", "pose": "[0, 0, 0]"}})

@@ -7,7 +7,7 @@ import argparse
 
 import pytest
 
-from aiobt_services.docking.main import add_arguments, run
+from aiobt_services.docking.main import add_arguments, database_or_explain, run
 from aiobt_services.docking.options import settings_from
 
 
@@ -46,6 +46,8 @@ def test_param_overrides_the_set_up() -> None:
         (["--param", "simple_charging_dock.plugin=opennav_docking::Pallet"], "no dock plugin"),
         (["--fixed-frame", "world"], "fixed_frame must be odom or map"),
         (["--dock-plugins", ""], "Charging dock plugins empty"),
+        (["--docks", "d1", "--param", "d1.pose=[0,0,0]"], "Dock d1 has no dock 'type'"),
+        (["--docks", "d1", "--param", "d2.type=t"], "nor the docks \\(d1\\)"),
     ],
 )
 def test_a_bad_parameter_is_named(argv: list[str], problem: str) -> None:
@@ -56,3 +58,36 @@ def test_a_bad_parameter_is_named(argv: list[str], problem: str) -> None:
 def test_the_command_exits_2_on_a_bad_parameter(caplog: pytest.LogCaptureFixture) -> None:
     assert run(parse("--param", "controller.k_phy=1")) == 2
     assert "controller.k_phy: no such parameter" in caplog.text
+
+
+DOCKS = ("--docks", "dock1, dock2", "--param", "dock1.type=simple_charging_dock",
+         "--param", "dock1.pose=[1.0, 2.0, 3.14]", "--param", "dock2.type=",
+         "--param", "dock2.pose=[0, 0, 0]", "--param", "dock2.frame=odom",
+         "--param", "dock2.id=tag_2")  # fmt: skip
+
+
+def test_docks_from_the_parameters_without_a_database() -> None:
+    args = parse(*DOCKS)
+    docks, problem = database_or_explain(args, settings_from(args).docks)
+    assert problem == ""
+    assert list(docks) == ["dock1", "dock2"]
+    d1, d2 = docks["dock1"], docks["dock2"]
+    assert (d1.type, d1.frame, d1.pose.x, d1.pose.y, d1.pose.yaw) == (
+        "simple_charging_dock", "map", 1.0, 2.0, 3.14)  # fmt: skip
+    assert (d2.type, d2.frame, d2.id) == ("", "odom", "tag_2")
+
+
+def test_the_database_file_comes_first_as_in_nav2(caplog: pytest.LogCaptureFixture) -> None:
+    args = parse(*DOCKS, "--dock-database", "office")
+    docks, _ = database_or_explain(args, settings_from(args).docks)
+    assert list(docks) == ["home_dock"]
+    assert "docks: ignored, dock_database" in caplog.text
+    args = parse(*DOCKS, "--dock-database", "office", "--dock-database", "")  # aiobt up's, undone
+    docks, _ = database_or_explain(args, settings_from(args).docks)
+    assert list(docks) == ["dock1", "dock2"]
+
+
+def test_neither_database_nor_docks_serves_goals_by_pose(caplog: pytest.LogCaptureFixture) -> None:
+    args = parse()
+    assert database_or_explain(args, settings_from(args).docks) == ({}, "")
+    assert "Dock database filepath nor dock parameters set" in caplog.text
