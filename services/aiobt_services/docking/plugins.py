@@ -9,9 +9,9 @@ from typing import Any, Protocol
 
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D
+from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.msgs import BatteryState
 
-from .detection import Detection
 from .frames import RobotFrames
 
 
@@ -23,7 +23,7 @@ class DockWiring:
 
     frames: RobotFrames
     clock: Clock
-    detection: Callable[[], Detection | None]
+    detection: Callable[[], StampedPose3D | None]
     battery: Callable[[], BatteryState | None]
     show: Callable[[str, Pose2D, str], None]
 

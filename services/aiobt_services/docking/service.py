@@ -12,13 +12,13 @@ import numpy as np
 
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Twist
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
 from aiobt.transport import Bus
 
 from .database import DockInstance, database_path, load_database
-from .detection import Detection
 from .errors import DockDatabaseError
 from .frames import RobotFrames
 from .server import DockingServer
@@ -28,10 +28,10 @@ ODOMETRY_KEPT = 60  # 1.2 s of odometry at 50 Hz: to place a detection (up to 1 
 SHOWN = ("dock_pose", "filtered_dock_pose", "staging_pose")
 
 
-def detection_of(msg: PoseStamped) -> Detection:
+def detection_of(msg: PoseStamped) -> StampedPose3D:
     q = msg.pose.orientation
     p = msg.pose.position
-    return Detection(p.x, p.y, p.z, np.array([q.x, q.y, q.z, q.w]), msg.header.stamp,
+    return StampedPose3D(p.x, p.y, p.z, np.array([q.x, q.y, q.z, q.w]), msg.header.stamp,
                      msg.header.frame_id)  # fmt: skip
 
 
@@ -52,7 +52,7 @@ class DockingBus:
         self._docks = bus.latched_publisher("docks", DockList)
         self._state = bus.latched_publisher("docking_state", DockingState)
 
-    def detection(self) -> Detection | None:
+    def detection(self) -> StampedPose3D | None:
         msg = self._detected.get()
         return None if msg is None else detection_of(msg)
 

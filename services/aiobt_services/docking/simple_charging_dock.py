@@ -16,8 +16,10 @@ import math
 from dataclasses import dataclass
 
 from aiobt.geometry import Pose2D
+from aiobt.geometry.pose_filter import PoseFilter, StampedPose3D
+from aiobt.geometry.quaternion import quat_from_rpy
 
-from .detection import Detection, PoseFilter, dock_pose, quat_from_rpy
+from .detection import dock_pose
 from .plugins import DockWiring
 
 log = logging.getLogger("aiobt_services.docking.simple_charging_dock")
@@ -47,6 +49,8 @@ class SimpleChargingDockParams:
     subscribe_toggle: bool = False
 
     def __post_init__(self) -> None:
+        if not (math.isfinite(self.filter_coef) and 0.0 <= self.filter_coef <= 1.0):
+            raise ValueError(f"filter_coef must be within [0, 1], got {self.filter_coef}")
         if self.dock_direction.lower() not in ("forward", "backward"):
             raise ValueError("Dock direction is not valid. Valid options are: forward or backward")
         if self.rotate_to_dock and self.dock_direction.lower() != "backward":
@@ -100,7 +104,7 @@ class SimpleChargingDock:
             return None
         return self._refine(seen, frame)
 
-    def _refine(self, seen: Detection, frame: str) -> Pose2D | None:
+    def _refine(self, seen: StampedPose3D, frame: str) -> Pose2D | None:
         try:
             placed = self.wiring.frames.transform(Pose2D(), seen.frame, frame, seen.stamp)
         except LookupError as exc:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.geometry.smooth import SmoothControlParams
 from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped
 from aiobt.msgs.remote_actions import DockRobot
@@ -20,7 +21,6 @@ from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.collisions import ScanCollisions
 from aiobt_services.docking.controller import ControllerParams, DockController
 from aiobt_services.docking.database import DockInstance
-from aiobt_services.docking.detection import Detection
 from aiobt_services.docking.frames import RobotFrames
 from aiobt_services.docking.motion import Motion
 from aiobt_services.docking.options import SHIPPED
@@ -91,7 +91,7 @@ class SimBase:
     def odoms(self) -> Iterator[Odometry]:
         return iter(self.odometry)
 
-    def detection(self) -> Detection | None:
+    def detection(self) -> StampedPose3D | None:
         return None if self.detected is None else detection_of(self.detected)
 
 

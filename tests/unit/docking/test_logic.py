@@ -9,6 +9,8 @@ import numpy as np
 import pytest
 
 from aiobt.geometry import Pose2D, wrap_angle
+from aiobt.geometry.pose_filter import PoseFilter, StampedPose3D
+from aiobt.geometry.quaternion import quat_from_rpy, quat_mul, quat_yaw
 from aiobt.geometry.smooth import (
     RotateParams,
     SmoothControlLaw,
@@ -18,14 +20,7 @@ from aiobt.geometry.smooth import (
 from aiobt.msgs import Odometry, PoseStamped
 from aiobt.msgs.geometry import Header, Pose
 from aiobt.system.plugin_params import params_from
-from aiobt_services.docking.detection import (
-    Detection,
-    PoseFilter,
-    dock_pose,
-    quat_from_rpy,
-    quat_mul,
-    quat_yaw,
-)
+from aiobt_services.docking.detection import dock_pose
 from aiobt_services.docking.frames import RobotFrames
 from aiobt_services.docking.simple_charging_dock import SimpleChargingDockParams
 
@@ -89,7 +84,7 @@ def test_frames_from_the_map_pose_and_odometry_by_stamp() -> None:
 def test_nav2s_default_rotation_turns_a_tag_frame_into_the_docks() -> None:
     rotation = quat_from_rpy(-1.57, 1.57, 0.0)
     tag = quat_mul(quat_from_rpy(0.0, 0.0, 0.7), np.array([*-rotation[:3], rotation[3]]))
-    seen = Detection(1.0, 2.0, 0.0, tag, 0.0, "odom")
+    seen = StampedPose3D(1.0, 2.0, 0.0, tag, 0.0, "odom")
     dock = dock_pose(seen, rotation, (-0.2, 0.0))
     assert dock.yaw == pytest.approx(0.7)
     assert (dock.x, dock.y) == pytest.approx((1.0 - 0.2 * math.cos(0.7), 2.0 - 0.2 * math.sin(0.7)))
@@ -99,11 +94,11 @@ def test_nav2s_default_rotation_turns_a_tag_frame_into_the_docks() -> None:
 def test_the_filter_smooths_and_restarts_after_its_timeout() -> None:
     f = PoseFilter(0.1, 1.0)
     flat = quat_from_rpy(0.0, 0.0, 0.0)
-    f.update(Detection(0.0, 0.0, 0.0, flat, 0.0, "odom"))
-    smoothed = f.update(Detection(1.0, 0.0, 0.0, quat_from_rpy(0.0, 0.0, 1.0), 0.1, "odom"))
+    f.update(StampedPose3D(0.0, 0.0, 0.0, flat, 0.0, "odom"))
+    smoothed = f.update(StampedPose3D(1.0, 0.0, 0.0, quat_from_rpy(0.0, 0.0, 1.0), 0.1, "odom"))
     assert smoothed.x == pytest.approx(0.1)
     assert quat_yaw(smoothed.q) == pytest.approx(0.1)
-    assert f.update(Detection(5.0, 0.0, 0.0, flat, 2.0, "odom")).x == 5.0
+    assert f.update(StampedPose3D(5.0, 0.0, 0.0, flat, 2.0, "odom")).x == 5.0
 
 
 def test_plugin_parameters_by_nav2s_names() -> None:
