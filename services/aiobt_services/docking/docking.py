@@ -109,7 +109,7 @@ class DockingAttempt:
     async def _initial_perception(self, target: DockTarget, estimate: Pose2D) -> Pose2D:
         self.feedback(State.INITIAL_PERCEPTION)
         plugin, m = target.plugin, self.motion
-        if not plugin.start_detection():
+        if not await plugin.start_detection():
             raise FailedToDetectDock("Failed to start the detection process.")
         began = m.clock.now()
         while (

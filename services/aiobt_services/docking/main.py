@@ -52,7 +52,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def database_or_explain(
-    args: argparse.Namespace, from_params: dict[str, DockInstance] | None = None
+    args: argparse.Namespace, from_params: dict[str, DockInstance] | None
 ) -> tuple[dict[str, DockInstance], str]:
     """The docks (Nav2's order: the ``dock_database`` file, else the ``docks``
     parameter), and why there are none when the database does not load (logged)."""
@@ -80,14 +80,15 @@ def database_or_explain(
 def start(settings: Settings, args: argparse.Namespace, bus: Bus, clock: Clock) -> None:
     """The server's parts on ``bus``, its actions and services served."""
     wires = DockingBus(bus, clock, args.cmd_vel_topic)
-    wiring = DockWiring(wires.frames, clock, wires.detection, wires.battery, wires.show)
+    wiring = DockWiring(wires.frames, clock, wires.detection, wires.battery, wires.show,
+                        wires.subscribe, wires.trigger)  # fmt: skip
     plugins = make_plugins(settings.plugins, wiring)
     costmap = ScanCollisions(local_costmap_from(args), wires.scan, wires.frames, clock)
     controller = DockController(settings.controller, costmap.collides)
     motion = Motion(settings.docking, controller, wires.frames, clock, wires.drive,
                     wires.turn_rate, costmap.refresh)  # fmt: skip
     navigate = StagingNavigator(bus, clock, settings.docking.navigator_bt_xml)
-    docks, problem = database_or_explain(args)
+    docks, problem = database_or_explain(args, settings.docks)
     server = DockingServer(motion, navigate, plugins, docks)
     server.database_error = problem
     log.info("Docking Server has %d dock types and %d dock instances available.",

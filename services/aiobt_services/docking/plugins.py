@@ -3,7 +3,7 @@ a plugin is given (the registry of plugin types is ``options.PLUGIN_TYPES``)."""
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Awaitable, Callable
 from dataclasses import dataclass
 from typing import Any, Protocol
 
@@ -15,17 +15,31 @@ from aiobt.msgs import BatteryState
 from .frames import RobotFrames
 
 
+def _always_subscribed(on: bool) -> None:
+    return None
+
+
+async def _no_services(name: str, timeout: float) -> str | None:  # noqa: ASYNC109
+    return f"no service client to call '{name}'"
+
+
 @dataclass(slots=True, frozen=True)
 class DockWiring:
     """What a plugin reads: the robot's frames, robot time, the newest detection of
-    the dock (``detected_dock_pose``) and battery state, and where it shows the poses
-    it works with (``dock_pose``, ``filtered_dock_pose``, ``staging_pose``)."""
+    the dock (``detected_dock_pose``; None while unsubscribed) and battery state, and
+    where it shows the poses it works with (``dock_pose``, ``filtered_dock_pose``,
+    ``staging_pose``); ``subscribe(True/False)`` opens and closes its subscription to
+    the detections (``subscribe_toggle``), ``trigger(name, timeout)`` calls a
+    ``std_srvs/Trigger`` service ``{ns}/srv/{name}``: None when it succeeded, else why
+    not (``detector_service_name``)."""
 
     frames: RobotFrames
     clock: Clock
     detection: Callable[[], StampedPose3D | None]
     battery: Callable[[], BatteryState | None]
     show: Callable[[str, Pose2D, str], None]
+    subscribe: Callable[[bool], None] = _always_subscribed
+    trigger: Callable[[str, float], Awaitable[str | None]] = _no_services
 
 
 class ChargingDock(Protocol):
@@ -51,9 +65,13 @@ class ChargingDock(Protocol):
 
     def has_stopped_charging(self) -> bool: ...
 
-    def start_detection(self) -> bool: ...
+    async def start_detection(self) -> bool:
+        """Nav2's startDetectionProcess: before the first refined pose of a docking."""
+        ...
 
-    def stop_detection(self) -> bool: ...
+    async def stop_detection(self) -> bool:
+        """Nav2's stopDetectionProcess: once the docking ends, however it ends."""
+        ...
 
 
 PluginFactory = Callable[[str, Any, DockWiring], ChargingDock]  # (name, its params, wiring)

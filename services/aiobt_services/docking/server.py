@@ -74,7 +74,7 @@ class DockingServer:
             finally:
                 self.motion.stop()
                 if target is not None:
-                    target.plugin.stop_detection()
+                    await target.plugin.stop_detection()
             self.current_type, self.docked_at = target.dock.type, target.dock.name
             log.info(
                 "Robot is charging!" if target.plugin.is_charger else "Docking was successful!"

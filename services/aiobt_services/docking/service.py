@@ -13,10 +13,10 @@ import numpy as np
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
-from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Twist
+from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Trigger, Twist
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
-from aiobt.transport import Bus
+from aiobt.transport import Bus, Latest, ServiceError
 
 from .database import DockInstance, database_path, load_database
 from .errors import DockDatabaseError
@@ -43,7 +43,8 @@ class DockingBus:
         self.clock = clock
         self._pose = bus.latest("pose", PoseStamped)
         self._odom = bus.latest("odom", Odometry, keep=ODOMETRY_KEPT)
-        self._detected = bus.latest("detected_dock_pose", PoseStamped)
+        self._detected: Latest[PoseStamped] | None = None  # while a plugin subscribes
+        self._subscribers = 0
         self._battery = bus.latest("battery", BatteryState)
         self._scan = bus.latest("scan", LaserScan)
         self.frames = RobotFrames(self._pose.get, self._odom.newest_first)
@@ -53,8 +54,26 @@ class DockingBus:
         self._state = bus.latched_publisher("docking_state", DockingState)
 
     def detection(self) -> StampedPose3D | None:
-        msg = self._detected.get()
+        msg = None if self._detected is None else self._detected.get()
         return None if msg is None else detection_of(msg)
+
+    def subscribe(self, on: bool) -> None:
+        """Open (``True``) or close the detections' subscription; it lasts while any
+        plugin holds it."""
+        self._subscribers = max(0, self._subscribers + (1 if on else -1))
+        if self._subscribers and self._detected is None:
+            self._detected = self.bus.latest("detected_dock_pose", PoseStamped)
+        elif not self._subscribers and self._detected is not None:
+            self._detected.close()
+            self._detected = None
+
+    async def trigger(self, name: str, timeout: float) -> str | None:  # noqa: ASYNC109
+        """Call the ``std_srvs/Trigger`` service ``{ns}/srv/{name}``: None, or why not."""
+        try:
+            reply = await self.bus.call(name, Trigger.Request(), Trigger.Response, timeout)
+        except ServiceError as exc:
+            return str(exc)
+        return None if reply.success else f"success false ({reply.message or 'no message'})"
 
     def battery(self) -> BatteryState | None:
         return self._battery.get()

@@ -4,9 +4,10 @@ taken blind from the database, docked when the robot is within ``docking_thresho
 of the dock pose, charging when the battery's current exceeds ``charging_threshold``
 (``use_battery_status``) or, without battery status, when docked.
 
-Not available here: stall detection (``use_stall_detection``: no ``joint_states``)
-and a detector started by service (``detector_service_name``); the detection topic
-is always subscribed (``subscribe_toggle`` has no effect).
+The detector is started and stopped around each docking (``detector_service_name``,
+``detector_service_timeout``, ``subscribe_toggle``: :mod:`.detector`).
+
+Not available here: stall detection (``use_stall_detection``: no ``joint_states``).
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from aiobt.geometry.pose_filter import PoseFilter, StampedPose3D
 from aiobt.geometry.quaternion import quat_from_rpy
 
 from .detection import dock_pose
+from .detector import DetectorControl
 from .plugins import DockWiring
 
 log = logging.getLogger("aiobt_services.docking.simple_charging_dock")
@@ -46,6 +48,7 @@ class SimpleChargingDockParams:
     dock_direction: str = "forward"
     rotate_to_dock: bool = False
     detector_service_name: str = ""
+    detector_service_timeout: float = 5.0
     subscribe_toggle: bool = False
 
     def __post_init__(self) -> None:
@@ -58,9 +61,9 @@ class SimpleChargingDockParams:
                              "backward. Please set dock direction to backward.")  # fmt: skip
         if self.use_stall_detection:
             raise ValueError("use_stall_detection: the robot publishes no joint_states here")
-        if self.detector_service_name:
-            raise ValueError("detector_service_name: a detector started by service is not "
-                             "available here (the detection topic is always read)")  # fmt: skip
+        if not (math.isfinite(self.detector_service_timeout) and self.detector_service_timeout > 0):
+            raise ValueError(f"detector_service_timeout must be > 0, got "
+                             f"{self.detector_service_timeout}")  # fmt: skip
 
 
 class SimpleChargingDock:
@@ -78,6 +81,10 @@ class SimpleChargingDock:
                                       p.external_detection_rotation_pitch,
                                       p.external_detection_rotation_yaw)  # fmt: skip
         self.dock: tuple[Pose2D, str] | None = None  # the tracked dock pose and its frame
+        self.detector = DetectorControl(wiring, service=p.detector_service_name,
+                                        timeout=p.detector_service_timeout,
+                                        subscribe_toggle=p.subscribe_toggle,
+                                        detects=p.use_external_detection_pose)  # fmt: skip
 
     def staging_pose(self, dock: Pose2D, frame: str) -> Pose2D:
         if not self.params.use_external_detection_pose:
@@ -93,7 +100,7 @@ class SimpleChargingDock:
             self.dock = (estimate, frame)
             self.wiring.show("dock_pose", estimate, frame)
             return estimate
-        seen = self.wiring.detection()
+        seen = self.detector.latest()
         if seen is None:
             log.warning("Waiting for first detected_dock_pose; none received yet")
             return None
@@ -141,8 +148,8 @@ class SimpleChargingDock:
     def has_stopped_charging(self) -> bool:
         return not self.is_charging()
 
-    def start_detection(self) -> bool:
-        return True
+    async def start_detection(self) -> bool:
+        return await self.detector.start()
 
-    def stop_detection(self) -> bool:
-        return True
+    async def stop_detection(self) -> bool:
+        return await self.detector.stop()

@@ -4,7 +4,8 @@ Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), ``{ns}/s
 ``{ns}/battery``, ``{ns}/clock``, ``{ns}/bumper``, ``{ns}/detected_dock_pose`` (the
 dock's marker as the robot's camera sees it) and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves
-``{ns}/srv/reinitialize_global_localization``; holds the liveliness token
+``{ns}/srv/reinitialize_global_localization`` and ``{ns}/srv/dock_detector/toggle``
+(the dock detector off and on, as a real detector may); holds the liveliness token
 ``{ns}/nodes/robot``. The simulation's own keys are in its namespace ``{ns}/sim``
 (``aiobt.transport.keys.sim_namespace``): the truth on ``{ns}/sim/pose``, and the
 services ``{ns}/sim/srv/obstacles/{spawn,move,remove,list}``,
@@ -33,6 +34,7 @@ from aiobt.msgs import (
     Odometry,
     PoseStamped,
     PoseWithCovarianceStamped,
+    Trigger,
     Twist,
 )
 from aiobt.msgs import Clock as ClockMsg
@@ -45,6 +47,7 @@ from aiobt.transport.announce import announce
 from aiobt.transport.keys import SIM_POSE, sim_namespace
 
 from . import convert
+from .dock_detector import SERVICE as DETECTOR_SERVICE
 from .mapfile import MapError, load_map
 from .options import add_robot_arguments, sim_config
 from .pacing import speed_label
@@ -146,6 +149,7 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             publish_pose=args.pose_source == "truth",
         )
         _wire(bus, service, localization_stand_in=args.pose_source == "truth")
+        bus.serve(DETECTOR_SERVICE, Trigger.Request, Trigger.Response, runner.dock_detector.toggle)
         settle()  # start-up's objects (the world's too) out of the collector's full passes
         announce(bus, "robot", sim_time=True)  # it is the simulation: its time is sim time
         log.info(

@@ -22,6 +22,7 @@ from aiobt.msgs import Msg
 from aiobt.transport.keys import SIM_POSE
 
 from . import convert
+from .dock_detector import DockDetectorSwitch
 from .pacing import Pacer
 from .sim import Simulation
 
@@ -104,6 +105,7 @@ class SimRunner:
         if not publish_clock:
             del self._periods["clock"]
         self._camera_every = rates.period_steps("camera", sim.config.dt)
+        self.dock_detector = DockDetectorSwitch()  # srv/dock_detector/toggle turns it off and on
         self._clock_owed = False  # a clock stamp was due and is not out yet
         self._clock_sent = 0  # the step of the last one out
         self._clock_batch = 1  # steps a stamp due may wait (see :meth:`run`)
@@ -130,7 +132,11 @@ class SimRunner:
             self._outputs.publish("scan", convert.laser_scan(sim.scan()))
         if "battery" in due:
             self._outputs.publish("battery", convert.battery_state(sim.battery, sim.time))
-        if sim.steps % self._camera_every == 0 and (seen := sim.detect_dock()) is not None:
+        if (
+            sim.steps % self._camera_every == 0
+            and self.dock_detector.on
+            and (seen := sim.detect_dock()) is not None
+        ):
             self._outputs.publish(DOCK_DETECTION, convert.dock_detection(seen, sim.time))
 
     def publish_clock(self) -> None:

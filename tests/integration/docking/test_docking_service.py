@@ -12,7 +12,7 @@ from typing import Any
 
 import pytest
 
-from aiobt.msgs import BatteryState, PoseStamped, PowerSupplyStatus
+from aiobt.msgs import BatteryState, PoseStamped, PowerSupplyStatus, Trigger
 from aiobt.msgs.docking import DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, DockRobotError, UndockRobot
 from aiobt.msgs.sim import Ack
@@ -110,3 +110,32 @@ async def test_a_database_that_does_not_parse(spawn: Spawn, bus: Bus, bus_settin
     assert problem in bad.message
     unknown = await send(bus, DockRobot, DockRobot.Goal(dock_id="kitchen"))
     assert "known: home_dock)" in unknown.error_msg
+
+
+@pytest.mark.timeout(180)
+async def test_docks_given_as_parameters_with_the_detector_only_while_docking(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+):
+    """Nav2's ``docks`` parameter instead of a file, and the robot's detector started and
+    stopped by the docking server through ``srv/dock_detector/toggle``."""
+    truth = bus.latest(SIM_POSE, PoseStamped)
+    pose = f"home.pose=[{DOCK[0]},{DOCK[1]},{DOCK[2]}]"
+    detector = "simple_charging_dock.detector_service_name=dock_detector/toggle"
+    await start(spawn, bus, bus_settings, "--docks", "home", "--param",
+                "home.type=simple_charging_dock", "--param", pose, "--param", detector,
+                "--param", "simple_charging_dock.subscribe_toggle=true")  # fmt: skip
+    docks = await bus.latest("docks", DockList, latched=True).wait_latest(10.0)
+    assert [d.name for d in docks.docks] == ["home"]
+    await place(bus, 1.6, 9.6, 3.0)
+    detections = bus.subscribe("detected_dock_pose", PoseStamped, queue_size=1)
+    await detections.next(timeout=10.0)  # the robot's detector is on from the start
+    done = await send(bus, DockRobot, DockRobot.Goal(dock_id="home",
+                                                     navigate_to_staging_pose=False))  # fmt: skip
+    assert done.success, done.error_msg
+    assert off_the_dock(await truth.wait_latest(5.0))[0] <= 0.02
+    stopped = bus.subscribe("detected_dock_pose", PoseStamped, queue_size=1)  # after the stop
+    with pytest.raises(TimeoutError):
+        await stopped.next(timeout=2.0)  # 8 s of sim time: 120 detections were it on
+    turned = await bus.call("dock_detector/toggle", Trigger.Request(), Trigger.Response)
+    assert turned.message == "dock detector on"
+    await stopped.next(timeout=10.0)

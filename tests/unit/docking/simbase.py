@@ -15,7 +15,7 @@ from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.geometry.smooth import SmoothControlParams
-from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped
+from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Trigger
 from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.collisions import ScanCollisions
@@ -30,6 +30,7 @@ from aiobt_services.docking.server import DockingServer
 from aiobt_services.docking.service import detection_of
 from aiobt_services.docking.simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 from aiobt_services.robot import convert
+from aiobt_services.robot.dock_detector import DockDetectorSwitch
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.sensors import BatteryConfig, NoiseConfig
 from aiobt_services.robot.sim import SimConfig, Simulation
@@ -62,6 +63,8 @@ class SimBase:
     battery: BatteryState | None = None
     scan: LaserScan | None = None
     last: tuple[float, float] = (0.0, 0.0)  # the last command
+    detector: DockDetectorSwitch = field(default_factory=DockDetectorSwitch)  # the robot's
+    calls: list[str] = field(default_factory=list)  # Trigger services called, by name
 
     def step(self, count: int) -> None:
         for _ in range(count):
@@ -69,7 +72,8 @@ class SimBase:
             steps = self.sim.steps
             if steps % 2 == 0:
                 self.odometry.appendleft(convert.odometry(self.sim))
-            if steps % CAMERA_EVERY == 0 and (seen := self.sim.detect_dock()) is not None:
+            seen = self.sim.detect_dock() if steps % CAMERA_EVERY == 0 else None
+            if seen is not None and self.detector.on:
                 self.detected = convert.dock_detection(seen, self.sim.time)
             if steps % SCAN_EVERY == 0:
                 self.scan = convert.laser_scan(self.sim.scan())
@@ -94,6 +98,14 @@ class SimBase:
     def detection(self) -> StampedPose3D | None:
         return None if self.detected is None else detection_of(self.detected)
 
+    async def trigger(self, name: str, timeout: float) -> str | None:  # noqa: ASYNC109
+        """The robot's ``dock_detector/toggle``, the one Trigger service it has."""
+        self.calls.append(name)
+        if name != "dock_detector/toggle":
+            return f"no service '{name}'"
+        self.detector.toggle(Trigger.Request())
+        return None
+
 
 def office_sim(battery: float = 0.5, seed: int = 3) -> Simulation:
     noise = NoiseConfig(odom_linear=0.05, odom_angular=0.05, slip=0.02, odom_angular_scale=0.02,
@@ -106,7 +118,8 @@ def docking_server(base: SimBase, navigate: object, params: DockingParams | None
                    dock_params: dict[str, str] | None = None) -> DockingServer:  # fmt: skip
     clock = SimClock(base)
     frames = RobotFrames(base.pose, base.odoms)
-    wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None)
+    wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None,
+                        trigger=base.trigger)  # fmt: skip
     given = SHIPPED["simple_charging_dock"] | (dock_params or {})
     chosen = params_from(SimpleChargingDockParams, "simple_charging_dock", given)
     plugin = SimpleChargingDock("simple_charging_dock", chosen, wiring)

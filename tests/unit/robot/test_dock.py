@@ -3,14 +3,17 @@ marker (in view, facing, not hidden; noisy, never the truth), the block the robo
 
 from __future__ import annotations
 
+import argparse
 import math
 
 import numpy as np
 import pytest
 
 from aiobt.geometry import Pose2D
+from aiobt.msgs import Trigger
 from aiobt_services.robot.dock import DockStation
 from aiobt_services.robot.mapfile import Dock, load_map
+from aiobt_services.robot.runner import DOCK_DETECTION, SimRunner
 from aiobt_services.robot.sim import SimConfig, Simulation
 from aiobt_services.robot.worlds import WORLDS_DIR
 
@@ -78,3 +81,30 @@ def test_the_block_stops_the_robot_on_the_contacts() -> None:
         assert "dock" in sim.in_contact
         assert sim.battery.charging  # the drive drew a little: it charges
         assert sim.detect_dock() is not None
+
+
+def test_the_runner_publishes_detections_only_while_the_detector_is_on() -> None:
+    """``srv/dock_detector/toggle``: on from the start, the first call keeps it on, the
+    next turns it off (the docking server's start, then its stop)."""
+    world = load_map(WORLDS_DIR / "office.yaml")
+    published: list[str] = []
+    sink = argparse.Namespace(publish=lambda topic, _msg: published.append(topic))
+    with Simulation(world, SimConfig()) as sim:
+        station = sim.dock_station
+        assert station is not None
+        sim.teleport(station.pose.compose(Pose2D(-0.8, 0.0, 0.0)))  # the marker in view
+        runner = SimRunner(sim, sink)
+
+        def detections() -> int:
+            published.clear()
+            for _ in range(30):
+                runner.tick()
+            return published.count(DOCK_DETECTION)
+
+        assert detections() > 0
+        assert runner.dock_detector.toggle(Trigger.Request()).message == "dock detector on"
+        assert detections() > 0
+        assert runner.dock_detector.toggle(Trigger.Request()).message == "dock detector off"
+        assert detections() == 0
+        assert runner.dock_detector.toggle(Trigger.Request()).success
+        assert detections() > 0
