@@ -48,11 +48,6 @@ class FollowingState(IntEnum):
 
 def goal_topic(goal: FollowObject.Goal) -> str:
     """The goal's pose topic, relative to the namespace; FollowingError if unusable."""
-    if goal.tracked_frame:
-        raise TransformError(
-            f"tracked_frame '{goal.tracked_frame}': aiobt has no TF tree to follow a frame "
-            "by; give pose_topic, a topic of the object's detected pose"
-        )
     topic = goal.pose_topic.lstrip("/")  # a ROS-style absolute name
     if not topic:
         raise FailedToDetect("No pose topic or target frame provided.")
@@ -60,6 +55,10 @@ def goal_topic(goal: FollowObject.Goal) -> str:
         raise FailedToDetect(f"pose_topic '{topic}' is the simulation's truth: follow a "
                              "detection of the object, as a robot has")  # fmt: skip
     return topic
+
+
+def no_frames(frame: str) -> AbstractContextManager[Detections]:
+    raise TransformError(f"tracked_frame '{frame}': this server reads no tf")
 
 
 class FollowingServer:
@@ -73,6 +72,7 @@ class FollowingServer:
         open_detections: OpenDetections,
         command: Callable[[Velocity], None],
         filtered: Callable[[StampedPose], None] = lambda _: None,
+        open_frame: OpenDetections = no_frames,
     ) -> None:
         self.params = params
         self.frames = frames
@@ -80,12 +80,13 @@ class FollowingServer:
         self.open_detections = open_detections
         self.command = command
         self.filtered = filtered
+        self.open_frame = open_frame
 
     async def execute(self, goal: FollowObject.Goal, handle: Any) -> FollowObject.Result:
         run = _Run(self, goal, handle)
         try:
-            topic = goal_topic(goal)
-            with self.open_detections(topic) as detections:
+            opened = self._open(goal)
+            with opened as detections:
                 log.info("following the object on '%s'", detections.topic)
                 return await run.follow(Tracking(detections, self.frames, self.params, self.clock))
         except FollowingError as exc:
@@ -97,6 +98,18 @@ class FollowingServer:
             return run.failed(FollowingError(str(exc)))
         finally:
             self.command(STOP)
+
+    def _open(self, goal: FollowObject.Goal) -> AbstractContextManager[Detections]:
+        """The goal's detections: the tracked frame's on tf (Nav2 prefers it), or the
+        pose topic's."""
+        frame = goal.tracked_frame.lstrip("/")
+        if not frame:
+            return self.open_detections(goal_topic(goal))
+        if self.frames.is_robot_frame(frame) or frame in ("odom", "map", self.params.fixed_frame):
+            raise TransformError(f"tracked_frame '{frame}' is one of the robot's own frames "
+                                 "(or odom, map), not an object to follow")  # fmt: skip
+        log.info("Following frame: %s instead of pose", frame)
+        return self.open_frame(frame)
 
 
 class _Run:

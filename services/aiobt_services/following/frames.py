@@ -52,6 +52,12 @@ class RobotFrames:
     def is_robot_frame(self, frame: str) -> bool:
         return frame == self.base_frame or frame in ROBOT_FRAMES
 
+    def knows(self, frame: str) -> bool:
+        """A pose in ``frame`` can be put in the others: the robot's own frame, or one
+        with robot poses (``odom``, ``map``)."""
+        self.refresh()
+        return self.is_robot_frame(frame) or frame in self._history
+
     def robot_in(self, frame: str, stamp: float | None = None) -> Pose2D:
         """The robot's pose in ``frame`` at ``stamp`` (None: the newest); TransformError
         when there is none within ``transform_tolerance``."""

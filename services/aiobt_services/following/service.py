@@ -13,7 +13,7 @@ from typing import Any, Protocol
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose
-from aiobt.msgs import Odometry, PoseStamped, Twist
+from aiobt.msgs import Odometry, PoseStamped, TFMessage, Twist
 from aiobt.msgs.remote_actions import FollowObject
 from aiobt.transport import Bus
 from aiobt.transport.latest import Latest
@@ -21,10 +21,12 @@ from aiobt.transport.latest import Latest
 from .follow import FollowingServer
 from .frames import HISTORY, RobotFrames
 from .params import FollowingParams
+from .tf_frames import FrameDetections, TransformTree
 
 log = logging.getLogger("aiobt_services.following.service")
 FILTERED_TOPIC = "filtered_dynamic_pose"  # Nav2's, for viewers
 MAP_POSE_TOPIC = "pose"
+TF_TOPIC = "tf"  # transforms, as localization's map -> odom: a tracked_frame's come here
 KEEP = round(HISTORY * 50)  # the poses of HISTORY s at the robot's 50 Hz
 Stamped = tuple[str, float, Pose2D, float | None]  # frame, stamp, pose, turn rate
 
@@ -100,7 +102,8 @@ class FollowingService:
         self._cmd = bus.publisher(cmd_vel_topic, Twist, reliable=True)
         self._filtered = bus.publisher(FILTERED_TOPIC, PoseStamped)
         self.server = FollowingServer(params, self.frames, clock, self.detections,
-                                      self.command, self.publish_filtered)  # fmt: skip
+                                      self.command, self.publish_filtered,
+                                      self.frame_detections)  # fmt: skip
         self.clock = clock
 
     def start(self) -> None:
@@ -122,6 +125,16 @@ class FollowingService:
             yield TopicDetections(latest, self.bus.keys.topic(topic))
         finally:
             latest.close()
+
+    @contextmanager
+    def frame_detections(self, frame: str) -> Iterator[FrameDetections]:
+        """``{ns}/tf`` read into a tree for the goal's time: the tracked frame's poses."""
+        tree = TransformTree(self.frames.knows)
+        tf = self.bus.subscribe(TF_TOPIC, TFMessage, callback=tree.add)
+        try:
+            yield FrameDetections(tree, frame, self.bus.keys.topic(TF_TOPIC))
+        finally:
+            tf.close()
 
     def command(self, cmd: Velocity) -> None:
         self._cmd.put(Twist.planar(cmd.v, cmd.w))

@@ -14,7 +14,7 @@ from collections.abc import Callable, Sequence
 
 import pytest
 
-from aiobt.msgs import GoalState, Header, Odometry, PoseStamped, Twist
+from aiobt.msgs import GoalState, Header, Odometry, PoseStamped, TFMessage, Twist
 from aiobt.msgs.follow_target import (
     OFFICE_LOOP_CENTRE,
     OFFICE_LOOP_RADII,
@@ -22,6 +22,7 @@ from aiobt.msgs.follow_target import (
     StartTarget,
     TargetStarted,
 )
+from aiobt.msgs.localization import TransformStamped
 from aiobt.msgs.remote_actions import FollowObject, FollowObjectError
 from aiobt.msgs.sim import Ack
 from aiobt.testing.bus import ServiceProcess
@@ -119,7 +120,8 @@ async def test_an_object_never_seen_fails_naming_it_and_the_server_runs_on(
     for goal, code, words in (
         ({"pose_topic": "people/alice"}, FollowObjectError.FAILED_TO_DETECT_OBJECT,
          f"'{bus_settings.namespace}/people/alice'"),
-        ({"tracked_frame": "cart"}, FollowObjectError.TF_ERROR, "tracked_frame 'cart'"),
+        ({"tracked_frame": "cart"}, FollowObjectError.FAILED_TO_DETECT_OBJECT,
+         "tracked_frame 'cart': no transform to frame 'cart' on tf"),
         ({"pose_topic": "sim/target"}, FollowObjectError.FAILED_TO_DETECT_OBJECT, "truth"),
     ):  # fmt: skip
         handle = await client.send_goal(FollowObject.Goal.model_validate(goal), server_timeout=10)
@@ -171,3 +173,44 @@ async def test_a_cancelled_goal_stops_the_robot(spawn: Spawn, bus: Bus, bus_sett
     async with asyncio.timeout(5.0):
         await stopped.wait()
     assert commands[-1] == Twist()  # the stop is the last command
+
+
+def tf_link(parent: str, child: str, x: float, stamp: float) -> TransformStamped:
+    return TransformStamped.model_validate({"header": {"stamp": stamp, "frame_id": parent},
+                                            "child_frame_id": child,
+                                            "transform": {"translation": {"x": x}}})  # fmt: skip
+
+
+async def test_a_tracked_frame_on_tf_is_followed(spawn: Spawn, bus: Bus, bus_settings: BusSettings):
+    """A tracker publishing the object as a frame on ``{ns}/tf`` (``odom`` -> ``cart_base``
+    -> ``cart``, 3 m ahead of the standing robot): the server drives toward it and
+    shows its filtered pose in ``odom``."""
+    server = spawn(["-m", "aiobt_services.following", *common(bus_settings)])
+    await up(bus, "following", server)
+    driving = asyncio.Event()
+    bus.subscribe("cmd_vel", Twist, lambda cmd: driving.set() if cmd.linear.x > 0.1 else None)
+    filtered = bus.subscribe("filtered_dynamic_pose", PoseStamped, queue_size=1)
+    odom, tf = bus.publisher("odom", Odometry), bus.publisher("tf", TFMessage)
+
+    async def robot_and_tracker() -> None:
+        for tick in itertools.count():
+            now = time.monotonic()  # the server's wall clock
+            odom.put(Odometry(header=Header(stamp=now, frame_id="odom")))
+            if tick % 5 == 0:
+                tf.put(TFMessage(transforms=[tf_link("odom", "cart_base", 2.0, now),
+                                             tf_link("cart_base", "cart", 1.0, now)]))  # fmt: skip
+            await asyncio.sleep(0.02)
+
+    feeding = asyncio.create_task(robot_and_tracker())
+    try:
+        client = bus.action_client(FollowObject.name, FollowObject)
+        goal = await client.send_goal(FollowObject.Goal(tracked_frame="cart"), server_timeout=10.0)
+        async with asyncio.timeout(10.0):
+            await driving.wait()
+        shown = await filtered.next(timeout=5.0)
+        await goal.cancel(timeout=5.0)
+    finally:
+        feeding.cancel()
+    assert shown.header.frame_id == "odom"
+    assert shown.x == pytest.approx(3.0, abs=0.01)
+    assert "Following frame: cart instead of pose" in server.output()

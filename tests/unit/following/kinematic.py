@@ -9,13 +9,28 @@ from contextlib import contextmanager
 
 from aiobt.geometry import STOP, Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose
+from aiobt.msgs import TFMessage
+from aiobt.msgs.geometry import Header, Quaternion, Vector3
+from aiobt.msgs.localization import Transform, TransformStamped
 from aiobt.msgs.remote_actions import FollowObject
 from aiobt_services.following.follow import FollowingServer
 from aiobt_services.following.frames import RobotFrames
 from aiobt_services.following.params import FollowingParams
+from aiobt_services.following.tf_frames import FrameDetections, TransformTree
 
 DT = 0.01
 ObjectAt = Callable[[float], Pose2D | None]  # the object at a time; None: not detected
+
+
+def transform(parent: str, child: str, pose: Pose2D, stamp: float) -> TransformStamped:
+    """``child``'s planar ``pose`` in ``parent``, as on ``{ns}/tf``."""
+    return TransformStamped(
+        header=Header(stamp=stamp, frame_id=parent),
+        child_frame_id=child,
+        transform=Transform(
+            translation=Vector3(x=pose.x, y=pose.y), rotation=Quaternion.from_yaw(pose.yaw)
+        ),
+    )
 
 
 class Kinematic:
@@ -29,7 +44,9 @@ class Kinematic:
         self.states: list[int] = []
         self.opened: list[str] = []
         self.topic = ""
-        self.server = FollowingServer(params, self.frames, self, self.open, self.command)
+        self.tree = TransformTree(self.frames.knows)  # the object also as tf's odom -> "person"
+        self.server = FollowingServer(params, self.frames, self, self.open, self.command,
+                                      open_frame=self.open_frame)  # fmt: skip
         self._feed()
 
     def now(self) -> float:
@@ -51,6 +68,11 @@ class Kinematic:
         obj = self.obj(self.time) if steps % 10 == 0 else None
         if obj is not None:
             self.detection = StampedPose(self.robot.inverse().compose(obj), self.time, "base_link")
+            if obj.is_finite():
+                self.tree.add(TFMessage(transforms=[self._transform("odom", "person", obj)]))
+
+    def _transform(self, parent: str, child: str, pose: Pose2D) -> TransformStamped:
+        return transform(parent, child, pose, self.time)
 
     def latest(self) -> StampedPose | None:
         return self.detection
@@ -62,6 +84,11 @@ class Kinematic:
         self.opened.append(topic)
         self.topic = f"robot/{topic}"
         yield self
+
+    @contextmanager
+    def open_frame(self, frame: str) -> Iterator[FrameDetections]:
+        self.opened.append(f"tf:{frame}")
+        yield FrameDetections(self.tree, frame, "robot/tf")
 
     def command(self, cmd: Velocity) -> None:
         self.cmd = cmd

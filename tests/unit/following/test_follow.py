@@ -101,7 +101,7 @@ async def test_lost_for_good_while_searching_fails_to_control() -> None:
     ("goal", "code", "words"),
     [
         ({"pose_topic": ""}, FollowObjectError.FAILED_TO_DETECT_OBJECT, "No pose topic"),
-        ({"tracked_frame": "person"}, FollowObjectError.TF_ERROR, "tracked_frame 'person'"),
+        ({"tracked_frame": "base_link"}, FollowObjectError.TF_ERROR, "tracked_frame 'base_link'"),
         ({"pose_topic": "sim/target"}, FollowObjectError.FAILED_TO_DETECT_OBJECT, "truth"),
         ({"pose_topic": "a/*"}, FollowObjectError.FAILED_TO_DETECT_OBJECT, "'a/*'"),
     ],
