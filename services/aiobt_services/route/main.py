@@ -65,7 +65,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def build(args: argparse.Namespace, service: RouteService) -> RouteActions:
     check_plugins(args)
     world = service.world
-    wiring = Wiring(world.snapshot, service.publish_speed_limit, service.call_trigger)
+    wiring = Wiring(world.snapshot, service.publish_speed_limit, service.call_service)
     graph, problem = load_or_explain(args.graph_filepath)
     scorer = edge_scorer(args, wiring)
     service.dynamic_edges = next(

@@ -4,8 +4,9 @@ underscores), and the server's parts built from them."""
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
-from aiobt.msgs.std import Trigger
+from aiobt.msgs import Msg
 from aiobt.system.plugin_params import comma_list, dotted_param
 from aiobt.system.service import non_negative, positive
 
@@ -105,7 +106,7 @@ def operations(args: argparse.Namespace, wiring: Wiring) -> list[RouteOperation]
     ]
 
 
-async def _not_wired(service: str, _timeout: float) -> Trigger.Response:
+async def _not_wired(service: str, _request: Msg, _reply: type[Any], _timeout: float) -> Any:
     raise RuntimeError(f"service {service}: not wired (the parameters are being checked)")
 
 

@@ -3,7 +3,7 @@ typed on :class:`.scorers.Scorer`) and route operations (:data:`.operations.OPER
 typed on :class:`.operations.RouteOperation`), each a dataclass whose fields are its
 Nav2 parameters. :func:`make_plugin` builds one from ``PLUGIN.NAME=VALUE`` texts, and
 gives it what the server wires in (the costmap, the speed-limit publisher, the
-Trigger-service caller, and the name it is loaded under) by field name.
+service caller of RouteOperationClients, and the name it is loaded under) by field name.
 
 As in Nav2, a name in ``edge_cost_functions`` or ``operations`` is the plugin's own
 type unless its ``plugin`` parameter names another (``OpenDoor.plugin=TriggerEvent``,
@@ -15,13 +15,14 @@ A plugin with an ``EXTRA_PARAMS`` field takes the numeric parameters it does not
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Awaitable, Callable
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from aiobt.costmap import CostGrid
-from aiobt.msgs.std import Trigger
 from aiobt.system.plugin_params import convert_param
+
+from .operation_client import ServiceCall
 
 P = TypeVar("P")
 NAV2_PREFIX = "nav2_route::"
@@ -33,11 +34,11 @@ class Wiring:
 
     costmap: Callable[[], CostGrid | None]
     publish: Callable[[float], None]  # the speed limit, percent
-    call_trigger: Callable[[str, float], Awaitable[Trigger.Response]]  # service, timeout s
+    call_service: ServiceCall  # a RouteOperationClient's: service, request, reply model, s
 
     def values(self) -> dict[str, Any]:
         return {"costmap": self.costmap, "publish": self.publish,
-                "call_trigger": self.call_trigger}  # fmt: skip
+                "call_service": self.call_service}  # fmt: skip
 
 
 def make_plugin(

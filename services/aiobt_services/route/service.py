@@ -5,12 +5,13 @@ services, the speed limit and the graph (latched, for viewers) out."""
 from __future__ import annotations
 
 import logging
+from typing import TypeVar
 
 from aiobt.core.clock import Clock
 from aiobt.costmap.feed import RobotFeed
 from aiobt.costmap.world import FedCostmap
 from aiobt.geometry import XYYaw
-from aiobt.msgs import OccupancyGrid
+from aiobt.msgs import Msg, OccupancyGrid
 from aiobt.msgs.remote_actions import ComputeAndTrackRoute, ComputeRoute
 from aiobt.msgs.route_graph import DynamicEdges, RouteGraph, SetRouteGraph
 from aiobt.msgs.speed_limit import SpeedLimit
@@ -26,6 +27,7 @@ from .operations import ReroutingService
 from .planning import RoutePlanner
 from .scorers import DynamicEdgesScorer
 
+M = TypeVar("M", bound=Msg)
 log = logging.getLogger("aiobt_services.route.service")
 SERVER = "route_server"
 REROUTE_SERVICE = f"{SERVER}/ReroutingService/reroute"
@@ -54,11 +56,11 @@ class RouteService:
         self.feed.read()
         return self.world.require_pose()
 
-    async def call_trigger(self, service: str, timeout: float) -> Trigger.Response:  # noqa: ASYNC109
-        """The TriggerEvent operation's call: ``{ns}/srv/<service>`` (a ROS-style leading
-        or trailing '/' dropped), std_srvs/Trigger, waiting ``timeout`` s at most."""
-        name = service.strip("/")
-        return await self.bus.call(name, Trigger.Request(), Trigger.Response, timeout)
+    async def call_service(self, service: str, request: Msg, reply: type[M],
+                           timeout: float) -> M:  # noqa: ASYNC109  # fmt: skip
+        """A RouteOperationClient's call (TriggerEvent's): ``{ns}/srv/<service>`` (a
+        ROS-style leading or trailing '/' dropped), waiting ``timeout`` s at most."""
+        return await self.bus.call(service.strip("/"), request, reply, timeout)
 
     def publish_speed_limit(self, percent: float) -> None:
         self.speed_limits.put(SpeedLimit(percentage=True, speed_limit=percent))

@@ -1,50 +1,33 @@
 """Nav2's ``TriggerEvent`` route operation: a ``std_srvs/Trigger`` service called where
-the graph asks for the operation by its name (opening a door, calling a lift).
+the graph asks for the operation by its name (opening a door, calling a lift), the
+:class:`~.operation_client.RouteOperationClient` of the Trigger type.
 
-The service is the graph operation's ``service_name`` metadata, else the operation's
-``service_name`` parameter (neither: OPERATION_FAILED). The call itself is the
-server's (:attr:`TriggerEvent.call_trigger`, given the name and a timeout): here it is
-``{ns}/srv/<service_name>`` on the bus. A call that fails or gets no answer within
-0.5 s fails the goal with OPERATION_FAILED; the response's ``success`` is not
-looked at, as in Nav2.
+The response's ``success`` is not looked at, as in Nav2 (it is logged).
 """
 
 from __future__ import annotations
 
 import logging
-from collections.abc import Awaitable, Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from typing import ClassVar
 
+from aiobt.msgs import Msg
 from aiobt.msgs.std import Trigger
 
-from .errors import RouteError
-from .operation_event import Event, OperationResult, ProcessType
+from .operation_client import CALL_TIMEOUT, RouteOperationClient
+from .operation_event import OperationResult
 
+__all__ = ["CALL_TIMEOUT", "TriggerEvent"]
 log = logging.getLogger("aiobt_services.route.trigger_event")
-CALL_TIMEOUT = 0.5  # s, Nav2's RouteOperationClient's invoke timeout
-TriggerCall = Callable[[str, float], Awaitable[Trigger.Response]]
 
 
 @dataclass(slots=True)
-class TriggerEvent:
-    call_trigger: TriggerCall
-    name: str = "TriggerEvent"  # the name it is loaded under, which the graph names
-    service_name: str = ""
-    process_type: ProcessType = field(default="ON_GRAPH", init=False)
+class TriggerEvent(RouteOperationClient[Trigger.Request, Trigger.Response]):
+    REQUEST: ClassVar[type[Msg]] = Trigger.Request
+    RESPONSE: ClassVar[type[Msg]] = Trigger.Response
 
-    async def perform(self, event: Event) -> OperationResult:
-        given = event.metadata.get("service_name", "")
-        service = given if isinstance(given, str) and given else self.service_name
-        where = f"at node {event.node.nodeid}" if event.node is not None else "on the route"
-        if not service:
-            raise RouteError("OPERATION_FAILED", f"route operation {self.name} {where}: no "
-                             "service to call: set its service_name parameter or "
-                             "'service_name' in the graph operation's metadata")  # fmt: skip
-        try:
-            response = await self.call_trigger(service, CALL_TIMEOUT)
-        except Exception as exc:  # any failure of the call fails the goal, as in Nav2
-            raise RouteError("OPERATION_FAILED", f"route operation {self.name} {where}: "
-                             f"calling service '{service}' failed: {exc}") from None  # fmt: skip
-        log.info("%s: processed operation %s with service %s (success %s: %s)", self.name,
-                 where, service, response.success, response.message)  # fmt: skip
+    name: str = "TriggerEvent"
+
+    def process_response(self, response: Trigger.Response) -> OperationResult:
+        log.info("%s: success %s: %s", self.name, response.success, response.message)
         return OperationResult()

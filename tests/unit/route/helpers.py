@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 from typing import Any
 
+from aiobt.msgs import Msg
 from aiobt.msgs.std import Trigger
 from aiobt_services.route.geojson import parse_graph
 from aiobt_services.route.graph import Graph
@@ -46,15 +47,17 @@ def line(*xs: float) -> Graph:
 
 
 class Triggers:
-    """The server's std_srvs/Trigger caller, faked: the calls made (service, timeout);
-    each answers ``response``, or raises ``fail``."""
+    """The server's service caller, faked for std_srvs/Trigger: the calls made (service,
+    timeout); each answers ``response``, or raises ``fail``."""
 
     def __init__(self, fail: Exception | None = None, response: Trigger.Response | None = None):
         self.calls: list[tuple[str, float]] = []
         self.fail = fail
         self.response = response or Trigger.Response(success=True, message="done")
 
-    async def __call__(self, service: str, wait: float) -> Trigger.Response:
+    async def __call__(self, service: str, request: Msg, reply: type[Any],
+                       wait: float) -> Trigger.Response:  # fmt: skip
+        assert (type(request), reply) == (Trigger.Request, Trigger.Response)
         self.calls.append((service, wait))
         if self.fail is not None:
             raise self.fail
