@@ -81,7 +81,7 @@ def start(settings: Settings, args: argparse.Namespace, bus: Bus, clock: Clock) 
     """The server's parts on ``bus``, its actions and services served."""
     wires = DockingBus(bus, clock, args.cmd_vel_topic)
     wiring = DockWiring(wires.frames, clock, wires.detection, wires.battery, wires.show,
-                        wires.subscribe, wires.trigger)  # fmt: skip
+                        wires.subscribe, wires.trigger, wires.joint_states)  # fmt: skip
     plugins = make_plugins(settings.plugins, wiring)
     costmap = ScanCollisions(local_costmap_from(args), wires.scan, wires.frames, clock)
     controller = DockController(settings.controller, costmap.collides)

@@ -10,7 +10,7 @@ from typing import Any, Protocol
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D
 from aiobt.geometry.pose_filter import StampedPose3D
-from aiobt.msgs import BatteryState
+from aiobt.msgs import BatteryState, JointState
 
 from .frames import RobotFrames
 
@@ -31,7 +31,8 @@ class DockWiring:
     ``staging_pose``); ``subscribe(True/False)`` opens and closes its subscription to
     the detections (``subscribe_toggle``), ``trigger(name, timeout)`` calls a
     ``std_srvs/Trigger`` service ``{ns}/srv/{name}``: None when it succeeded, else why
-    not (``detector_service_name``)."""
+    not (``detector_service_name``); ``joint_states()`` the newest of the wheels (stall
+    detection; subscribed at the first call)."""
 
     frames: RobotFrames
     clock: Clock
@@ -40,6 +41,7 @@ class DockWiring:
     show: Callable[[str, Pose2D, str], None]
     subscribe: Callable[[bool], None] = _always_subscribed
     trigger: Callable[[str, float], Awaitable[str | None]] = _no_services
+    joint_states: Callable[[], JointState | None] = lambda: None
 
 
 class ChargingDock(Protocol):

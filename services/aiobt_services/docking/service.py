@@ -13,7 +13,7 @@ import numpy as np
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
-from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Trigger, Twist
+from aiobt.msgs import BatteryState, JointState, LaserScan, Odometry, PoseStamped, Trigger, Twist
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
 from aiobt.transport import Bus, Latest, ServiceError
@@ -45,6 +45,7 @@ class DockingBus:
         self._odom = bus.latest("odom", Odometry, keep=ODOMETRY_KEPT)
         self._detected: Latest[PoseStamped] | None = None  # while a plugin subscribes
         self._subscribers = 0
+        self._joints: Latest[JointState] | None = None  # once a plugin detects stalls
         self._battery = bus.latest("battery", BatteryState)
         self._scan = bus.latest("scan", LaserScan)
         self.frames = RobotFrames(self._pose.get, self._odom.newest_first)
@@ -56,6 +57,12 @@ class DockingBus:
     def detection(self) -> StampedPose3D | None:
         msg = None if self._detected is None else self._detected.get()
         return None if msg is None else detection_of(msg)
+
+    def joint_states(self) -> JointState | None:
+        """The wheels' newest ``joint_states`` (subscribed at the first call)."""
+        if self._joints is None:
+            self._joints = self.bus.latest("joint_states", JointState)
+        return self._joints.get()
 
     def subscribe(self, on: bool) -> None:
         """Open (``True``) or close the detections' subscription; it lasts while any

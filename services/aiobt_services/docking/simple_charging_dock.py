@@ -5,9 +5,9 @@ of the dock pose, charging when the battery's current exceeds ``charging_thresho
 (``use_battery_status``) or, without battery status, when docked.
 
 The detector is started and stopped around each docking (``detector_service_name``,
-``detector_service_timeout``, ``subscribe_toggle``: :mod:`.detector`).
-
-Not available here: stall detection (``use_stall_detection``: no ``joint_states``).
+``detector_service_timeout``, ``subscribe_toggle``: :mod:`.detector`). With
+``use_stall_detection`` docked is the wheels stalled against the dock (``joint_states``:
+:mod:`.stall`), not ``docking_threshold``.
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from aiobt.geometry.quaternion import quat_from_rpy
 from .detection import dock_pose
 from .detector import DetectorControl
 from .plugins import DockWiring
+from .stall import is_stalled
 
 log = logging.getLogger("aiobt_services.docking.simple_charging_dock")
 
@@ -42,6 +43,9 @@ class SimpleChargingDockParams:
     filter_coef: float = 0.1
     charging_threshold: float = 0.5
     use_stall_detection: bool = False
+    stall_joint_names: tuple[str, ...] = ()
+    stall_velocity_threshold: float = 1.0
+    stall_effort_threshold: float = 1.0
     docking_threshold: float = 0.05
     staging_x_offset: float = -0.7
     staging_yaw_offset: float = 0.0
@@ -59,8 +63,9 @@ class SimpleChargingDockParams:
         if self.rotate_to_dock and self.dock_direction.lower() != "backward":
             raise ValueError("Parameter rotate_to_dock is enabled but dock direction is not "
                              "backward. Please set dock direction to backward.")  # fmt: skip
-        if self.use_stall_detection:
-            raise ValueError("use_stall_detection: the robot publishes no joint_states here")
+        if self.use_stall_detection and not self.stall_joint_names:
+            raise ValueError("stall_joint_names cannot be empty! (use_stall_detection is true; "
+                             "e.g. [wheel_left_joint, wheel_right_joint])")  # fmt: skip
         if not (math.isfinite(self.detector_service_timeout) and self.detector_service_timeout > 0):
             raise ValueError(f"detector_service_timeout must be > 0, got "
                              f"{self.detector_service_timeout}")  # fmt: skip
@@ -81,6 +86,8 @@ class SimpleChargingDock:
                                       p.external_detection_rotation_pitch,
                                       p.external_detection_rotation_yaw)  # fmt: skip
         self.dock: tuple[Pose2D, str] | None = None  # the tracked dock pose and its frame
+        if p.use_stall_detection:
+            wiring.joint_states()  # subscribed from the start, as Nav2's
         self.detector = DetectorControl(wiring, service=p.detector_service_name,
                                         timeout=p.detector_service_timeout,
                                         subscribe_toggle=p.subscribe_toggle,
@@ -127,6 +134,10 @@ class SimpleChargingDock:
         return pose
 
     def is_docked(self) -> bool:
+        p = self.params
+        if p.use_stall_detection:
+            return is_stalled(self.wiring.joint_states(), p.stall_joint_names,
+                              p.stall_velocity_threshold, p.stall_effort_threshold)  # fmt: skip
         if self.dock is None:
             return False
         pose, frame = self.dock

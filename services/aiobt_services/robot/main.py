@@ -1,7 +1,8 @@
 """``aiobt robot``: the pybullet robot service on Zenoh.
 
 Publishes ``{ns}/odom``, ``{ns}/pose`` (unless ``--pose-source none``), ``{ns}/scan``,
-``{ns}/battery``, ``{ns}/clock``, ``{ns}/bumper``, ``{ns}/detected_dock_pose`` (the
+``{ns}/battery``, ``{ns}/clock``, ``{ns}/bumper``, ``{ns}/joint_states`` (the wheels),
+``{ns}/detected_dock_pose`` (the
 dock's marker as the robot's camera sees it) and the latched ``{ns}/map``; listens on
 ``{ns}/cmd_vel`` and ``{ns}/initialpose``; serves
 ``{ns}/srv/reinitialize_global_localization`` and ``{ns}/srv/dock_detector/toggle``
@@ -28,6 +29,7 @@ from pathlib import Path
 from aiobt.msgs import (
     BatteryState,
     Empty,
+    JointState,
     LaserScan,
     Msg,
     OccupancyGrid,
@@ -51,7 +53,7 @@ from .dock_detector import SERVICE as DETECTOR_SERVICE
 from .mapfile import MapError, load_map
 from .options import add_robot_arguments, sim_config
 from .pacing import speed_label
-from .runner import DOCK_DETECTION, Rates, SimRunner
+from .runner import DOCK_DETECTION, JOINT_STATES, Rates, SimRunner
 from .service import RobotService
 from .sim import Simulation
 from .snapshot import render_png
@@ -69,6 +71,7 @@ PUBLISHED: dict[str, type[Msg]] = {
     "clock": ClockMsg,
     "bumper": messages.BumperEvent,
     DOCK_DETECTION: PoseStamped,
+    JOINT_STATES: JointState,
 }
 
 

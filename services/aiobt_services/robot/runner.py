@@ -29,6 +29,7 @@ from .sim import Simulation
 log = logging.getLogger("aiobt_services.robot.runner")
 
 TOPICS = ("odom", "pose", "scan", "battery", "clock", "bumper")
+JOINT_STATES = "joint_states"  # the wheels, with odometry (Nav2's stall detection reads it)
 DOCK_DETECTION = "detected_dock_pose"  # Nav2's topic: the dock's marker, as a camera sees it
 COMMAND_POLL = 0.001  # wall s between looks for a late command
 # A command later than this (wall s) is a stalled client; one scheduler slot on a loaded
@@ -124,6 +125,7 @@ class SimRunner:
                 self.publish_clock()
         if "odom" in due:
             self._outputs.publish("odom", convert.odometry(sim))
+            self._outputs.publish(JOINT_STATES, sim.wheels.state(sim.time))
         if "pose" in due:
             self._outputs.publish(SIM_POSE, convert.true_pose(sim))
             if self._publish_pose:

@@ -32,6 +32,7 @@ from .sensors import (
     lidar_ranges,
     noisy_pose,
 )
+from .wheels import WheelJoints
 from .world import Physics, RobotShape, substeps_for, wall_rectangles
 
 log = logging.getLogger("aiobt_services.robot.sim")
@@ -77,6 +78,7 @@ class Simulation:
         self.drive = DriveController(self.config.limits)
         self.battery = Battery(self.config.battery)
         self.odometry = WheelOdometry()
+        self.wheels = WheelJoints()  # the motors as joint_states reports them
         self._rng = np.random.default_rng(self.config.noise.seed)
         substeps = substeps_for(self.config.limits.max_linear, self.config.dt)
         self._physics = Physics(gui=self.config.gui, dt=self.config.dt, substeps=substeps)
@@ -169,6 +171,7 @@ class Simulation:
         if self._bumper.touching:  # pushing an obstacle: the motors stall, the wheels turn
             wheels = self._achieved(before, pose, dt)  # with the body, no further
         self.odometry.update(*wheels, dt, cfg.noise, self._rng)
+        self.wheels.update((linear, angular), wheels, dt)
         on_dock = self.dock_station is not None and self.dock_station.charging_contact(pose)
         self.battery.update(linear, angular, on_dock, dt)
         return self._contact_events()

@@ -60,6 +60,7 @@ from aiobt.msgs.geometry import (
     quaternion_to_yaw,
     yaw_to_quaternion,
 )
+from aiobt.msgs.joint_state import JointState
 from aiobt.msgs.localization import (
     Particle,
     ParticleCloud,
@@ -147,6 +148,7 @@ __all__ = [
     "Goals",
     "Header",
     "IsPathValid",
+    "JointState",
     "LaserScan",
     "MapMetaData",
     "MessageError",

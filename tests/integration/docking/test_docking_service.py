@@ -116,14 +116,19 @@ async def test_a_database_that_does_not_parse(spawn: Spawn, bus: Bus, bus_settin
 async def test_docks_given_as_parameters_with_the_detector_only_while_docking(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ):
-    """Nav2's ``docks`` parameter instead of a file, and the robot's detector started and
-    stopped by the docking server through ``srv/dock_detector/toggle``."""
+    """Nav2's ``docks`` parameter instead of a file, the robot's detector started and
+    stopped by the docking server through ``srv/dock_detector/toggle``, and docked by
+    stall detection alone (the robot's wheels on ``joint_states``; no battery status)."""
     truth = bus.latest(SIM_POSE, PoseStamped)
     pose = f"home.pose=[{DOCK[0]},{DOCK[1]},{DOCK[2]}]"
-    detector = "simple_charging_dock.detector_service_name=dock_detector/toggle"
+    plugin = "simple_charging_dock."
     await start(spawn, bus, bus_settings, "--docks", "home", "--param",
-                "home.type=simple_charging_dock", "--param", pose, "--param", detector,
-                "--param", "simple_charging_dock.subscribe_toggle=true")  # fmt: skip
+                "home.type=simple_charging_dock", "--param", pose,
+                "--param", f"{plugin}detector_service_name=dock_detector/toggle",
+                "--param", f"{plugin}subscribe_toggle=true",
+                "--param", f"{plugin}use_stall_detection=true",
+                "--param", f"{plugin}stall_joint_names=[wheel_left_joint,wheel_right_joint]",
+                "--param", f"{plugin}use_battery_status=false")  # fmt: skip
     docks = await bus.latest("docks", DockList, latched=True).wait_latest(10.0)
     assert [d.name for d in docks.docks] == ["home"]
     await place(bus, 1.6, 9.6, 3.0)
@@ -133,6 +138,8 @@ async def test_docks_given_as_parameters_with_the_detector_only_while_docking(
                                                      navigate_to_staging_pose=False))  # fmt: skip
     assert done.success, done.error_msg
     assert off_the_dock(await truth.wait_latest(5.0))[0] <= 0.02
+    after = bus.subscribe("battery", BatteryState, queue_size=1)  # reported after the docking
+    assert (await after.next(timeout=5.0)).power_supply_status is PowerSupplyStatus.CHARGING
     stopped = bus.subscribe("detected_dock_pose", PoseStamped, queue_size=1)  # after the stop
     with pytest.raises(TimeoutError):
         await stopped.next(timeout=2.0)  # 8 s of sim time: 120 detections were it on

@@ -15,7 +15,7 @@ from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.geometry.smooth import SmoothControlParams
-from aiobt.msgs import BatteryState, LaserScan, Odometry, PoseStamped, Trigger
+from aiobt.msgs import BatteryState, JointState, LaserScan, Odometry, PoseStamped, Trigger
 from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.collisions import ScanCollisions
@@ -60,6 +60,7 @@ class SimBase:
     sim: Simulation
     odometry: deque[Odometry] = field(default_factory=lambda: deque(maxlen=25))
     detected: PoseStamped | None = None
+    joints: JointState | None = None  # the wheels, as joint_states
     battery: BatteryState | None = None
     scan: LaserScan | None = None
     last: tuple[float, float] = (0.0, 0.0)  # the last command
@@ -72,6 +73,7 @@ class SimBase:
             steps = self.sim.steps
             if steps % 2 == 0:
                 self.odometry.appendleft(convert.odometry(self.sim))
+                self.joints = self.sim.wheels.state(self.sim.time)
             seen = self.sim.detect_dock() if steps % CAMERA_EVERY == 0 else None
             if seen is not None and self.detector.on:
                 self.detected = convert.dock_detection(seen, self.sim.time)
@@ -119,7 +121,7 @@ def docking_server(base: SimBase, navigate: object, params: DockingParams | None
     clock = SimClock(base)
     frames = RobotFrames(base.pose, base.odoms)
     wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None,
-                        trigger=base.trigger)  # fmt: skip
+                        trigger=base.trigger, joint_states=lambda: base.joints)  # fmt: skip
     given = SHIPPED["simple_charging_dock"] | (dock_params or {})
     chosen = params_from(SimpleChargingDockParams, "simple_charging_dock", given)
     plugin = SimpleChargingDock("simple_charging_dock", chosen, wiring)

@@ -8,6 +8,7 @@ from typing import get_args, get_origin
 import numpy as np
 import numpy.typing as npt
 import pytest
+from pydantic import ValidationError
 
 import aiobt.msgs as msgs
 import aiobt.msgs.nav as nav
@@ -21,6 +22,9 @@ SAMPLES: list[Msg] = [
     msgs.Pose.from_xy_yaw(1, 2, -0.5),
     PoseStamped.from_xy_yaw(3, 4, 0.25, stamp=2.0),
     msgs.Twist.planar(0.5, -0.2),
+    msgs.JointState(
+        name=["wheel_left_joint", "wheel_right_joint"], velocity=[1.0, -1.0], effort=[0.5, 0.25]
+    ),
     msgs.Odometry(pose=msgs.Pose.from_xy_yaw(1, 1), twist=msgs.Twist.planar(0.1, 0.0)),
     msgs.LaserScan(
         angle_min=-1.0,
@@ -284,3 +288,11 @@ def test_every_action_declares_the_models_its_generic_parameters_name() -> None:
     assert msgs.ClearEntireCostmap.service_name("global_costmap") == (
         "global_costmap/clear_entirely_global_costmap"
     )
+
+
+def test_joint_state_lists_match_the_names() -> None:
+    with pytest.raises(ValidationError, match="velocity has 2 values for 1 joints"):
+        msgs.JointState(name=["wheel_left_joint"], velocity=[1.0, 2.0])
+    state = msgs.JointState(name=["a", "b"], effort=[0.5, 1.5])
+    assert (state.of("effort", "b"), state.of("velocity", "b"), state.of("effort", "c")) == (
+        1.5, None, None)  # fmt: skip
