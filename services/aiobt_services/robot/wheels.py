@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from aiobt.msgs.geometry import Header
 from aiobt.msgs.joint_state import JointState
 
 
@@ -39,25 +40,28 @@ class WheelMotors:
 
 @dataclass(slots=True)
 class WheelJoints:
-    """Updated each physics step; :meth:`state` is the ``joint_states`` message."""
+    """Updated each physics step (cheaply: the body's motion asked and rolled, and the
+    distance rolled); :meth:`state` is the ``joint_states`` message."""
 
     motors: WheelMotors = field(default_factory=WheelMotors)
-    positions: list[float] = field(default_factory=lambda: [0.0, 0.0])
-    velocities: list[float] = field(default_factory=lambda: [0.0, 0.0])
-    efforts: list[float] = field(default_factory=lambda: [0.0, 0.0])
+    asked: tuple[float, float] = (0.0, 0.0)  # the body's (linear, angular) commanded
+    rolled: tuple[float, float] = (0.0, 0.0)  # and achieved
+    travel: list[float] = field(default_factory=lambda: [0.0, 0.0])  # m, rad rolled
 
     def update(self, commanded: tuple[float, float], rolled: tuple[float, float],
                dt: float) -> None:  # fmt: skip
         """``commanded`` and ``rolled``: the body's (linear, angular) asked and achieved."""
-        asked, turned = self.motors.rates(*commanded), self.motors.rates(*rolled)
-        for i in range(2):
-            self.positions[i] += turned[i] * dt
-            self.velocities[i] = turned[i]
-            self.efforts[i] = self.motors.effort(asked[i], turned[i])
+        self.asked, self.rolled = commanded, rolled
+        self.travel[0] += rolled[0] * dt
+        self.travel[1] += rolled[1] * dt
 
     def state(self, stamp: float) -> JointState:
-        return JointState.model_validate({
-            "header": {"stamp": stamp, "frame_id": "base_link"},
-            "name": list(self.motors.names), "position": list(self.positions),
-            "velocity": list(self.velocities), "effort": list(self.efforts),
-        })  # fmt: skip
+        m = self.motors
+        asked, turning = m.rates(*self.asked), m.rates(*self.rolled)
+        return JointState.model_construct(
+            header=Header.model_construct(stamp=stamp, frame_id="base_link"),
+            name=list(m.names),
+            position=list(m.rates(*self.travel)),  # the angles: the rates of the distance
+            velocity=list(turning),
+            effort=[m.effort(asked[i], turning[i]) for i in range(2)],
+        )
