@@ -36,6 +36,8 @@ from aiobt_services.robot.sensors import BatteryConfig, NoiseConfig
 from aiobt_services.robot.sim import SimConfig, Simulation
 from aiobt_services.robot.worlds import WORLDS_DIR
 
+STAGED = Pose2D(1.45, 9.8, math.pi - 0.1)  # about the office dock's staging pose
+HOME = DockRobot.Goal(dock_id="home_dock", navigate_to_staging_pose=False)
 CAMERA_EVERY = 7  # steps: about 15 Hz, as the robot service
 BATTERY_EVERY = 100  # 1 Hz
 SCAN_EVERY = 10  # 10 Hz
@@ -107,6 +109,10 @@ class SimBase:
             return f"no service '{name}'"
         self.detector.toggle(Trigger.Request())
         return None
+
+
+async def no_navigation(pose: Pose2D, frame: str, max_time: float) -> None:
+    raise AssertionError("the robot was near the staging pose: no navigation expected")
 
 
 def office_sim(battery: float = 0.5, seed: int = 3) -> Simulation:

@@ -5,21 +5,27 @@ the simulation with the robot's detector switched on only while it docks."""
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pytest
 
-from aiobt.geometry import Pose2D
 from aiobt.geometry.pose_filter import StampedPose3D
-from aiobt.msgs.remote_actions import DockRobot, DockRobotError
+from aiobt.msgs.remote_actions import DockRobotError
 from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.frames import RobotFrames
 from aiobt_services.docking.plugins import DockWiring
 from aiobt_services.docking.simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 from aiobt_services.robot.dock_detector import DockDetectorSwitch
 
-from .simbase import Feedback, SimBase, docked_error, docking_server, office_sim
+from .simbase import (
+    HOME,
+    STAGED,
+    Feedback,
+    SimBase,
+    docked_error,
+    docking_server,
+    no_navigation,
+    office_sim,
+)
 
 
 class FakeClock:
@@ -135,12 +141,6 @@ def test_a_bad_service_timeout_is_named() -> None:
 
 
 ON_DEMAND = {"detector_service_name": "dock_detector/toggle", "subscribe_toggle": "true"}
-STAGED = Pose2D(1.45, 9.8, math.pi - 0.1)
-HOME = DockRobot.Goal(dock_id="home_dock", navigate_to_staging_pose=False)
-
-
-async def no_navigation(pose: Pose2D, frame: str, max_time: float) -> None:
-    raise AssertionError("no navigation expected")
 
 
 @pytest.mark.timeout(60)

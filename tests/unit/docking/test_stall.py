@@ -4,19 +4,24 @@ docking by it, the robot's wheels reported on ``joint_states``."""
 
 from __future__ import annotations
 
-import math
-
 import pytest
 
-from aiobt.geometry import Pose2D
 from aiobt.msgs import JointState, PowerSupplyStatus
-from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
 from aiobt_services.docking.frames import RobotFrames
 from aiobt_services.docking.plugins import DockWiring
 from aiobt_services.docking.simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 
-from .simbase import Feedback, SimBase, docked_error, docking_server, office_sim
+from .simbase import (
+    HOME,
+    STAGED,
+    Feedback,
+    SimBase,
+    docked_error,
+    docking_server,
+    no_navigation,
+    office_sim,
+)
 
 NAMES = ["left_motor", "right_motor", "another_motor"]
 
@@ -55,21 +60,15 @@ STALL = {"use_stall_detection": "true", "use_battery_status": "false",  # docked
          "stall_joint_names": "wheel_left_joint,wheel_right_joint"}  # fmt: skip
 
 
-async def no_navigation(pose: Pose2D, frame: str, max_time: float) -> None:
-    raise AssertionError("no navigation expected")
-
-
 @pytest.mark.timeout(60)
 async def test_docks_by_stall_on_the_simulation() -> None:
     with office_sim() as sim:
         base = SimBase(sim)
         server = docking_server(base, no_navigation, dock_params=STALL)
-        base.place(Pose2D(1.45, 9.8, math.pi - 0.1))
+        base.place(STAGED)
         plugin = server.plugins["simple_charging_dock"]
         assert not plugin.is_docked()  # standing: no effort
-        result = await server.dock_robot(DockRobot.Goal(dock_id="home_dock",
-                                                        navigate_to_staging_pose=False),
-                                         Feedback())  # fmt: skip
+        result = await server.dock_robot(HOME, Feedback())
         assert result.success, result.error_msg
         distance, heading = docked_error(sim)
         assert distance <= 0.02, distance
