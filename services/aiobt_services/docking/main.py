@@ -1,10 +1,12 @@
 """``aiobt docking``: Nav2's docking server (``opennav_docking``) on Zenoh.
 
 Loads a dock database (``--dock-database``, Nav2's YAML; a shipped world's name picks
-its database) and the dock plugins (``--dock-plugins``, Nav2's SimpleChargingDock);
-reads ``{ns}/pose``, ``{ns}/odom``, ``{ns}/battery``, ``{ns}/scan`` (its approach's
-collision check) and the dock's detections on
-``{ns}/detected_dock_pose``; serves the actions ``dock_robot`` and ``undock_robot``
+its database; or Nav2's ``docks`` parameter, ``--docks``) and the dock plugins
+(``--dock-plugins``, Nav2's SimpleChargingDock); reads ``{ns}/pose``, ``{ns}/odom``,
+``{ns}/battery``, ``{ns}/scan`` (its approach's collision check), the dock's detections
+on ``{ns}/detected_dock_pose`` and, with stall detection, ``{ns}/joint_states``; calls
+a plugin's ``detector_service_name`` (``{ns}/srv/...``, std_srvs/Trigger) to start and
+stop the detector; serves the actions ``dock_robot`` and ``undock_robot``
 (navigating to a staging pose through the navigator's ``navigate_to_pose``) and the
 service ``srv/docking_server/reload_database``; publishes ``{ns}/cmd_vel`` while it
 drives, ``{ns}/dock_pose``, ``{ns}/filtered_dock_pose``, ``{ns}/staging_pose``, and
