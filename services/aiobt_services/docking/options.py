@@ -23,10 +23,13 @@ from .database import DockInstance, database_path, docks_from_params
 from .params import DockingParams
 from .plugins import ChargingDock, DockWiring, PluginFactory
 from .simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
+from .simple_dock import SimpleDockParams
+from .simple_non_charging_dock import SimpleNonChargingDock
 
 T = TypeVar("T")
 PLUGIN_TYPES: dict[str, tuple[type[Any], PluginFactory]] = {  # Nav2's type: params, class
     "opennav_docking::SimpleChargingDock": (SimpleChargingDockParams, SimpleChargingDock),
+    "opennav_docking::SimpleNonChargingDock": (SimpleDockParams, SimpleNonChargingDock),
 }
 DEFAULT_PLUGIN = "simple_charging_dock"
 # aiobt's robot and dock: the marker is on the dock's face, a robot radius ahead of the

@@ -23,12 +23,11 @@ from aiobt_services.docking.controller import ControllerParams, DockController
 from aiobt_services.docking.database import DockInstance
 from aiobt_services.docking.frames import RobotFrames
 from aiobt_services.docking.motion import Motion
-from aiobt_services.docking.options import SHIPPED
+from aiobt_services.docking.options import PLUGIN_TYPES, SHIPPED
 from aiobt_services.docking.params import DockingParams
 from aiobt_services.docking.plugins import DockWiring
 from aiobt_services.docking.server import DockingServer
 from aiobt_services.docking.service import detection_of
-from aiobt_services.docking.simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 from aiobt_services.robot import convert
 from aiobt_services.robot.dock_detector import DockDetectorSwitch
 from aiobt_services.robot.mapfile import load_map
@@ -123,14 +122,18 @@ def office_sim(battery: float = 0.5, seed: int = 3) -> Simulation:
 
 
 def docking_server(base: SimBase, navigate: object, params: DockingParams | None = None,
-                   dock_params: dict[str, str] | None = None) -> DockingServer:  # fmt: skip
+                   dock_params: dict[str, str] | None = None,
+                   kind: str = "opennav_docking::SimpleChargingDock") -> DockingServer:  # fmt: skip
+    """The server with one dock plugin of Nav2's type ``kind`` (set up as shipped, with
+    ``dock_params`` over it), for the office's dock."""
     clock = SimClock(base)
     frames = RobotFrames(base.pose, base.odoms)
     wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None,
                         trigger=base.trigger, joint_states=lambda: base.joints)  # fmt: skip
     given = SHIPPED["simple_charging_dock"] | (dock_params or {})
-    chosen = params_from(SimpleChargingDockParams, "simple_charging_dock", given)
-    plugin = SimpleChargingDock("simple_charging_dock", chosen, wiring)
+    params_type, make = PLUGIN_TYPES[kind]
+    plugin = make("simple_charging_dock", params_from(params_type, "simple_charging_dock", given),
+                  wiring)  # fmt: skip
     law = SmoothControlParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
     costmap = ScanCollisions(LocalCostmap(), lambda: base.scan, frames, clock)
     controller = DockController(ControllerParams(law), costmap.collides)

@@ -92,3 +92,13 @@ def test_neither_database_nor_docks_serves_goals_by_pose(caplog: pytest.LogCaptu
     args = parse()
     assert database_or_explain(args, settings_from(args).docks) == ({}, "")
     assert "Dock database filepath nor dock parameters set" in caplog.text
+
+
+def test_a_non_charging_dock_plugin_by_nav2s_type() -> None:
+    kind = "pallet.plugin=opennav_docking::SimpleNonChargingDock"
+    [plugin] = settings_from(parse("--dock-plugins", "pallet", "--param", kind,
+                                   "--param", "pallet.staging_x_offset=-0.5")).plugins  # fmt: skip
+    assert plugin.params.staging_x_offset == -0.5
+    with pytest.raises(ValueError, match=r"pallet\.charging_threshold: no such parameter"):
+        settings_from(parse("--dock-plugins", "pallet", "--param", kind,
+                            "--param", "pallet.charging_threshold=1.0"))  # fmt: skip

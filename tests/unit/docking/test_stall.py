@@ -12,16 +12,7 @@ from aiobt_services.docking.frames import RobotFrames
 from aiobt_services.docking.plugins import DockWiring
 from aiobt_services.docking.simple_charging_dock import SimpleChargingDock, SimpleChargingDockParams
 
-from .simbase import (
-    HOME,
-    STAGED,
-    Feedback,
-    SimBase,
-    docked_error,
-    docking_server,
-    no_navigation,
-    office_sim,
-)
+from . import simbase as sb
 
 NAMES = ["left_motor", "right_motor", "another_motor"]
 
@@ -62,15 +53,15 @@ STALL = {"use_stall_detection": "true", "use_battery_status": "false",  # docked
 
 @pytest.mark.timeout(60)
 async def test_docks_by_stall_on_the_simulation() -> None:
-    with office_sim() as sim:
-        base = SimBase(sim)
-        server = docking_server(base, no_navigation, dock_params=STALL)
-        base.place(STAGED)
+    with sb.office_sim() as sim:
+        base = sb.SimBase(sim)
+        server = sb.docking_server(base, sb.no_navigation, dock_params=STALL)
+        base.place(sb.STAGED)
         plugin = server.plugins["simple_charging_dock"]
         assert not plugin.is_docked()  # standing: no effort
-        result = await server.dock_robot(HOME, Feedback())
+        result = await server.dock_robot(sb.HOME, sb.Feedback())
         assert result.success, result.error_msg
-        distance, heading = docked_error(sim)
+        distance, heading = sb.docked_error(sim)
         assert distance <= 0.02, distance
         assert heading <= 0.05, heading
         base.step(100)  # the battery's next report
