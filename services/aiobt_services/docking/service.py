@@ -16,7 +16,7 @@ from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.msgs import BatteryState, JointState, LaserScan, Odometry, PoseStamped, Trigger, Twist
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
-from aiobt.transport import Bus, Latest, ServiceError
+from aiobt.transport import Bus, Latest
 
 from .database import DockInstance, database_path, load_database
 from .errors import DockDatabaseError
@@ -77,9 +77,10 @@ class DockingBus:
     async def trigger(self, name: str, timeout: float) -> str | None:  # noqa: ASYNC109
         """Call the ``std_srvs/Trigger`` service ``{ns}/srv/{name}``: None, or why not."""
         try:
-            reply = await self.bus.call(name, Trigger.Request(), Trigger.Response, timeout)
-        except ServiceError as exc:
-            return str(exc)
+            reply = await self.bus.call(name.strip("/"), Trigger.Request(), Trigger.Response,
+                                        timeout)  # fmt: skip
+        except Exception as exc:  # any failure of the call fails the start, as in Nav2
+            return str(exc) or type(exc).__name__
         return None if reply.success else f"success false ({reply.message or 'no message'})"
 
     def battery(self) -> BatteryState | None:

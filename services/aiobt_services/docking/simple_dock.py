@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from aiobt.geometry import Pose2D
 from aiobt.geometry.pose_filter import PoseFilter, StampedPose3D
 from aiobt.geometry.quaternion import quat_from_rpy
+from aiobt.transport.keys import Keys
 
 from .detection import dock_pose
 from .detector import DetectorControl
@@ -63,6 +64,11 @@ class SimpleDockParams:
         if self.use_stall_detection and not self.stall_joint_names:
             raise ValueError("stall_joint_names cannot be empty! (use_stall_detection is true; "
                              "e.g. [wheel_left_joint, wheel_right_joint])")  # fmt: skip
+        if self.detector_service_name:
+            try:
+                Keys("robot").service(self.detector_service_name.strip("/"))
+            except ValueError as exc:
+                raise ValueError(f"detector_service_name: {exc}") from None
         if not (math.isfinite(self.detector_service_timeout) and self.detector_service_timeout > 0):
             raise ValueError(f"detector_service_timeout must be > 0, got "
                              f"{self.detector_service_timeout}")  # fmt: skip

@@ -45,6 +45,10 @@ def test_param_overrides_the_set_up() -> None:
         (["--param", "controller.use_collision_detection=maybe"], "bad value 'maybe'"),
         (["--param", "simple_charging_dock.plugin=opennav_docking::Pallet"], "no dock plugin"),
         (["--param", "simple_charging_dock.filter_coef=1.5"], "filter_coef must be within"),
+        (
+            ["--param", "simple_charging_dock.detector_service_name=dock/*"],
+            "detector_service_name: service 'dock/[*]' is not a valid key",
+        ),
         (["--fixed-frame", "world"], "fixed_frame must be odom or map"),
         (["--dock-plugins", ""], "Charging dock plugins empty"),
         (["--docks", "d1", "--param", "d1.pose=[0,0,0]"], "Dock d1 has no dock 'type'"),
