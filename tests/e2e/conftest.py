@@ -13,9 +13,9 @@
   ``AIOBT_E2E_SAFETY_CHAIN=0`` leaves them out.
 - ``AIOBT_E2E_FULL=1`` runs the must-hold scenarios at their issues' full size (ten
   seeded route goals, ten seeded dock poses, every branch's copy of
-  odometry_calibration); without it CI runs a seeded four of each and main's
-  calibration tree, for its time budget. The ten-run series before an issue is
-  closed runs with it.
+  odometry_calibration, the across-hosts through-poses and blocked corridor), as the
+  issues' figures are measured; without it CI runs a seeded four of each, main's
+  calibration tree and the across-hosts goal to a pose, for its time budget.
 
 Readiness is liveliness tokens ({ns}/nodes/<service>) and the navigator's action
 servers, never a fixed sleep; every wait is bounded; processes are killed by PID;

@@ -13,7 +13,7 @@ stack adds the route server, for kilted's routing trees.
 - ``odometry_calibration`` drives its 2 m square three times, in the open plan room,
   and ends SUCCEEDED about where it began. Its kilted and jazzy copies (40 s each;
   they differ from main's only in the tree's ID and the error ports) run with
-  ``AIOBT_E2E_FULL=1``, as in the series before an issue closes; CI runs main's.
+  ``AIOBT_E2E_FULL=1`` (the issue's must-hold is measured so); CI runs main's.
 
 A user's own trees run the same way: ``AIOBT_E2E_TREES=mine.xml:their_folder pytest
 tests/e2e/test_nav2_branch_trees.py`` (docs/navigator.md).
