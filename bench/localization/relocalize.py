@@ -95,6 +95,7 @@ class Driver:
         self.sim, self.amcl = sim, amcl
         self.angles = sim.config.lidar.angles()
         self.driven = 0.0
+        self.updates = 0  # scans that moved and weighed the particles
         self._turning = 0.0
 
     def step(self, linear: float | None = None, angular: float = 0.0) -> None:
@@ -109,7 +110,7 @@ class Driver:
             scan, o = sim.scan(), sim.odometry.pose
             beams = select_beams(scan.ranges, self.angles, max_beams=self.amcl.params.max_beams,
                                  range_min=0.05, range_max=scan.config.range_max)  # fmt: skip
-            self.amcl.on_scan(np.array([o.x, o.y, o.yaw]), beams)
+            self.updates += self.amcl.on_scan(np.array([o.x, o.y, o.yaw]), beams).updated
 
     def _wander(self) -> tuple[float, float]:
         ranges = self.sim.scan().ranges if self.sim.steps % 5 == 0 else None
