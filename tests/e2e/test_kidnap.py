@@ -49,6 +49,22 @@ async def carry_off(bus: Bus, x: float, y: float, yaw: float) -> None:
     assert ack.ok, f"{RESET_POSE}: {ack.message}"
 
 
+RECOVERIES = ("ClearingActions", "Relocalize", "Spin", "Wait", "BackUp")
+SAMPLE_EVERY = 5.0  # sim s
+
+
+async def _sample_errors(bus: Bus, world: World, since: float, into: list[str]) -> None:
+    """The estimate's distance from the truth every SAMPLE_EVERY sim s after ``since``."""
+    truth = bus.subscribe(SIM_POSE, PoseStamped, queue_size=1)
+    try:
+        async for here in truth:
+            estimate = world.track.latest
+            if estimate is not None and here.header.stamp >= since + SAMPLE_EVERY * len(into):
+                into.append(f"{math.hypot(estimate.x - here.x, estimate.y - here.y):.2f}")
+    finally:
+        truth.close()
+
+
 class Pressed:
     """Every bumper press while it is open."""
 
@@ -101,8 +117,11 @@ async def test_a_kidnapped_robot_is_found_again_and_the_goal_ends_clearly(
                 and math.hypot(sample.x - here.x, sample.y - here.y) < FOUND)  # fmt: skip
 
     back = asyncio.create_task(world.track.wait_for(found, 300.0))
+    errors: list[str] = []
+    sampling = asyncio.create_task(_sample_errors(bus, world, kidnapped, errors))
     done = await running.end(300.0)
     back.cancel()
+    sampling.cancel()
     first_back = back.result() if back.done() and not back.cancelled() else None
 
     here, estimate = truth.latest, world.track.latest
@@ -114,7 +133,8 @@ async def test_a_kidnapped_robot_is_found_again_and_the_goal_ends_clearly(
     summary = (f"{done.state.name} {done.result.error_code} {done.result.error_msg!r}; truth "
                f"({here.x:.2f}, {here.y:.2f}), estimate ({estimate.x:.2f}, {estimate.y:.2f}); "
                f"first back after {after}; relocalized {len(relocalized)}x; "
-               f"{done.recoveries} recoveries")  # fmt: skip
+               f"{done.recoveries} recoveries: {' '.join(tree.activations(RECOVERIES))}; "
+               f"error every {SAMPLE_EVERY:.0f} sim s: {' '.join(errors)}")  # fmt: skip
     print(summary)
     assert not pressed.events, f"bumped: {pressed.events}; {summary}"
     assert off < FOUND, f"the estimate is {off:.2f} m off the truth at the end: {summary}"
