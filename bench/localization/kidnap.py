@@ -16,6 +16,11 @@ kidnap and once back, and the particle count after it. A control run of each
 seed without the kidnap gives the tracking error and particle count of a
 filter that was never lost, so a recovery setting that costs tracking shows.
 
+``--corridor S``: the other side of the trade, the robot never lost: S sim
+seconds back and forth along the corridor past seven boxes that are not on the
+map (each seed); the worst error and the most particles show whether the
+recovery drew random particles and moved the estimate away.
+
 ``--trace N`` prints trial N's recovery averages and particle count at every
 resample (what :mod:`bench/localization/README.md` explains failures with).
 """
@@ -31,7 +36,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import yaml
 
+from aiobt.geometry import Pose2D
 from aiobt_services.localization.amcl import Amcl
+from aiobt_services.robot.obstacles import ObstacleSpec
 
 from .relocalize import OVERRIDES, STEPS_PER_SCAN, Driver, _field, _free_pose, _params, _sim
 
@@ -105,6 +112,36 @@ def trial(seed: int, params: str, *, kidnap: bool = True, trace: bool = False) -
     return out
 
 
+BOXES = [(5.0, 10.4), (7.0, 9.1), (9.0, 10.4), (11.0, 9.1), (13.0, 10.4), (6.0, 9.2), (8.5, 10.5)]
+CORRIDOR_Y = 9.75
+
+
+def corridor(seed: int, params: str, seconds: float) -> tuple[float, int]:
+    """The worst error (m) and the most particles over ``seconds`` of driving the
+    corridor (x 3..15) back and forth past :data:`BOXES`, the filter never misled."""
+    with _sim(seed) as sim:
+        p = _params(params, seed)
+        amcl = Amcl(p)
+        amcl.set_map(_field(sim, p))
+        sim.teleport(Pose2D(2.0, CORRIDOR_Y, 0.0))
+        amcl.initialize(amcl.check_pose(2.0, CORRIDOR_Y, 0.0))
+        for i, (x, y) in enumerate(BOXES):
+            sim.spawn(ObstacleSpec(f"box{i}", "box", Pose2D(x, y, 0.3), size_x=0.6, size_y=0.6))
+        drive, heading, worst, most = Driver(sim, amcl), 0.0, 0.0, 0
+        while sim.time < seconds:
+            t = sim.true_pose
+            heading = math.pi if t.x > 15.0 else 0.0 if t.x < 3.0 else heading
+            turn = math.remainder(heading - t.yaw, math.tau)
+            across = (t.y - CORRIDOR_Y) * math.cos(heading)
+            if abs(turn) > 0.5:
+                drive.step(0.0, math.copysign(0.8, turn))
+            else:
+                drive.step(0.4, max(-0.5, min(0.5, turn - 1.5 * across)))
+            if sim.steps % STEPS_PER_SCAN == 0 and sim.time > 3.0:
+                worst, most = max(worst, drive.error()[0]), max(most, len(amcl.particles))
+        return worst, most
+
+
 def _trace_line(after: float, error: float, amcl: Amcl) -> str:
     r = amcl.recovery
     return (f"{after:5.1f} s  error {error:6.2f} m  w_slow {r.w_slow:.3f} w_fast "
@@ -141,12 +178,20 @@ def main() -> None:
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="an AMCL parameter over the params file (YAML value)")  # fmt: skip
     parser.add_argument("--trace", type=int, default=0, metavar="N", help="trace trial N")
+    parser.add_argument("--corridor", type=float, default=0.0, metavar="S",
+                        help="only the corridor drive past boxes, S sim s per seed")  # fmt: skip
     args = parser.parse_args()
     for item in args.set:
         name, _, text = item.partition("=")
         OVERRIDES[name] = yaml.safe_load(text)
     began = time.monotonic()
     seeds = [args.seed + i for i in range(args.trials)]
+    if args.corridor:
+        for seed in seeds:
+            worst, most = corridor(seed, args.params, args.corridor)
+            print(f"corridor seed {seed}: worst error {worst:.2f} m, most particles {most}")
+        print(f"({time.monotonic() - began:.0f} s wall, params {args.params}, set {args.set})")
+        return
     runs = [trial(s, args.params, trace=args.trace == i) for i, s in enumerate(seeds, 1)]
     _print("kidnap", runs)
     _control([trial(s, args.params, kidnap=False) for s in seeds])

@@ -31,8 +31,6 @@ ROUTE = [(9.0, 9.75), (16.5, 9.9), (16.5, 9.5), (9.0, 9.6), (3.0, 9.75)]
 # the open plan north of the corridor: pillars and desks, few look-alike places
 OPEN_PLAN_START = (3.0, 15.0, 0.0)
 OPEN_PLAN_LOOP = [(3.0, 15.0), (7.0, 15.0), (7.0, 12.5), (3.0, 12.5)]  # 13 m
-NO_RECOVERY = ("--params-file", "sim_robot", "--set", "recovery_alpha_slow=0", "--set",
-               "recovery_alpha_fast=0")  # fmt: skip
 
 
 async def test_the_estimate_tracks_the_truth_while_driving(
@@ -99,8 +97,7 @@ async def test_global_localization_spreads_the_particles_and_finds_the_robot(
 async def test_a_kidnapped_robot_is_lost_then_found_by_reinitialization(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ) -> None:
-    # the filter's own recovery off (sim_robot turns it on: it would find the robot itself)
-    await start_stack(spawn, bus, bus_settings, speed=4, localization=NO_RECOVERY)
+    await start_stack(spawn, bus, bus_settings, speed=4)
     tracking = track(bus)
     await set_initial_pose(bus, *START)
     await drive(bus, [(5.0, 9.75)], within=30.0)
