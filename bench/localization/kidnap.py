@@ -34,13 +34,21 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-import yaml
 
 from aiobt.geometry import Pose2D
 from aiobt_services.localization.amcl import Amcl
 from aiobt_services.robot.obstacles import ObstacleSpec
 
-from .relocalize import OVERRIDES, STEPS_PER_SCAN, Driver, _field, _free_pose, _params, _sim
+from .relocalize import (
+    STEPS_PER_SCAN,
+    Driver,
+    _field,
+    _free_pose,
+    _params,
+    _sim,
+    apply_sets,
+    trial_arguments,
+)
 
 KIDNAP_M = 3.0
 FOUND_M = 0.25
@@ -172,18 +180,12 @@ def _control(runs: list[Trial]) -> None:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--trials", type=int, default=20)
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--params", default="sim_robot", help="sim_robot or nav2")
-    parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                        help="an AMCL parameter over the params file (YAML value)")  # fmt: skip
+    trial_arguments(parser, trials=20)
     parser.add_argument("--trace", type=int, default=0, metavar="N", help="trace trial N")
     parser.add_argument("--corridor", type=float, default=0.0, metavar="S",
                         help="only the corridor drive past boxes, S sim s per seed")  # fmt: skip
     args = parser.parse_args()
-    for item in args.set:
-        name, _, text = item.partition("=")
-        OVERRIDES[name] = yaml.safe_load(text)
+    apply_sets(args.set)
     began = time.monotonic()
     seeds = [args.seed + i for i in range(args.trials)]
     if args.corridor:

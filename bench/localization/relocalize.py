@@ -164,18 +164,28 @@ def table(kind: str, runs: list[Run], unit: str) -> None:
         print(f"| {i} | {ok} | {r.error:.2f} | {r.heading_deg:.1f} | {r.settled_at:.1f} |")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--trials", type=int, default=10)
+def trial_arguments(parser: argparse.ArgumentParser, trials: int) -> None:
+    """``--trials``, ``--seed``, ``--params`` and ``--set`` (see :func:`apply_sets`)."""
+    parser.add_argument("--trials", type=int, default=trials)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--params", default="sim_robot", help="sim_robot or nav2")
-    parser.add_argument("--only", choices=("global",), default=None)
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="an AMCL parameter over the params file (YAML value)")  # fmt: skip
-    args = parser.parse_args()
-    for item in args.set:
+
+
+def apply_sets(items: list[str]) -> None:
+    """``--set NAME=VALUE`` items into :data:`OVERRIDES` (values in YAML)."""
+    for item in items:
         name, _, text = item.partition("=")
         OVERRIDES[name] = yaml.safe_load(text)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    trial_arguments(parser, trials=10)
+    parser.add_argument("--only", choices=("global",), default=None)
+    args = parser.parse_args()
+    apply_sets(args.set)
     began = time.monotonic()
     if args.only in (None, "global"):
         runs = [global_trial(args.seed + i, args.params) for i in range(args.trials)]
