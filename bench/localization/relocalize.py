@@ -1,4 +1,4 @@
-"""Global localization and the kidnapped robot, in process (the simulation and the
+"""Global localization, in process (the simulation and the
 filter, no transport), seeded.
 
 Run: ``.venv/bin/python -m bench.localization.relocalize [--trials 10] [--seed 1]
@@ -9,11 +9,8 @@ Run: ``.venv/bin/python -m bench.localization.relocalize [--trials 10] [--seed 1
   away from anything within 0.7 m ahead) for at most 10 m. Success: the estimate
   within 0.25 m and 10 degrees at the end, and how far it had driven when it got
   there for good.
-- kidnap: the robot localized at the start (initial pose), wanders 2 m, is moved
-  3 m (a seeded direction, to a free pose) without telling the filter, wanders on.
-  Success: the estimate back within 0.25 m within 30 s of sim time, by the filter
-  alone (AMCL's random particles if ``recovery_alpha_slow``/``_fast`` are set:
-  ``--set recovery_alpha_slow=0.001 --set recovery_alpha_fast=0.1``).
+- kidnap: moved to :mod:`bench.localization.kidnap` (which reuses this module's
+  simulation, driver and helpers).
 """
 
 from __future__ import annotations
@@ -46,7 +43,7 @@ class Run:
     ok: bool
     error: float
     heading_deg: float
-    settled_at: float  # m driven (global) or sim s after the kidnap (kidnap); nan: never
+    settled_at: float  # m driven when the estimate got there for good; nan: never
 
 
 OVERRIDES: dict[str, object] = {}  # --set
@@ -95,6 +92,7 @@ class Driver:
         self.sim, self.amcl = sim, amcl
         self.angles = sim.config.lidar.angles()
         self.driven = 0.0
+        self.updates = 0  # scans that moved and weighed the particles
         self._turning = 0.0
 
     def step(self, linear: float | None = None, angular: float = 0.0) -> None:
@@ -109,7 +107,7 @@ class Driver:
             scan, o = sim.scan(), sim.odometry.pose
             beams = select_beams(scan.ranges, self.angles, max_beams=self.amcl.params.max_beams,
                                  range_min=0.05, range_max=scan.config.range_max)  # fmt: skip
-            self.amcl.on_scan(np.array([o.x, o.y, o.yaw]), beams)
+            self.updates += self.amcl.on_scan(np.array([o.x, o.y, o.yaw]), beams).updated
 
     def _wander(self) -> tuple[float, float]:
         ranges = self.sim.scan().ranges if self.sim.steps % 5 == 0 else None
@@ -158,28 +156,6 @@ def global_trial(seed: int, params: str) -> Run:
         return Run(drive.close_enough(), dist, math.degrees(heading), settled)
 
 
-def kidnap_trial(seed: int, params: str) -> Run:
-    rng = np.random.default_rng(1000 + seed)
-    with _sim(seed) as sim:
-        p = _params(params, seed)
-        amcl = Amcl(p)
-        amcl.set_map(_field(sim, p))
-        start = _free_pose(sim, rng)
-        sim.teleport(start)
-        amcl.initialize(amcl.check_pose(start.x, start.y, start.yaw))
-        drive = Driver(sim, amcl)
-        while drive.driven < 2.0 and sim.time < 30.0:
-            drive.step()
-        sim.teleport(_free_pose(sim, rng, near=sim.true_pose))
-        kidnapped, back = sim.time, math.nan
-        while sim.time - kidnapped < 30.0:
-            drive.step()
-            if sim.steps % STEPS_PER_SCAN == 0 and math.isnan(back) and drive.error()[0] < 0.25:
-                back = sim.time - kidnapped
-        dist, heading = drive.error()
-        return Run(not math.isnan(back), dist, math.degrees(heading), back)
-
-
 def table(kind: str, runs: list[Run], unit: str) -> None:
     print(f"\n{kind}: {sum(r.ok for r in runs)}/{len(runs)}")
     print(f"| trial | ok | error m | heading deg | {unit} |\n|---|---|---|---|---|")
@@ -188,24 +164,32 @@ def table(kind: str, runs: list[Run], unit: str) -> None:
         print(f"| {i} | {ok} | {r.error:.2f} | {r.heading_deg:.1f} | {r.settled_at:.1f} |")
 
 
-def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("--trials", type=int, default=10)
+def trial_arguments(parser: argparse.ArgumentParser, trials: int) -> None:
+    """``--trials``, ``--seed``, ``--params`` and ``--set`` (see :func:`apply_sets`)."""
+    parser.add_argument("--trials", type=int, default=trials)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--params", default="sim_robot", help="sim_robot or nav2")
-    parser.add_argument("--only", choices=("global", "kidnap"), default=None)
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="an AMCL parameter over the params file (YAML value)")  # fmt: skip
-    args = parser.parse_args()
-    for item in args.set:
+
+
+def apply_sets(items: list[str]) -> None:
+    """``--set NAME=VALUE`` items into :data:`OVERRIDES` (values in YAML)."""
+    for item in items:
         name, _, text = item.partition("=")
         OVERRIDES[name] = yaml.safe_load(text)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    trial_arguments(parser, trials=10)
+    parser.add_argument("--only", choices=("global",), default=None)
+    args = parser.parse_args()
+    apply_sets(args.set)
     began = time.monotonic()
-    for kind, trial, unit in (("global", global_trial, "settled after m"),
-                              ("kidnap", kidnap_trial, "back after sim s")):  # fmt: skip
-        if args.only in (None, kind):
-            runs = [trial(args.seed + i, args.params) for i in range(args.trials)]
-            table(kind, runs, unit)
+    if args.only in (None, "global"):
+        runs = [global_trial(args.seed + i, args.params) for i in range(args.trials)]
+        table("global", runs, "settled after m")
     print(f"\n({time.monotonic() - began:.0f} s wall, params {args.params})")
 
 

@@ -167,7 +167,7 @@ class Amcl:
             rng=self.rng,
         )
         self.weights = np.full(len(self.particles), 1.0 / len(self.particles))
-        if w_diff > 0.0:
+        if w_diff > 0.0 and self.params.recovery_reset_after_injection:
             self.recovery.reset()
         return True
 

@@ -59,6 +59,7 @@ class AmclParams:
     pf_z: float = 0.99
     recovery_alpha_fast: float = 0.0
     recovery_alpha_slow: float = 0.0
+    recovery_reset_after_injection: bool = True  # not Nav2's (pf.c resets): recovery.py
     resample_interval: int = 1
     robot_model_type: str = "nav2_amcl::DifferentialMotionModel"
     save_pose_rate: float = 0.5

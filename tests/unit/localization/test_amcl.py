@@ -8,6 +8,7 @@ from aiobt_services.localization import se2
 from aiobt_services.localization.amcl import Amcl
 from aiobt_services.localization.initial_pose import InitialPoseError
 from aiobt_services.localization.laser_model import Beams, select_beams
+from aiobt_services.localization.likelihood_field import LikelihoodField
 from aiobt_services.localization.params import AmclParams
 
 from .maps import cast, field, room
@@ -95,3 +96,57 @@ def test_without_a_pose_or_a_map_scans_do_nothing() -> None:
     assert not amcl.on_scan(np.zeros(3), _beams(np.array([1.0, 3.0, 0.0]))).updated
     with pytest.raises(RuntimeError, match="no map"):
         Amcl(AmclParams()).global_localization()
+
+
+class Draws:
+    """How many random poses each resample drew from the free space."""
+
+    def __init__(self, monkeypatch: pytest.MonkeyPatch) -> None:
+        self.counts: list[int] = []
+        real = LikelihoodField.random_free_poses
+
+        def counted(f: LikelihoodField, count: int, rng: np.random.Generator) -> np.ndarray:
+            self.counts.append(count)
+            return real(f, count, rng)
+
+        monkeypatch.setattr(LikelihoodField, "random_free_poses", counted)
+
+
+def _lost(reset: bool) -> Amcl:
+    """A filter tracking in the room whose averages say its fit just dropped by half."""
+    amcl = _filter(recovery_alpha_slow=0.001, recovery_alpha_fast=0.01,
+                   recovery_reset_after_injection=reset, update_min_d=0.05)  # fmt: skip
+    truth = np.array([1.0, 3.0, 0.0])
+    amcl.initialize(amcl.check_pose(*truth))
+    amcl.on_scan(np.zeros(3), _beams(truth))
+    amcl.recovery.w_slow, amcl.recovery.w_fast = 2.0, 1.0
+    return amcl
+
+
+def _resample(amcl: Amcl, draws: Draws, step: float) -> int:
+    """One update 0.1 m on; how many random poses its resample drew (of 2,000)."""
+    before = len(draws.counts)
+    truth = np.array([1.0 + step, 3.0, 0.0])
+    assert amcl.on_scan(np.array([step, 0.0, 0.0]), _beams(truth)).resampled
+    return sum(draws.counts[before:])
+
+
+def test_nav2s_resample_draws_random_particles_once_then_restarts_the_averages(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    draws = Draws(monkeypatch)
+    amcl = _lost(reset=True)
+    assert 800 < _resample(amcl, draws, 0.1) < 1200  # w_diff 0.5 of max_particles
+    assert (amcl.recovery.w_slow, amcl.recovery.w_fast) == (0.0, 0.0)  # pf.c's reset
+    assert _resample(amcl, draws, 0.2) == 0  # averages restarted at this fit: none drawn
+
+
+def test_without_the_reset_random_particles_keep_coming_while_the_fit_stays_low(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    draws = Draws(monkeypatch)
+    amcl = _lost(reset=False)
+    assert 800 < _resample(amcl, draws, 0.1) < 1200
+    assert amcl.recovery.w_slow > amcl.recovery.w_fast > 0.0  # kept, as Augmented MCL
+    amcl.recovery.w_slow, amcl.recovery.w_fast = 2.0, 1.0  # the fit still half of before
+    assert _resample(amcl, draws, 0.2) > 800

@@ -10,6 +10,7 @@ def test_defaults_are_nav2s() -> None:
     assert (p.z_hit, p.z_rand, p.sigma_hit, p.laser_likelihood_max_dist) == (0.5, 0.5, 0.2, 2.0)
     assert (p.max_beams, p.update_min_d, p.update_min_a, p.resample_interval) == (60, 0.25, 0.2, 1)
     assert (p.recovery_alpha_slow, p.recovery_alpha_fast, p.do_beamskip) == (0.0, 0.0, False)
+    assert p.recovery_reset_after_injection  # not Nav2's name; pf.c's behaviour by default
 
 
 def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> None:
@@ -22,6 +23,8 @@ def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> No
     assert p.initial_pose == InitialPose(1.0, 2.0, 0.0, 0.5)
     assert p.set_initial_pose
     assert AmclParams.from_mapping({"initial_pose.x": 4}).initial_pose.x == 4.0
+    kept = AmclParams.from_mapping({"recovery_reset_after_injection": False})
+    assert not kept.recovery_reset_after_injection
 
 
 @pytest.mark.parametrize(
