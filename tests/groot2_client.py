@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import random
 import socket
 import struct
 from typing import Any
@@ -16,20 +17,27 @@ TIMEOUT = 10.0
 
 
 def free_port_pair() -> int:
-    """A port P such that P and P + 1 are free on 127.0.0.1 right now."""
-    for _ in range(50):
-        with socket.socket() as probe:
-            probe.bind(("127.0.0.1", 0))
-            port = int(probe.getsockname()[1])
-        if port >= 0xFFFE:
-            continue
-        with socket.socket() as second:
-            try:
+    """A port P such that P and P + 1 are free on 127.0.0.1 right now, below the
+    kernel's ephemeral range: a port the kernel handed out for binding to 0 is in that
+    range, where any outgoing connection of the suite (Zenoh, ZeroMQ) can take it
+    before the publisher binds it (a CI run: "Address already in use")."""
+    low = 20000
+    high = 32767
+    try:
+        with open("/proc/sys/net/ipv4/ip_local_port_range", encoding="ascii") as ranges:
+            high = min(high, int(ranges.read().split()[0]) - 2)
+    except (OSError, ValueError, IndexError):
+        pass
+    for _ in range(200):
+        port = random.randrange(low, high)
+        try:
+            with socket.socket() as first, socket.socket() as second:
+                first.bind(("127.0.0.1", port))
                 second.bind(("127.0.0.1", port + 1))
-            except OSError:
-                continue
+        except OSError:
+            continue
         return port
-    raise RuntimeError("no free pair of ports on 127.0.0.1")
+    raise RuntimeError(f"no free pair of ports on 127.0.0.1 in [{low}, {high})")
 
 
 class Groot2Client:
