@@ -8,6 +8,8 @@ import math
 import numpy as np
 import numpy.typing as npt
 
+from aiobt.msgs.geometry import quaternion_to_yaw
+
 Quat = npt.NDArray[np.float64]  # x, y, z, w
 
 
@@ -38,8 +40,7 @@ def quat_from_yaw(yaw: float) -> Quat:
 
 
 def quat_yaw(q: Quat) -> float:
-    x, y, z, w = q
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    return quaternion_to_yaw(*(float(c) for c in q))
 
 
 def slerp(a: Quat, b: Quat, t: float) -> Quat:
