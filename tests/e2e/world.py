@@ -42,7 +42,7 @@ from aiobt.msgs.sim import (
 from aiobt.testing.localize import set_estimate
 from aiobt.testing.navwatch import Navigation, RobotTrack, Running, navigate, start_navigation
 from aiobt.transport import ActionError, Bus, ServiceError
-from aiobt.transport.keys import sim_namespace
+from aiobt.transport.keys import SIM_POSE, sim_namespace
 
 START = (2.0, 9.75, 0.0)
 Request = SpawnObstacle | MoveObstacle | RemoveObstacle
@@ -71,6 +71,7 @@ class World:
         self.bus = bus
         self.sim = sim_namespace(bus.namespace)  # the simulation's services
         self.track = track
+        self.truth = bus.latest(SIM_POSE, PoseStamped)  # the sim's truth: for failure reports only
         self.to_pose = bus.action_client(NavigateToPose.name, NavigateToPose)
         self.through = bus.action_client(NavigateThroughPoses.name, NavigateThroughPoses)
 
@@ -168,11 +169,24 @@ class World:
         """Send NavigateToPose to (x, y, yaw) and return at once (``.end(timeout)`` waits)."""
         return await start_navigation(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree)
 
+    def _whereabouts(self) -> str:
+        """For a failure: the sim's true pose and the estimated track, a sample every 2 s."""
+        truth = self.truth.get()
+        true = "none" if truth is None else f"({truth.x:.2f}, {truth.y:.2f}, {truth.yaw:.2f})"
+        shown, last = [], -math.inf
+        for sample in self.track.samples:
+            if sample.stamp - last >= 2.0:
+                shown.append(f"{sample.stamp:.1f}:({sample.x:.2f},{sample.y:.2f})")
+                last = sample.stamp
+        return f"the sim's truth {true}; the estimated track {' '.join(shown)}"
+
     def assert_at(self, x: float, y: float, yaw: float | None = None) -> None:
         """The robot stands within ARRIVED m (and YAW_TOLERANCE rad) of the pose."""
         here = self.track.latest
         assert here is not None, "no pose from the robot"
-        assert math.dist((here.x, here.y), (x, y)) <= ARRIVED, f"at {here}, not ({x}, {y})"
+        assert math.dist((here.x, here.y), (x, y)) <= ARRIVED, (
+            f"at {here}, not ({x}, {y}); {self._whereabouts()}"
+        )
         if yaw is not None:
             error = abs((here.yaw - yaw + math.pi) % (2 * math.pi) - math.pi)
             assert error <= YAW_TOLERANCE, f"heading {here.yaw:.2f}, wanted {yaw:.2f}"
