@@ -169,7 +169,7 @@ class World:
         """Send NavigateToPose to (x, y, yaw) and return at once (``.end(timeout)`` waits)."""
         return await start_navigation(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree)
 
-    def _whereabouts(self) -> str:
+    def whereabouts(self) -> str:
         """For a failure: the sim's true pose and the estimated track, a sample every 2 s."""
         truth = self.truth.get()
         true = "none" if truth is None else f"({truth.x:.2f}, {truth.y:.2f}, {truth.yaw:.2f})"
@@ -185,7 +185,7 @@ class World:
         here = self.track.latest
         assert here is not None, "no pose from the robot"
         assert math.dist((here.x, here.y), (x, y)) <= ARRIVED, (
-            f"at {here}, not ({x}, {y}); {self._whereabouts()}"
+            f"at {here}, not ({x}, {y}); {self.whereabouts()}"
         )
         if yaw is not None:
             error = abs((here.yaw - yaw + math.pi) % (2 * math.pi) - math.pi)
