@@ -117,8 +117,9 @@ async def test_docks_given_as_parameters_with_the_detector_only_while_docking(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ):
     """Nav2's ``docks`` parameter instead of a file, the robot's detector started and
-    stopped by the docking server through ``srv/dock_detector/toggle``, and docked by
-    stall detection alone (the robot's wheels on ``joint_states``; no battery status)."""
+    stopped by the docking server through ``srv/dock_detector/toggle``, docked by
+    stall detection alone (the robot's wheels on ``joint_states``; no battery status),
+    the approach checked with a footprint polygon (Nav2's ``footprint`` string)."""
     truth = bus.latest(SIM_POSE, PoseStamped)
     pose = f"home.pose=[{DOCK[0]},{DOCK[1]},{DOCK[2]}]"
     plugin = "simple_charging_dock."
@@ -128,7 +129,8 @@ async def test_docks_given_as_parameters_with_the_detector_only_while_docking(
                 "--param", f"{plugin}subscribe_toggle=true",
                 "--param", f"{plugin}use_stall_detection=true",
                 "--param", f"{plugin}stall_joint_names=[wheel_left_joint,wheel_right_joint]",
-                "--param", f"{plugin}use_battery_status=false")  # fmt: skip
+                "--param", f"{plugin}use_battery_status=false",
+                "--footprint", "[[0.2, 0.2], [0.2, -0.2], [-0.2, -0.2], [-0.2, 0.2]]")  # fmt: skip
     docks = await bus.latest("docks", DockList, latched=True).wait_latest(10.0)
     assert [d.name for d in docks.docks] == ["home"]
     await place(bus, 1.6, 9.6, 3.0)
