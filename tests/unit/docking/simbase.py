@@ -16,6 +16,7 @@ from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import FloatArray, Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.geometry.smooth import SmoothControlParams
+from aiobt.geometry.static_frames import StaticFrames
 from aiobt.msgs import BatteryState, JointState, LaserScan, Odometry, PoseStamped, Trigger
 from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
@@ -125,12 +126,14 @@ def office_sim(battery: float = 0.5, seed: int = 3) -> Simulation:
 def docking_server(base: SimBase, navigate: object, params: DockingParams | None = None,
                    dock_params: dict[str, str] | None = None,
                    kind: str = "opennav_docking::SimpleChargingDock",
-                   footprint: FloatArray | None = None) -> DockingServer:  # fmt: skip
+                   footprint: FloatArray | None = None,
+                   statics: StaticFrames | None = None) -> DockingServer:  # fmt: skip
     """The server with one dock plugin of Nav2's type ``kind`` (set up as shipped, with
     ``dock_params`` over it), for the office's dock; the approach checks ``footprint``
-    (default: the robot's circle, as ``aiobt docking`` without ``--footprint``)."""
+    (default: the robot's circle, as ``aiobt docking`` without ``--footprint``); ``statics``
+    the transforms of ``tf_static``."""
     clock = SimClock(base)
-    frames = RobotFrames(base.pose, base.odoms)
+    frames = RobotFrames(base.pose, base.odoms, statics)
     wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None,
                         trigger=base.trigger, joint_states=lambda: base.joints)  # fmt: skip
     given = SHIPPED["simple_charging_dock"] | (dock_params or {})
