@@ -6,6 +6,7 @@ On the simulation, DockRobot docks from detections given in the camera's optical
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -132,3 +133,28 @@ async def test_docks_from_detections_in_the_cameras_optical_frame() -> None:
 
 async def no_navigation(pose: Pose2D, frame: str, max_time: float) -> None:
     raise AssertionError("no navigation expected")
+
+
+@pytest.mark.timeout(60)
+async def test_the_staging_pose_of_a_dock_in_its_own_frame_goes_to_the_navigator_in_map() -> None:
+    went: list[tuple[Pose2D, str]] = []
+    statics = StaticFrames()
+    bay = Rigid3D(np.array([1.49, 9.75, 0.0]), quat_from_yaw(math.pi))  # the staging pose
+    statics.add(TFMessage(transforms=[link("map", "bay", bay)]))
+    with office_sim() as sim:
+        base = SimBase(sim)
+
+        async def navigate(pose: Pose2D, frame: str, max_time: float) -> None:
+            went.append((pose, frame))
+            base.place(pose)
+
+        server = docking_server(base, navigate, statics=statics)
+        dock = server.docks["home_dock"]
+        server.docks["home_dock"] = replace(dock, pose=Pose2D(1.0, 0.0, 0.0), frame="bay")
+        base.place(Pose2D(3.0, 10.2, 0.0))
+        result = await server.dock_robot(DockRobot.Goal(dock_id="home_dock"), Feedback())
+        assert result.success, result.error_msg
+        [(staging, frame)] = went
+        assert frame == "map"
+        assert (staging.x, staging.y) == pytest.approx((1.49, 9.75))
+        assert docked_error(sim)[0] <= 0.02
