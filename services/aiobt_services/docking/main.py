@@ -3,7 +3,8 @@
 Loads a dock database (``--dock-database``, Nav2's YAML; a shipped world's name picks
 its database; or Nav2's ``docks`` parameter, ``--docks``) and the dock plugins
 (``--dock-plugins``, Nav2's SimpleChargingDock); reads ``{ns}/pose``, ``{ns}/odom``,
-``{ns}/battery``, ``{ns}/scan`` (its approach's collision check), the dock's detections
+``{ns}/battery``, ``{ns}/scan`` (its approach's collision check, with ``--footprint``),
+latched ``{ns}/tf_static`` (frames beyond map, odom and base_link), the dock's detections
 on ``{ns}/detected_dock_pose`` and, with stall detection, ``{ns}/joint_states``; calls
 a plugin's ``detector_service_name`` (``{ns}/srv/...``, std_srvs/Trigger) to start and
 stop the detector; serves the actions ``dock_robot`` and ``undock_robot``
