@@ -79,13 +79,17 @@ def footprint_cost(grid: CostGrid, x: float, y: float, yaw: float, footprint: np
 
 
 def outline_points(footprint: npt.ArrayLike, spacing: float) -> FloatArray:
-    """``(m, 2)`` points along the closed outline of a polygon, at most ``spacing`` apart."""
-    vertices = np.asarray(footprint, dtype=np.float64).reshape(-1, 2)
-    edges = [
-        segment_points(a[0], a[1], b[0], b[1], spacing)
-        for a, b in zip(vertices, np.roll(vertices, -1, axis=0), strict=True)
-    ]
-    return np.concatenate(edges)
+    """``(m, 2)`` points along the closed outline of a polygon, each edge sampled as
+    :func:`segment_points` samples it (ends included), all edges at once."""
+    a = np.asarray(footprint, dtype=np.float64).reshape(-1, 2)
+    b = np.roll(a, -1, axis=0)
+    lengths = np.hypot(*(b - a).T)
+    counts = np.maximum(2, np.ceil(lengths / spacing).astype(np.intp) + 1)
+    edge = np.repeat(np.arange(len(a)), counts)
+    along = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
+    t = along / (counts[edge] - 1)
+    points: FloatArray = a[edge] + (b - a)[edge] * t[:, None]
+    return points
 
 
 def footprints_cost(grid: CostGrid, poses: npt.ArrayLike, footprint: npt.ArrayLike) -> IntArray:
