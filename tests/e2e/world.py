@@ -189,4 +189,8 @@ class World:
         )
         if yaw is not None:
             error = abs((here.yaw - yaw + math.pi) % (2 * math.pi) - math.pi)
-            assert error <= YAW_TOLERANCE, f"heading {here.yaw:.2f}, wanted {yaw:.2f}"
+            assert error <= YAW_TOLERANCE, (
+                f"heading {here.yaw:.2f}, wanted {yaw:.2f}; the last headings "
+                f"{' '.join(f'{s.stamp:.2f}:{s.yaw:.3f}' for s in self.track.samples[-40::4])}; "
+                f"{self.whereabouts()}"
+            )
