@@ -135,7 +135,9 @@ class World:
             )
             assert cleared.success, f"{name}: {cleared.message}"
         there = await self.track.wait_for(lambda s: math.dist((s.x, s.y), (x, y)) < 0.1, 10.0)
-        assert there is not None, f"the robot is not at {(x, y)} after reset: {self.track.latest}"
+        assert there is not None, (
+            f"the robot is not at {(x, y)} after reset: {self.track.latest}; {self.whereabouts()}"
+        )
 
     async def _settled_after(self, stamp: float) -> None:
         """Wait for a scan stamped after ``stamp`` (the filter's estimate at the new
