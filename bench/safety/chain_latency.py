@@ -6,11 +6,16 @@ drives ``{ns}/cmd_vel_nav`` at 20 Hz of sim time (the controller's rate) with
 distinct values the smoother passes through unchanged (0.3 m/s rising by 0.1 mm/s a
 command) and times each to its arrival on ``{ns}/cmd_vel`` through both links,
 against the same message's own arrival back from the router (the direct hop the
-chain replaces). Also the CPU of the two services (``/proc``) while driving.
+chain replaces). Also the CPU of the two services (``/proc``) while driving, and the
+load average. ``--layouts``: the two as separate processes (as ``aiobt up`` runs them by
+default) or ``composed`` in one (``aiobt safety_chain``, Nav2's composition), each run
+in the order given on the same router (``separate composed separate composed``: A B A B).
 ``--realtime``: the robot, the two services and this process (as the controller)
 under ``SCHED_FIFO`` at their ``--realtime-priority`` defaults.
 
     .venv/bin/python -m bench.safety.chain_latency --speeds 1 10 --seconds 20 [--realtime]
+    .venv/bin/python -m bench.safety.chain_latency --speeds 1 --seconds 15 \
+        --layouts separate composed separate composed
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ from aiobt.transport import Bus, BusSettings, SimClockFollower, open_bus
 
 PERIOD = 0.05  # s of sim time between commands: a 20 Hz controller
 SERVICES = ("velocity_smoother", "collision_monitor")
+LAYOUTS = {"separate": SERVICES, "composed": ("safety_chain",)}  # the processes of each
 
 
 @dataclass(slots=True)
@@ -41,11 +47,13 @@ class Figures:
     sent: int
     direct_ms: tuple[float, float]  # p50, p99 wall ms
     chain_ms: tuple[float, float]
-    cpu: dict[str, float]  # % of one core
+    cpu: dict[str, float]  # % of one core, by process
+    load: tuple[float, float, float] = (0.0, 0.0, 0.0)  # the load average after the run
 
     def lines(self) -> list[str]:
         added = [(c - d) * self.speed for c, d in zip(self.chain_ms, self.direct_ms, strict=True)]
         cpu = ", ".join(f"{k} {v:.1f} %" for k, v in self.cpu.items())
+        cpu += f" (in all {sum(self.cpu.values()):.1f} %)" if len(self.cpu) > 1 else ""
         return [
             f"x{self.speed:g}: {self.matched}/{self.sent} commands matched",
             f"  direct hop p50 {self.direct_ms[0]:.2f} ms p99 {self.direct_ms[1]:.2f} ms (wall)",
@@ -53,6 +61,7 @@ class Figures:
             f"  added p50 {added[0]:.1f} ms p99 {added[1]:.1f} ms of sim time "
             f"(one control period: {PERIOD * 1000:.0f} ms)",
             f"  CPU while driving: {cpu} of one core",
+            f"  load average {' '.join(f'{x:.2f}' for x in self.load)}",
         ]
 
 
@@ -62,28 +71,35 @@ def cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-async def measure(endpoint: str, speed: float, seconds: float, realtime: bool) -> Figures:
+async def measure(
+    endpoint: str, speed: float, seconds: float, realtime: bool, layout: str = "separate"
+) -> Figures:
     ns = f"bench{uuid.uuid4().hex[:8]}"
     common = ["--connect", endpoint, "--namespace", ns]
     common += ["--realtime-priority"] if realtime else []
     robot = ["-m", "aiobt.cli.main", "robot", "--world", "office", "--speed", f"{speed:g}"]
     procs: dict[str, ServiceProcess] = {"robot": spawn_service([*robot, *common])}
-    for name in SERVICES:
+    for name in LAYOUTS[layout]:
         procs[name] = spawn_service(["-m", "aiobt.cli.main", name, "--sim-time", *common])
     try:
         settings = BusSettings(mode="client", connect=(endpoint,), namespace=ns)
         async with open_bus(settings) as bus:
-            for name in procs:
+            for name in ("robot", *SERVICES):  # composed: both tokens from one process
                 if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(60.0):
-                    raise RuntimeError(f"{name} did not come up:\n{procs[name].output()}")
-            return await _drive(bus, procs, speed, seconds)
+                    output = "\n".join(p.output() for p in procs.values())
+                    raise RuntimeError(f"{name} did not come up:\n{output}")
+            return await _drive(bus, procs, LAYOUTS[layout], speed, seconds)
     finally:
         for proc in procs.values():
             proc.cleanup()
 
 
 async def _drive(
-    bus: Bus, procs: dict[str, ServiceProcess], speed: float, seconds: float
+    bus: Bus,
+    procs: dict[str, ServiceProcess],
+    measured: tuple[str, ...],
+    speed: float,
+    seconds: float,
 ) -> Figures:
     sent: dict[float, float] = {}
     direct: dict[float, float] = {}
@@ -97,7 +113,7 @@ async def _drive(
     await follower.wait_started(timeout=10.0)
     clock = follower.clock
     count = round(seconds / PERIOD)
-    cpu0 = {name: cpu_seconds(procs[name].pid) for name in SERVICES}
+    cpu0 = {name: cpu_seconds(procs[name].pid) for name in measured}
     wall0 = time.perf_counter()
     for k in range(count):
         value = round(0.3 + 1e-4 * k, 6)
@@ -105,7 +121,7 @@ async def _drive(
         out.put(Twist.planar(value, 0.0))
         await clock.sleep(PERIOD)
     wall = time.perf_counter() - wall0
-    cpu = {n: 100.0 * (cpu_seconds(procs[n].pid) - cpu0[n]) / wall for n in SERVICES}
+    cpu = {n: 100.0 * (cpu_seconds(procs[n].pid) - cpu0[n]) / wall for n in measured}
     follower.close()
     ramp = round(0.3 / (2.5 * PERIOD)) + 2  # the smoother's ramp from 0: not passed through
     keys = [v for v in list(sent)[ramp:] if v in chain and v in direct]
@@ -115,14 +131,19 @@ async def _drive(
     def p(a: np.ndarray) -> tuple[float, float]:
         return float(np.percentile(a, 50)), float(np.percentile(a, 99))
 
-    return Figures(speed, len(keys), count - ramp, p(lat_d), p(lat_c), cpu)
+    load = os.getloadavg()
+    return Figures(speed, len(keys), count - ramp, p(lat_d), p(lat_c), cpu, load)
 
 
-async def main_async(speeds: list[float], seconds: float, realtime: bool) -> None:
+async def main_async(
+    speeds: list[float], seconds: float, realtime: bool, layouts: list[str]
+) -> None:
     with running_router() as (_, endpoint):
-        for speed in speeds:
-            figures = await measure(endpoint, speed, seconds, realtime)
-            print("\n".join(figures.lines()), flush=True)
+        for layout in layouts:
+            for speed in speeds:
+                figures = await measure(endpoint, speed, seconds, realtime, layout)
+                print(f"{layout} ({time.strftime('%H:%M:%S', time.gmtime())} UTC)")
+                print("\n".join(figures.lines()), flush=True)
 
 
 def main() -> None:
@@ -130,10 +151,14 @@ def main() -> None:
     parser.add_argument("--speeds", type=float, nargs="+", default=[1.0, 10.0])
     parser.add_argument("--seconds", type=float, default=20.0, help="sim s of driving per speed")
     parser.add_argument("--realtime", action="store_true", help="SCHED_FIFO on the way")
+    parser.add_argument(
+        "--layouts", nargs="+", choices=sorted(LAYOUTS), default=["separate"],
+        help="the chain's processes, each run in this order (default: separate)",
+    )  # fmt: skip
     args = parser.parse_args()
     if args.realtime:  # this process plays the controller; before its bus: its threads too
         raise_priority(realtime_priority("controller"))
-    asyncio.run(main_async(args.speeds, args.seconds, args.realtime))
+    asyncio.run(main_async(args.speeds, args.seconds, args.realtime, args.layouts))
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ the two services while driving (``/proc``). ``--realtime``: the router, the robo
 the controller, the two links and this process under ``SCHED_FIFO`` (each one's
 ``--realtime-priority`` default; see :mod:`aiobt.system.realtime`).
 
-    .venv/bin/python -m bench.safety.stack_latency --speed 1 --goals 2 [--realtime]
+    .venv/bin/python -m bench.safety.stack_latency --speed 1 --goals 2 [--realtime] [--composed]
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ from aiobt.transport import Bus, open_bus
 from bench.nav.goals import pick_goals, static_grid
 from bench.nav.run import navigator_client
 
-from .chain_latency import SERVICES, cpu_seconds
+from .chain_latency import LAYOUTS, SERVICES, cpu_seconds
 
 START = (2.0, 9.75)  # the office's start
 PERIOD = 0.05  # s of sim time: the controller's 20 Hz
@@ -76,7 +76,8 @@ async def drive(
     async with open_bus(stack.settings()) as bus:
         client = await navigator_client(stack, bus)
         matcher = Matcher(bus)
-        pids = {name: stack.processes[name].pid for name in SERVICES}
+        layout = "composed" if stack.config.use_composition else "separate"
+        pids = {name: stack.processes[name].pid for name in LAYOUTS[layout]}
         cpu0 = {name: cpu_seconds(pid) for name, pid in pids.items()}
         wall0 = time.perf_counter()
         for x, y, yaw in pick_goals(static_grid(), START, goals, seed):
@@ -108,11 +109,15 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=3)
     parser.add_argument("--timeout", type=float, default=240.0, help="wall s per goal")
     parser.add_argument("--realtime", action="store_true", help="SCHED_FIFO on the way")
+    parser.add_argument(
+        "--composed", action="store_true", help="the chain in one process (aiobt safety_chain)"
+    )
     args = parser.parse_args()
     extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
     config = StackConfig(
-        world="office", speed=args.speed, seed=args.seed, safety_chain=True, extra=extra
-    )
+        world="office", speed=args.speed, seed=args.seed, safety_chain=True, extra=extra,
+        use_composition=args.composed,
+    )  # fmt: skip
     router_args = ["--lease-ms", str(config.lease_ms)]
     router_args += ["--realtime-priority"] if args.realtime else []
     router, endpoint = start_router(extra_args=router_args, timeout=60.0)

@@ -18,7 +18,12 @@ import yaml
 from aiobt.core.clock import Clock
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.realtime import add_realtime_argument
-from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
+from aiobt.system.service import (
+    Component,
+    add_clock_arguments,
+    run_service,
+    serve_components,
+)
 from aiobt.transport import Bus, add_bus_arguments
 
 from .monitor import CollisionMonitor
@@ -61,22 +66,25 @@ def params_from(args: argparse.Namespace) -> MonitorParams:
     return params
 
 
-async def serve(args: argparse.Namespace, params: MonitorParams) -> None:
+def component(args: argparse.Namespace) -> Component:
+    """The monitor as its process starts it (alone, or composed: :mod:`aiobt.system.compose`);
+    :class:`MonitorConfigError` names a bad parameter."""
+    params = params_from(args)
+
     def start(bus: Bus, clock: Clock) -> None:
         MonitorService(bus, clock, CollisionMonitor(params, robot_time=args.sim_time)).start()
 
     names = ", ".join(f"{z.name} ({z.action_type})" for z in params.polygons)
     detail = f": {params.cmd_vel_in_topic} -> {params.cmd_vel_out_topic}, polygons {names}"
     # on sim time, the robot's time from its odometry (read anyway): no clock as well
-    await serve_on_clock(
-        args, "collision_monitor", start, detail, log, args.realtime_priority, params.odom_topic
-    )
+    return Component("collision_monitor", start, detail, odometry=params.odom_topic)
 
 
 def run(args: argparse.Namespace) -> int:
     try:
-        params = params_from(args)
+        made = component(args)
     except MonitorConfigError as exc:
         log.error("%s", exc)
         return 2
-    return run_service(serve(args, params), log, "collision_monitor")
+    serving = serve_components(args, [made], log, args.realtime_priority)
+    return run_service(serving, log, "collision_monitor")

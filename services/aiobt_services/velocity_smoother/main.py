@@ -15,7 +15,12 @@ import logging
 from aiobt.core.clock import Clock
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.realtime import add_realtime_argument
-from aiobt.system.service import add_clock_arguments, run_service, serve_on_clock
+from aiobt.system.service import (
+    Component,
+    add_clock_arguments,
+    run_service,
+    serve_components,
+)
 from aiobt.transport import Bus, add_bus_arguments
 
 from .params import SmootherConfigError, SmootherParams
@@ -94,20 +99,24 @@ def params_from(args: argparse.Namespace) -> SmootherParams:
     )
 
 
-async def serve(args: argparse.Namespace, params: SmootherParams) -> None:
+def component(args: argparse.Namespace) -> Component:
+    """The smoother as its process starts it (alone, or composed: :mod:`aiobt.system.compose`);
+    :class:`SmootherConfigError` names a bad parameter."""
+    params = params_from(args)
     topics = Topics(args.cmd_vel_in, args.cmd_vel_out)
 
     def start(bus: Bus, clock: Clock) -> None:
         SmootherService(bus, clock, VelocitySmoother(params), topics).start()
 
     detail = f": {topics.cmd_in} -> {topics.cmd_out} at {params.smoothing_frequency:g} Hz"
-    await serve_on_clock(args, "velocity_smoother", start, detail, log, args.realtime_priority)
+    return Component("velocity_smoother", start, detail)
 
 
 def run(args: argparse.Namespace) -> int:
     try:
-        params = params_from(args)
+        made = component(args)
     except SmootherConfigError as exc:
         log.error("%s", exc)
         return 2
-    return run_service(serve(args, params), log, "velocity_smoother")
+    serving = serve_components(args, [made], log, args.realtime_priority)
+    return run_service(serving, log, "velocity_smoother")

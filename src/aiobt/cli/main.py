@@ -17,7 +17,7 @@ import sys
 from collections.abc import Sequence
 
 from aiobt.cli.unknown_flags import command_parser, unknown_flags_message
-from aiobt.system.catalog import SERVICES
+from aiobt.system.catalog import COMPOSITIONS, SERVICES
 
 # name -> (module, one-line help): every sub-command.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -36,12 +36,19 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "web": ("aiobt.cli.web", "the robot, its plans and its tree in a browser (a web view)"),
     # the services, by module path, from the one list (aiobt.system.catalog)
     **{spec.name: (spec.module, spec.summary) for spec in SERVICES},
+    # services run as one process (Nav2's composition; aiobt.system.compose)
+    **{
+        name: ("aiobt.system.compose", f"{' and '.join(parts)} in one process (composed)")
+        for name, parts in COMPOSITIONS.items()
+    },
 }
 
 # long-running processes whose INFO lines are their log (aiobt up's services.log; the
 # web view's and Foxglove's address and clients); every other command shows the person
 # at the terminal warnings and errors only
-LOGGING_COMMANDS = frozenset({"router", "up", "web", "foxglove", *(spec.name for spec in SERVICES)})
+LOGGING_COMMANDS = frozenset(
+    {"router", "up", "web", "foxglove", *(spec.name for spec in SERVICES), *COMPOSITIONS}
+)
 
 VERBOSE_HELP = "more logging: -v the library's INFO lines, -vv DEBUG"
 
@@ -80,8 +87,12 @@ def _full_parser(argv: Sequence[str]) -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     wanted = next((a for a in argv if not a.startswith("-")), None)
     for name, (module_name, help_text) in COMMANDS.items():
-        sub = commands.add_parser(name, help=help_text, description=help_text)
-        sub.set_defaults(_module=module_name)
+        # a composition's services each add the bus and clock flags: the same, taken once
+        handler = "resolve" if name in COMPOSITIONS else "error"
+        sub = commands.add_parser(
+            name, help=help_text, description=help_text, conflict_handler=handler
+        )
+        sub.set_defaults(_module=module_name, _command=name)
         if name == wanted:
             _load(module_name).add_arguments(sub)  # type: ignore[attr-defined]
             with contextlib.suppress(argparse.ArgumentError):  # the services' flags have it

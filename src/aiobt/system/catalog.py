@@ -90,6 +90,9 @@ HOSTS: tuple[str, ...] = ("robot", "base")
 plans and decides (planner, navigator, route). Each service says which (``host``)."""
 SAFETY_CHAIN: tuple[str, ...] = ("velocity_smoother", "collision_monitor")
 """Between the controller/behaviors and the base: run unless ``safety_chain: false``."""
+COMPOSITIONS: dict[str, tuple[str, ...]] = {"safety_chain": SAFETY_CHAIN}
+"""Services that also run as one process on one bus session, Nav2's composition
+(:mod:`aiobt.system.compose`): ``aiobt NAME`` runs them, in this order."""
 
 
 def service(name: str) -> ServiceSpec:

@@ -12,7 +12,7 @@ import importlib.util
 import sys
 from pathlib import Path
 
-from aiobt.system.catalog import service
+from aiobt.system.catalog import COMPOSITIONS, service
 from aiobt.system.config import SystemConfig
 from aiobt.system.world_start import Start, WorldError, start_from_args, world_start
 
@@ -21,7 +21,9 @@ LOCALIZATION_PARAMS = ("--params-file", "sim_robot")
 
 
 def available(name: str) -> bool:
-    """Whether ``name`` is a service and its module is installed."""
+    """Whether ``name`` is a service (or a composition of them) and its module is installed."""
+    if name in COMPOSITIONS:
+        return all(available(part) for part in COMPOSITIONS[name])
     try:
         return importlib.util.find_spec(service(name).module) is not None
     except (KeyError, ModuleNotFoundError):
@@ -49,6 +51,8 @@ def identity_config(config: SystemConfig, name: str) -> str:
 
 def service_command(name: str, config: SystemConfig) -> list[str]:
     """``name``'s sub-command and flags: the common bus flags, then its own, then the extras."""
+    if name in COMPOSITIONS:
+        return composed_command(name, config)
     command = [name, "--connect", config.router.listen, "--namespace", config.namespace]
     if config.router.certs:
         command += ["--config", identity_config(config, name)]
@@ -65,6 +69,16 @@ def service_command(name: str, config: SystemConfig) -> list[str]:
     if name == "localization" and config.services["robot"].enabled:
         command += [*LOCALIZATION_PARAMS, *initial_pose_flags(simulated_start(config))]
     return command + list(config.services[name].args)
+
+
+def composed_command(name: str, config: SystemConfig) -> list[str]:
+    """Composition ``name``'s: the bus and clock flags once, then each service's extras
+    (``services.<service>.args``, the flags as each takes them alone; see
+    :mod:`aiobt.system.compose`)."""
+    command = [name, "--connect", config.router.listen, "--namespace", config.namespace]
+    if config.uses_sim_time:
+        command.append("--sim-time")
+    return command + [arg for part in COMPOSITIONS[name] for arg in config.services[part].args]
 
 
 def simulated_start(config: SystemConfig) -> Start | None:

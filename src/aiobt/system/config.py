@@ -6,6 +6,8 @@
     sim_time: null            # null: on when speed != 1; true/false forces it
     safety_chain: true        # the velocity smoother and the collision monitor run between
                               # the controller/behaviors (on cmd_vel_nav) and the base
+    use_composition: false    # true: the two in one process, `aiobt safety_chain` (Nav2's
+                              # composition: one bus session); not with router.certs
     router:
       listen: tcp/127.0.0.1:7447   # where the router listens and services connect
       start: true             # false: use a router that is already running there
@@ -89,6 +91,7 @@ class SystemConfig:
     speed: float = 1.0
     sim_time: bool | None = None
     safety_chain: bool = True
+    use_composition: bool = False
     router: RouterConfig = RouterConfig()
     restart: RestartConfig = RestartConfig()
     services: Mapping[str, ServiceConfig] = field(
@@ -107,6 +110,16 @@ class SystemConfig:
             for name in SERVICES
             if self.services[name].enabled and (self.safety_chain or name not in SAFETY_CHAIN)
         ]
+
+    def processes(self) -> list[str]:
+        """The processes ``aiobt up`` runs: :meth:`enabled`, with the safety chain's two
+        as one ``safety_chain`` where ``use_composition`` (and both are enabled)."""
+        names = self.enabled()
+        if not (self.use_composition and set(SAFETY_CHAIN) <= set(names)):
+            return names
+        at = names.index(SAFETY_CHAIN[0])
+        rest = [name for name in names if name not in SAFETY_CHAIN]
+        return [*rest[:at], "safety_chain", *rest[at:]]
 
 
 def load_config(
@@ -146,11 +159,17 @@ def config_from_dict(data: Mapping[str, Any], where: str = "config") -> SystemCo
         speed=_number(data, "speed", 1.0, where, positive=True),
         sim_time=_typed(data, "sim_time", bool, None, where),
         safety_chain=_typed(data, "safety_chain", bool, True, where),
+        use_composition=_typed(data, "use_composition", bool, False, where),
         router=_router(_section(data, "router", where), where),
         restart=_restart(_section(data, "restart", where), where),
         services=_services(_section(data, "services", where), where),
     )
     _check_namespace(config.namespace, where)
+    if config.use_composition and config.router.certs:  # one session: one certificate
+        raise ConfigError(
+            f"{where}: use_composition with router.certs: a composed process has one "
+            "session and no certificate of its own yet; run the services separately"
+        )
     return config
 
 

@@ -19,6 +19,7 @@ from collections.abc import AsyncIterator, Callable
 from typing import Any
 from urllib.parse import urlsplit
 
+from aiobt.system.catalog import COMPOSITIONS
 from aiobt.system.commands import (
     available,
     identity_config,
@@ -46,15 +47,26 @@ class System:
         self._up: dict[str, asyncio.Event] = {name: asyncio.Event() for name in services}
 
     def _watch(self, bus: Bus) -> None:
+        """Each process is up while every token it declares is: ``nodes/<service>``, one
+        per service of a composition."""
         self.bus = bus
         for name in self.services:
-            presence = bus.presence(f"{bus.namespace}/nodes/{name}")
-            presence.add_listener(self._listener(name))
-            if presence.present:
+            tokens = COMPOSITIONS.get(name, (name,))
+            alive: dict[str, bool] = dict.fromkeys(tokens, False)
+            for token in tokens:
+                presence = bus.presence(f"{bus.namespace}/nodes/{token}")
+                presence.add_listener(self._listener(name, token, alive))
+                if presence.present:
+                    alive[token] = True
+            if all(alive.values()):
                 self._set(name, True)
 
-    def _listener(self, name: str) -> Callable[[bool], None]:
-        return lambda alive: self._set(name, alive)
+    def _listener(self, name: str, token: str, alive: dict[str, bool]) -> Callable[[bool], None]:
+        def on_change(present: bool) -> None:
+            alive[token] = present
+            self._set(name, all(alive.values()))
+
+        return on_change
 
     def _set(self, name: str, alive: bool) -> None:
         self.supervisor.mark_healthy(name, alive)
@@ -108,7 +120,7 @@ class System:
 async def run_system(config: SystemConfig, sink: LogSink) -> AsyncIterator[System]:
     """Start the router (unless ``router.start`` is false) and every enabled service;
     stop them all on exit (under 3 s). :class:`Fatal` names what could not start."""
-    services = [name for name in config.enabled() if _present(name, sink)]
+    services = [name for name in config.processes() if _present(name, sink)]
     supervisor = Supervisor(config.restart, sink)
     system = System(config, supervisor, services)
     try:

@@ -12,7 +12,8 @@ import asyncio
 import contextlib
 import logging
 import math
-from collections.abc import AsyncIterator, Callable, Coroutine
+from collections.abc import AsyncIterator, Callable, Coroutine, Sequence
+from dataclasses import dataclass
 from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock, SystemClock
@@ -122,6 +123,19 @@ def add_clock_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
+@dataclass(frozen=True, slots=True)
+class Component:
+    """One service as its process starts it: ``start(bus, clock)`` wires it, then the
+    token ``nodes/{name}`` says it is up. Several run in one process on one bus
+    (:mod:`aiobt.system.compose`, Nav2's composition); ``odometry``: its clock on sim
+    time from that topic's stamps (see :func:`make_clock`)."""
+
+    name: str
+    start: Callable[[Bus, Clock], None]
+    detail: str = ""
+    odometry: str | None = None
+
+
 async def serve_on_clock(
     args: argparse.Namespace,
     name: str,
@@ -131,25 +145,46 @@ async def serve_on_clock(
     realtime: int | None = None,
     odometry: str | None = None,
 ) -> None:
+    """:func:`serve_components` for one."""
+    await serve_components(args, [Component(name, start, detail, odometry)], logger, realtime)
+
+
+async def serve_components(
+    args: argparse.Namespace,
+    components: Sequence[Component],
+    logger: logging.Logger = log,
+    realtime: int | None = None,
+) -> None:
     """Raise the process to ``realtime`` priority if given (before the bus: Zenoh's
-    threads too, see :mod:`aiobt.system.realtime`), open the bus, wait for the clock
-    (``--sim-time``; the stamps of the odometry on ``odometry`` if given, see
-    :func:`make_clock`), ``start(bus, clock)``, announce ``nodes/{name}``, then run
-    until SIGINT/SIGTERM; "``name`` up" goes to ``logger``."""
-    detail += realtime_if_asked(realtime)
+    threads too, see :mod:`aiobt.system.realtime`), open one bus, wait for each
+    component's clock (``--sim-time``; one per time source, shared), start each and
+    announce ``nodes/{name}`` in order, then run until SIGINT/SIGTERM; "``name`` up"
+    goes to ``logger``."""
+    extra = realtime_if_asked(realtime)
     stop = stop_on_signals()
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
         stopper = asyncio.create_task(stop.wait())
-        made = await unless_stopped(make_clock(bus, args.sim_time, odometry), stopper)
-        if made is None:
-            return
-        start(bus, made[0])
+        clocks: dict[str | None, Clock] = {}
+        for component in components:
+            if component.odometry not in clocks:
+                made = await unless_stopped(
+                    make_clock(bus, args.sim_time, component.odometry), stopper
+                )
+                if made is None:
+                    return
+                clocks[component.odometry] = made[0]
+        for component in components:
+            component.start(bus, clocks[component.odometry])
         settle()  # start-up's objects out of the collector's full passes (a cycle's tail)
-        announce(bus, name, sim_time=args.sim_time)
         time = "sim" if args.sim_time else "wall"
-        logger.info("%s up on namespace '%s'%s (%s time)", name, bus.namespace, detail, time)
+        for component in components:
+            announce(bus, component.name, sim_time=args.sim_time)
+            logger.info(
+                "%s up on namespace '%s'%s%s (%s time)",
+                component.name, bus.namespace, component.detail, extra, time,
+            )  # fmt: skip
         await stopper
 
 

@@ -22,7 +22,7 @@ import uuid
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass, field
 
-from aiobt.system.catalog import SAFETY_CHAIN
+from aiobt.system.catalog import COMPOSITIONS, SAFETY_CHAIN
 from aiobt.system.catalog import SERVICES as CATALOG
 from aiobt.system.commands import LOCALIZATION_PARAMS, initial_pose_flags
 from aiobt.system.world_start import start_from_args, world_start
@@ -31,7 +31,8 @@ from aiobt.transport import Bus, BusSettings
 
 # what `aiobt up` runs by default (the safety chain with StackConfig.safety_chain)
 SERVICES = tuple(spec.name for spec in CATALOG if spec.enabled and spec.name not in SAFETY_CHAIN)
-SIM_TIME = ("controller", "behaviors", "navigator", *SAFETY_CHAIN)  # the planner needs no clock
+# the planner needs no clock
+SIM_TIME = ("controller", "behaviors", "navigator", *SAFETY_CHAIN, *COMPOSITIONS)
 
 
 class StackError(RuntimeError):
@@ -55,12 +56,20 @@ class StackConfig:
     extra: dict[str, list[str]] = field(default_factory=dict)
     # the velocity smoother and collision monitor between controller/behaviors and the base
     safety_chain: bool = False
+    # the two in one process, ``aiobt safety_chain`` (Nav2's use_composition): each one's
+    # extra flags go to it, its token is still nodes/<service> (see tokens())
+    use_composition: bool = False
 
     def __post_init__(self) -> None:
-        if self.safety_chain and not set(SAFETY_CHAIN) & set(self.services):
+        chain = ("safety_chain",) if self.use_composition else SAFETY_CHAIN
+        if self.safety_chain and not {*SAFETY_CHAIN, "safety_chain"} & set(self.services):
             names = list(self.services)
             at = names.index("navigator") if "navigator" in names else len(names)
-            self.services = (*names[:at], *SAFETY_CHAIN, *names[at:])
+            self.services = (*names[:at], *chain, *names[at:])
+
+    def tokens(self, process: str) -> tuple[str, ...]:
+        """The services whose tokens ``nodes/<service>`` say ``process`` is up."""
+        return COMPOSITIONS.get(process, (process,))
 
     def command(self, service: str, endpoint: str, namespace: str) -> list[str]:
         """The argv (after ``python``) that starts ``service``."""
@@ -76,7 +85,8 @@ class StackConfig:
             args += ["--sim-time", "--clock-timeout", str(self.clock_timeout)]
         if self.safety_chain and service in ("controller", "behaviors"):
             args += ["--cmd-vel-topic", "cmd_vel_nav"]
-        return args + self.extra.get(service, [])
+        parts = (*self.tokens(service), service) if service in COMPOSITIONS else (service,)
+        return args + [flag for part in parts for flag in self.extra.get(part, [])]
 
 
 class NavStack:
@@ -135,14 +145,18 @@ class NavStack:
     ) -> None:
         """Wait until each service's token ``{ns}/nodes/<service>`` is alive."""
         for service in services or self.config.services:
-            token = bus.presence(bus.keys.topic(f"nodes/{service}"))
-            if not await token.wait(timeout):
-                proc = self.processes.get(service)
-                state = "running" if proc and proc.running else "exited"
-                output = proc.output()[-4000:] if proc else "(never started)"
-                raise StackError(
-                    f"{service} ({state}) has no token {token.key} after {timeout} s:\n{output}"
-                )
+            for part in self.config.tokens(service):
+                await self._wait_token(bus, service, part, timeout)
+
+    async def _wait_token(self, bus: Bus, process: str, part: str, wait: float) -> None:
+        token = bus.presence(bus.keys.topic(f"nodes/{part}"))
+        if not await token.wait(wait):
+            proc = self.processes.get(process)
+            state = "running" if proc and proc.running else "exited"
+            output = proc.output()[-4000:] if proc else "(never started)"
+            raise StackError(
+                f"{process} ({state}) has no token {token.key} after {wait} s:\n{output}"
+            )
 
     def logs(self, tail: int = 6000) -> str:
         """The last ``tail`` characters of every process's output, each under its command."""
