@@ -2,7 +2,8 @@
 
 ``start_chain`` runs the robot (small world), and on its sim time the velocity
 smoother, the collision monitor and the controller (commanding ``cmd_vel_nav``, its
-local costmap's obstacle layer off), each optional. :class:`Trace` records, from the
+local costmap's obstacle layer off), each optional, the smoother and the monitor
+separate or composed in one process. :class:`Trace` records, from the
 robot, the true pose (``pose``: no pose noise is configured, so it is the sim's truth),
 odometry and the sim clock, and from the monitor its states.
 """
@@ -48,22 +49,34 @@ async def start_chain(
     smoother: Sequence[str] | None = (),
     monitor: Sequence[str] | None = (),
     controller: Sequence[str] | None = (),
+    composed: bool = False,
 ) -> dict[str, ServiceProcess]:
-    """The processes (a part given as None is not started), once each is up."""
+    """The processes (a part given as None is not started), once each is up;
+    ``composed``: the smoother and the monitor as one ``aiobt safety_chain`` process
+    (Nav2's composition), each with its flags as given."""
     common = ["--connect", settings.connect[0], "--namespace", settings.namespace]
     robot = ["-m", "aiobt_services.robot", "--world", "small", "--speed", speed, *START,
              *EXACT_ODOMETRY, *TRUTH]  # fmt: skip
     procs = {"robot": spawn([*robot, *common])}
     parts = {"velocity_smoother": smoother, "collision_monitor": monitor, "controller": controller}
+    tokens = {"robot": ["robot"]}
+    if composed:
+        assert smoother is not None, "the smoother is composed"
+        assert monitor is not None, "the monitor is composed"
+        parts = {"safety_chain": [*smoother, *monitor], "controller": controller}
+        tokens["safety_chain"] = ["velocity_smoother", "collision_monitor"]
     for name, extra in parts.items():
         if extra is not None:
             chain = ["--cmd-vel-topic", "cmd_vel_nav", "--no-obstacle-layer"]
             flags = chain if name == "controller" else []
-            procs[name] = spawn(["-m", f"aiobt_services.{name}", "--sim-time", *common,
-                                 *flags, *extra])  # fmt: skip
+            program = (
+                ["aiobt.cli.main", name] if name == "safety_chain" else [f"aiobt_services.{name}"]
+            )
+            procs[name] = spawn(["-m", *program, "--sim-time", *common, *flags, *extra])
     for name, proc in procs.items():
-        if not await bus.presence(bus.keys.topic(f"nodes/{name}")).wait(60.0):
-            pytest.fail(f"{name} did not come up:\n{proc.output()}")
+        for token in tokens.get(name, [name]):
+            if not await bus.presence(bus.keys.topic(f"nodes/{token}")).wait(60.0):
+                pytest.fail(f"{token} ({name}) did not come up:\n{proc.output()}")
     return procs
 
 

@@ -66,15 +66,19 @@ async def test_a_box_dropped_ahead_is_approached_slowly_then_stopped_short(
 
 
 @pytest.mark.timeout(150)
+@pytest.mark.parametrize("composed", [False, True], ids=["separate", "composed"])
 async def test_the_stop_polygon_alone_stops_short_at_4x(
-    spawn: Spawn, bus: Bus, bus_settings: BusSettings, tmp_path: Path
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings, tmp_path: Path, composed: bool
 ) -> None:
+    """The smoother and the monitor as two processes, or composed in one."""
+
     def stop_only(params: dict[str, Any]) -> None:
         params["polygons"] = ["PolygonStop"]
 
     trace = Trace(bus)
     params = monitor_params(tmp_path, stop_only)
-    await start_chain(spawn, bus, bus_settings, monitor=["--params-file", params])
+    monitor = ["--params-file", params]
+    await start_chain(spawn, bus, bus_settings, monitor=monitor, composed=composed)
     box = await drive_then_drop_box(bus, trace)
     await trace.until(lambda: trace.still_since(0.5), 30.0, "standstill")
     gap = closest_gap(trace, box)

@@ -26,14 +26,18 @@ ATTEMPTS = 3
 
 
 @pytest.mark.timeout(180)
+@pytest.mark.parametrize("composed", [False, True], ids=["alone", "composed"])
 async def test_a_step_is_a_ramp_and_a_stale_command_stops_the_base(
-    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings, composed: bool
 ) -> None:
+    """Alone, straight to the base; composed (``aiobt safety_chain``), through the
+    collision monitor in the same process (nothing in its polygons)."""
     trace = Trace(bus)
-    smoother = ["--cmd-vel-out", "cmd_vel", "--max-accel", str(ACCEL), "0", "3.2",
-                "--velocity-timeout", str(TIMEOUT)]  # fmt: skip
-    await start_chain(spawn, bus, bus_settings, speed="2", smoother=smoother, monitor=None,
-                      controller=None)  # fmt: skip
+    smoother = ["--max-accel", str(ACCEL), "0", "3.2", "--velocity-timeout", str(TIMEOUT)]
+    smoother += [] if composed else ["--cmd-vel-out", "cmd_vel"]
+    monitor = () if composed else None
+    await start_chain(spawn, bus, bus_settings, speed="2", smoother=smoother, monitor=monitor,
+                      controller=None, composed=composed)  # fmt: skip
     command = bus.publisher("cmd_vel_nav", Twist)
     await trace.until(lambda: trace.now > 0.0, 10.0, "clock")
     gaps = []
