@@ -13,7 +13,10 @@ from aiobt.cli.main import COMMANDS, _full_parser
 from aiobt.system import compose
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import ConfigError, config_from_dict
+from aiobt.system.runner import System
+from aiobt.system.supervisor import Supervisor
 from aiobt.testing.stack import StackConfig
+from aiobt.transport import Bus
 from aiobt_services.collision_monitor.main import DEFAULT_PARAMS
 from aiobt_services.collision_monitor.params import MonitorConfigError
 from aiobt_services.velocity_smoother.params import SmootherConfigError
@@ -128,3 +131,22 @@ def test_the_test_stack_runs_one_process_with_both_tokens_and_both_extras() -> N
     assert command[2] == "safety_chain"
     assert "--sim-time" in command
     assert command[-5:] == ["--max-accel", "1", "0", "1", "--disabled"]
+
+
+async def test_up_takes_a_composed_process_as_up_once_both_tokens_are(
+    local_bus: Bus,
+) -> None:
+    config = config_from_dict({"use_composition": True})
+    supervisor = Supervisor(config.restart, Sink())
+    system = System(config, supervisor, ["safety_chain"])
+    system._watch(local_bus)
+    local_bus.declare_token("nodes/velocity_smoother")
+    assert await system.wait_healthy(0.3) == ["safety_chain"]  # the monitor's is missing
+    local_bus.declare_token("nodes/collision_monitor")
+    assert await system.wait_healthy(5.0) == []
+
+
+class Sink:
+    def line(self, name: str, text: str) -> None: ...
+
+    def event(self, name: str, text: str) -> None: ...
