@@ -128,7 +128,7 @@ class Component:
     """One service as its process starts it: ``start(bus, clock)`` wires it, then the
     token ``nodes/{name}`` says it is up. Several run in one process on one bus
     (:mod:`aiobt.system.compose`, Nav2's composition); ``odometry``: its clock on sim
-    time from that topic's stamps (see :func:`make_clock`)."""
+    time may come from that topic's stamps (see :func:`make_clock`, :func:`time_sources`)."""
 
     name: str
     start: Callable[[Bus, Clock], None]
@@ -166,17 +166,15 @@ async def serve_components(
         if bus is None:
             return
         stopper = asyncio.create_task(stop.wait())
+        sources = time_sources(components)
         clocks: dict[str | None, Clock] = {}
+        for source in dict.fromkeys(sources.values()):
+            made = await unless_stopped(make_clock(bus, args.sim_time, source), stopper)
+            if made is None:
+                return
+            clocks[source] = made[0]
         for component in components:
-            if component.odometry not in clocks:
-                made = await unless_stopped(
-                    make_clock(bus, args.sim_time, component.odometry), stopper
-                )
-                if made is None:
-                    return
-                clocks[component.odometry] = made[0]
-        for component in components:
-            component.start(bus, clocks[component.odometry])
+            component.start(bus, clocks[sources[component.name]])
         settle()  # start-up's objects out of the collector's full passes (a cycle's tail)
         time = "sim" if args.sim_time else "wall"
         for component in components:
@@ -186,6 +184,15 @@ async def serve_components(
                 component.name, bus.namespace, component.detail, extra, time,
             )  # fmt: skip
         await stopper
+
+
+def time_sources(components: Sequence[Component]) -> dict[str, str | None]:
+    """Each component's time on sim time: the clock's (None) or the stamps of its
+    ``odometry``. One that may take its time from odometry takes the clock's where
+    another component of the process follows the clock anyway: the same time, at 100
+    stamps a second, for no second subscription (bench/history/safety.md)."""
+    on_clock = any(component.odometry is None for component in components)
+    return {c.name: None if on_clock else c.odometry for c in components}
 
 
 async def open_clock(bus: Bus, sim_time: bool, stop: asyncio.Event) -> Clock | None:

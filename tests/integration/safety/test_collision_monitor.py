@@ -88,9 +88,11 @@ async def test_the_stop_polygon_alone_stops_short_at_4x(
 
 
 @pytest.mark.timeout(150)
+@pytest.mark.parametrize("composed", [False, True], ids=["separate", "composed"])
 async def test_stale_lidar_stops_the_base_within_source_timeout_and_a_cycle(
-    spawn: Spawn, bus: Bus, bus_settings: BusSettings, tmp_path: Path
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings, tmp_path: Path, composed: bool
 ) -> None:
+    """Composed, the monitor's time is the smoother's clock, not its odometry's stamps."""
     timeout, cycle, decel = 0.5, 0.05, 2.5  # source_timeout; smoother period; base m/s^2
 
     def relayed(params: dict[str, Any]) -> None:
@@ -109,7 +111,8 @@ async def test_stale_lidar_stops_the_base_within_source_timeout_and_a_cycle(
     bus.subscribe("scan", LaserScan, forward)
     trace = Trace(bus)
     params = monitor_params(tmp_path, relayed)
-    await start_chain(spawn, bus, bus_settings, monitor=["--params-file", params])
+    monitor = ["--params-file", params]
+    await start_chain(spawn, bus, bus_settings, monitor=monitor, composed=composed)
     client = bus.action_client("follow_path", FollowPath)
     path = path_through([(-1.8, 0.0), (1.8, 0.0)])
     await client.send_goal(FollowPath.Goal(path=path), server_timeout=15.0)

@@ -14,6 +14,7 @@ from aiobt.system import compose
 from aiobt.system.commands import available, service_command
 from aiobt.system.config import ConfigError, config_from_dict
 from aiobt.system.runner import System
+from aiobt.system.service import Component, time_sources
 from aiobt.system.supervisor import Supervisor
 from aiobt.testing.stack import StackConfig
 from aiobt.transport import Bus
@@ -150,3 +151,14 @@ class Sink:
     def line(self, name: str, text: str) -> None: ...
 
     def event(self, name: str, text: str) -> None: ...
+
+
+def test_composed_the_monitor_shares_the_smoothers_clock() -> None:
+    def start(bus: Bus, clock: object) -> None: ...
+
+    smoother = Component("velocity_smoother", start)
+    monitor = Component("collision_monitor", start, odometry="odom")
+    assert time_sources([monitor]) == {"collision_monitor": "odom"}  # alone: no clock at all
+    assert time_sources([smoother]) == {"velocity_smoother": None}
+    both = {"velocity_smoother": None, "collision_monitor": None}  # the clock is there anyway
+    assert time_sources([smoother, monitor]) == both
