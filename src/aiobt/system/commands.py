@@ -12,7 +12,7 @@ import importlib.util
 import sys
 from pathlib import Path
 
-from aiobt.system.catalog import COMPOSITIONS, service
+from aiobt.system.catalog import COMPOSITIONS, SAFETY_CHAIN, service
 from aiobt.system.config import SystemConfig
 from aiobt.system.world_start import Start, WorldError, start_from_args, world_start
 
@@ -28,6 +28,17 @@ def available(name: str) -> bool:
         return importlib.util.find_spec(service(name).module) is not None
     except (KeyError, ModuleNotFoundError):
         return False
+
+
+def processes(config: SystemConfig) -> list[str]:
+    """The processes ``aiobt up`` runs: the enabled services, with the safety chain's
+    two as one ``safety_chain`` where ``use_composition`` (and both are enabled)."""
+    names = config.enabled()
+    if not (config.use_composition and set(SAFETY_CHAIN) <= set(names)):
+        return names
+    at = names.index(SAFETY_CHAIN[0])
+    rest = [name for name in names if name not in SAFETY_CHAIN]
+    return [*rest[:at], "safety_chain", *rest[at:]]
 
 
 def router_command(config: SystemConfig) -> list[str]:

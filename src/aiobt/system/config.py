@@ -111,16 +111,6 @@ class SystemConfig:
             if self.services[name].enabled and (self.safety_chain or name not in SAFETY_CHAIN)
         ]
 
-    def processes(self) -> list[str]:
-        """The processes ``aiobt up`` runs: :meth:`enabled`, with the safety chain's two
-        as one ``safety_chain`` where ``use_composition`` (and both are enabled)."""
-        names = self.enabled()
-        if not (self.use_composition and set(SAFETY_CHAIN) <= set(names)):
-            return names
-        at = names.index(SAFETY_CHAIN[0])
-        rest = [name for name in names if name not in SAFETY_CHAIN]
-        return [*rest[:at], "safety_chain", *rest[at:]]
-
 
 def load_config(
     path: str | Path | None, overrides: Mapping[str, Any] | None = None

@@ -24,6 +24,7 @@ from aiobt.system.commands import (
     available,
     identity_config,
     process_argv,
+    processes,
     router_command,
     service_command,
 )
@@ -120,7 +121,7 @@ class System:
 async def run_system(config: SystemConfig, sink: LogSink) -> AsyncIterator[System]:
     """Start the router (unless ``router.start`` is false) and every enabled service;
     stop them all on exit (under 3 s). :class:`Fatal` names what could not start."""
-    services = [name for name in config.processes() if _present(name, sink)]
+    services = [name for name in processes(config) if _present(name, sink)]
     supervisor = Supervisor(config.restart, sink)
     system = System(config, supervisor, services)
     try:

@@ -11,7 +11,7 @@ import pytest
 
 from aiobt.cli.main import COMMANDS, _full_parser
 from aiobt.system import compose
-from aiobt.system.commands import available, service_command
+from aiobt.system.commands import available, processes, service_command
 from aiobt.system.config import ConfigError, config_from_dict
 from aiobt.system.runner import System
 from aiobt.system.service import Component, time_sources
@@ -87,13 +87,13 @@ def test_an_unknown_composition_is_named() -> None:
 
 def test_up_runs_the_chain_composed_only_when_asked() -> None:
     separate = config_from_dict({"speed": 4})
-    assert "safety_chain" not in separate.processes()
+    assert "safety_chain" not in processes(separate)
     config = config_from_dict({
         "speed": 4, "use_composition": True,
         "services": {"collision_monitor": {"args": ["--params-file", "cm.yaml"]},
                      "velocity_smoother": {"args": ["--max-accel", "1", "0", "1"]}},
     })  # fmt: skip
-    assert config.processes() == ["robot", "localization", "planner", "controller",
+    assert processes(config) == ["robot", "localization", "planner", "controller",
                                   "behaviors", "safety_chain", "navigator"]  # fmt: skip
     command = service_command("safety_chain", config)
     assert command[0] == "safety_chain"
@@ -103,8 +103,8 @@ def test_up_runs_the_chain_composed_only_when_asked() -> None:
     one_off = config_from_dict(
         {"use_composition": True, "services": {"collision_monitor": {"enabled": False}}}
     )
-    assert "velocity_smoother" in one_off.processes()  # one link alone is not composed
-    assert "safety_chain" not in one_off.processes()
+    assert "velocity_smoother" in processes(one_off)  # one link alone is not composed
+    assert "safety_chain" not in processes(one_off)
 
 
 def test_composition_with_certificates_is_refused(tmp_path: Path) -> None:
