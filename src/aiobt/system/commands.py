@@ -32,9 +32,11 @@ def available(name: str) -> bool:
 
 def processes(config: SystemConfig) -> list[str]:
     """The processes ``aiobt up`` runs: the enabled services, with the safety chain's
-    two as one ``safety_chain`` where ``use_composition`` (and both are enabled)."""
+    two as one ``safety_chain`` where ``use_composition`` (and both are enabled; not
+    with ``router.certs``: one session presents one certificate, and each has its own)."""
     names = config.enabled()
-    if not (config.use_composition and set(SAFETY_CHAIN) <= set(names)):
+    composed = config.use_composition and not config.router.certs
+    if not (composed and set(SAFETY_CHAIN) <= set(names)):
         return names
     at = names.index(SAFETY_CHAIN[0])
     rest = [name for name in names if name not in SAFETY_CHAIN]

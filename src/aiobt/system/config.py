@@ -7,7 +7,7 @@
     safety_chain: true        # the velocity smoother and the collision monitor run between
                               # the controller/behaviors (on cmd_vel_nav) and the base
     use_composition: false    # true: the two in one process, `aiobt safety_chain` (Nav2's
-                              # composition: one bus session); not with router.certs
+                              # composition: one bus session); separate with router.certs
     router:
       listen: tcp/127.0.0.1:7447   # where the router listens and services connect
       start: true             # false: use a router that is already running there
@@ -155,7 +155,7 @@ def config_from_dict(data: Mapping[str, Any], where: str = "config") -> SystemCo
         services=_services(_section(data, "services", where), where),
     )
     _check_namespace(config.namespace, where)
-    if config.use_composition and config.router.certs:  # one session: one certificate
+    if data.get("use_composition") is True and config.router.certs:  # one certificate
         raise ConfigError(
             f"{where}: use_composition with router.certs: a composed process has one "
             "session and no certificate of its own yet; run the services separately"

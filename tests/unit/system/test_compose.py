@@ -5,6 +5,7 @@ one command line, each with its own flags, parameters, token name and errors; an
 from __future__ import annotations
 
 import argparse
+import dataclasses
 from pathlib import Path
 
 import pytest
@@ -113,6 +114,10 @@ def test_composition_with_certificates_is_refused(tmp_path: Path) -> None:
     assert not config_from_dict({"router": router}).use_composition
     with pytest.raises(ConfigError, match=r"use_composition with router\.certs"):
         config_from_dict({"use_composition": True, "router": router})
+    # a default of true (once the lead flips it) leaves a deployment with certificates separate
+    defaulted = dataclasses.replace(config_from_dict({"router": router}), use_composition=True)
+    assert "safety_chain" not in processes(defaulted)
+    assert {"velocity_smoother", "collision_monitor"} <= set(processes(defaulted))
 
 
 def test_the_test_stack_runs_one_process_with_both_tokens_and_both_extras() -> None:
