@@ -124,9 +124,11 @@ BOXES = [(5.0, 10.4), (7.0, 9.1), (9.0, 10.4), (11.0, 9.1), (13.0, 10.4), (6.0, 
 CORRIDOR_Y = 9.75
 
 
-def corridor(seed: int, params: str, seconds: float) -> tuple[float, int]:
-    """The worst error (m) and the most particles over ``seconds`` of driving the
-    corridor (x 3..15) back and forth past :data:`BOXES`, the filter never misled."""
+def corridor(seed: int, params: str, seconds: float) -> tuple[float, int, float]:
+    """The worst error (m), the most particles and the largest share of long beams
+    (:mod:`aiobt_services.localization.long_beams`, when the gate is on) over
+    ``seconds`` of driving the corridor (x 3..15) back and forth past :data:`BOXES`,
+    the filter never misled."""
     with _sim(seed) as sim:
         p = _params(params, seed)
         amcl = Amcl(p)
@@ -135,7 +137,7 @@ def corridor(seed: int, params: str, seconds: float) -> tuple[float, int]:
         amcl.initialize(amcl.check_pose(2.0, CORRIDOR_Y, 0.0))
         for i, (x, y) in enumerate(BOXES):
             sim.spawn(ObstacleSpec(f"box{i}", "box", Pose2D(x, y, 0.3), size_x=0.6, size_y=0.6))
-        drive, heading, worst, most = Driver(sim, amcl), 0.0, 0.0, 0
+        drive, heading, worst, most, long = Driver(sim, amcl), 0.0, 0.0, 0, 0.0
         while sim.time < seconds:
             t = sim.true_pose
             heading = math.pi if t.x > 15.0 else 0.0 if t.x < 3.0 else heading
@@ -147,13 +149,15 @@ def corridor(seed: int, params: str, seconds: float) -> tuple[float, int]:
                 drive.step(0.4, max(-0.5, min(0.5, turn - 1.5 * across)))
             if sim.steps % STEPS_PER_SCAN == 0 and sim.time > 3.0:
                 worst, most = max(worst, drive.error()[0]), max(most, len(amcl.particles))
-        return worst, most
+                long = max(long, amcl.long_beams)
+        return worst, most, long
 
 
 def _trace_line(after: float, error: float, amcl: Amcl) -> str:
     r = amcl.recovery
     return (f"{after:5.1f} s  error {error:6.2f} m  w_slow {r.w_slow:.3f} w_fast "
-            f"{r.w_fast:.3f} w_diff {r.w_diff:.3f}  particles {len(amcl.particles)}")  # fmt: skip
+            f"{r.w_fast:.3f} w_diff {r.w_diff:.3f}  long beams {amcl.long_beams:.2f}  "
+            f"particles {len(amcl.particles)}")  # fmt: skip
 
 
 def _print(kind: str, runs: list[Trial]) -> None:
@@ -190,8 +194,9 @@ def main() -> None:
     seeds = [args.seed + i for i in range(args.trials)]
     if args.corridor:
         for seed in seeds:
-            worst, most = corridor(seed, args.params, args.corridor)
-            print(f"corridor seed {seed}: worst error {worst:.2f} m, most particles {most}")
+            worst, most, long = corridor(seed, args.params, args.corridor)
+            print(f"corridor seed {seed}: worst error {worst:.2f} m, most particles {most}, "
+                  f"long beams at most {long:.2f}")  # fmt: skip
         print(f"({time.monotonic() - began:.0f} s wall, params {args.params}, set {args.set})")
         return
     runs = [trial(s, args.params, trace=args.trace == i) for i, s in enumerate(seeds, 1)]
