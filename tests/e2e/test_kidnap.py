@@ -4,10 +4,9 @@ not told.
 The robot drives east along the corridor towards the south middle room; at x 5 the
 simulation carries it 3 m south, through the wall, into the west room. The filter
 still places it in the corridor. Either the filter finds it by itself (its random
-particles: this module's stack turns recovery on, :data:`RECOVERY`; the shipped
-params leave it off, see sim_robot.yaml), or the
-controller, following its path where the robot is not, makes no progress and the
-navigator's recoveries run: with the relocalizing tree
+particles: the shipped sim_robot params turn recovery on, behind the long-beam gate,
+see sim_robot.yaml), or the controller, following its path where the robot is not,
+makes no progress and the navigator's recoveries run: with the relocalizing tree
 (trees/navigate_to_pose_w_relocalization_and_recovery.xml) one of them reinitializes
 global localization and turns once on the spot. Required: the estimate back on the
 robot (within 0.25 m of the truth) by the end, a clear result, no bump.
@@ -25,12 +24,10 @@ import pytest
 from aiobt.msgs import GoalState, PoseStamped
 from aiobt.msgs.sim import Ack, BumperEvent
 from aiobt.testing.navwatch import Sample
-from aiobt.testing.stack import NavStack, StackConfig, running_stack
 from aiobt.testing.treewatch import TreeWatch
 from aiobt.transport import Bus
 from aiobt.transport.keys import SIM_POSE
 
-from .conftest import SAFETY_CHAIN, SPEED
 from .world import World
 
 pytestmark = [pytest.mark.e2e, pytest.mark.timeout(420)]
@@ -43,18 +40,6 @@ KIDNAPPED_TO = (5.0, 6.75, 0.0)  # 3 m south: the west room, through the corrido
 FOUND = 0.25  # m between estimate and truth: the filter has the robot again
 BY_THE_FILTER = 30.0  # sim s: issue 33's bound for the filter alone
 RESET_POSE = "reset_pose"  # the simulation's teleport (moving under {ns}/sim/: sim-keys)
-# issue 33: "with recovery enabled"; bench.localization.kidnap: 17 of 20 found in 30 s
-RECOVERY = ["--set", "recovery_alpha_slow=0.01", "--set", "recovery_alpha_fast=0.2",
-            "--set", "recovery_reset_after_injection=false"]  # fmt: skip
-
-
-@pytest.fixture(scope="module")
-def _module_stack() -> Iterator[NavStack]:
-    """The e2e stack with localization's recovery on (conftest's, with RECOVERY)."""
-    config = StackConfig(world="office", speed=SPEED, seed=7, safety_chain=SAFETY_CHAIN,
-                         extra={"localization": RECOVERY})  # fmt: skip
-    with running_stack(config) as stack:
-        yield stack
 
 
 async def carry_off(bus: Bus, x: float, y: float, yaw: float) -> None:
