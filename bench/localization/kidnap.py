@@ -19,10 +19,12 @@ filter that was never lost, so a recovery setting that costs tracking shows.
 ``--corridor S``: the other side of the trade, the robot never lost: S sim
 seconds back and forth along the corridor past seven boxes that are not on the
 map (each seed); the worst error and the most particles show whether the
-recovery drew random particles and moved the estimate away.
+recovery drew random particles and moved the estimate away, and the largest
+long-beam share (``recovery_min_long_beams``'s gate) how near it came to it.
 
-``--trace N`` prints trial N's recovery averages and particle count at every
-resample (what :mod:`bench/localization/README.md` explains failures with).
+``--trace N`` prints trial N's recovery averages, the gate's last long-beam share
+and the particle count at every scan (what :mod:`bench/localization/README.md`
+explains failures with).
 """
 
 from __future__ import annotations
