@@ -14,6 +14,7 @@ or ``update_min_a``, or when a no-motion update was requested; then weigh them
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -178,13 +179,15 @@ class Amcl:
     def _may_inject(self, beams: Beams) -> bool:
         """The long-beam gate (not Nav2's, :mod:`.long_beams`): random particles only
         while enough of the scan's beams reach past the map's walls from the heaviest
-        particle. Ray cast only here, when the averages ask for random particles."""
+        particle and end away from them. Ray cast only here, when the averages ask
+        for random particles."""
         if self.params.recovery_min_long_beams <= 0.0:
             return True
         assert self.field is not None
         best = self.particles[int(np.argmax(self.weights))]
         margin = MARGIN_SIGMAS * self.params.sigma_hit
-        self.long_beams = long_beam_share(self.field, best, beams, margin)
+        far = self.params.z_hit * math.exp(-0.5 * MARGIN_SIGMAS**2)
+        self.long_beams = long_beam_share(self.field, best, beams, margin, far)
         return self.long_beams >= self.params.recovery_min_long_beams
 
     def _publish(self, odom_pose: FloatArray, *, resampled: bool) -> ScanOutcome:

@@ -10,11 +10,16 @@ mapped wall), never longer; a wrong pose also makes beams longer than predicted
 (the lidar sees free space where the map has a wall in front of the estimate).
 
 :func:`long_beam_share` is the share of a scan's beams that reach more than
-``margin`` beyond the first occupied cell the map has along them from a pose:
-one ray march per beam (``max_beams`` of them) through the occupancy grid, in
-half-cell steps, vectorised over beams and steps. :class:`.Amcl` computes it
-from the heaviest particle after each weighing and lets the resample draw random
-particles only while it is at least ``recovery_min_long_beams``.
+``margin`` beyond the first occupied cell the map has along them from a pose,
+and end more than ``margin`` from every mapped obstacle (``far_term``: the
+likelihood field's hit term there). The second half is for the other way a map
+goes stale: an obstacle on the map that is gone (a crate moved away) lengthens
+beams from the right pose too, but they end on the mapped wall behind it; from a
+wrong pose most long beams end in the open. One ray march per beam (``max_beams``
+of them) through the occupancy grid, in half-cell steps, vectorised over beams
+and steps. :class:`.Amcl` computes it from the heaviest particle when the
+recovery averages ask for random particles, and draws them only while it is at
+least ``recovery_min_long_beams``.
 """
 
 from __future__ import annotations
@@ -28,9 +33,17 @@ from .se2 import FloatArray
 MARGIN_SIGMAS = 2.0  # a beam is long when it reaches 2 sigma_hit past the map's wall
 
 
-def long_beam_share(field: LikelihoodField, pose: FloatArray, beams: Beams, margin: float) -> float:
+def long_beam_share(
+    field: LikelihoodField,
+    pose: FloatArray,
+    beams: Beams,
+    margin: float,
+    far_term: float | None = None,
+) -> float:
     """The share (0..1) of ``beams`` seen from ``pose`` (x, y, yaw in the map) that
-    pass an occupied cell more than ``margin`` metres before their end; 0 without beams."""
+    pass an occupied cell more than ``margin`` metres before their end and, with
+    ``far_term``, end where the field's hit term is below it (away from every
+    mapped obstacle); 0 without beams."""
     if beams.ranges.size == 0:
         return 0.0
     step = 0.5 * field.resolution
@@ -44,4 +57,8 @@ def long_beam_share(field: LikelihoodField, pose: FloatArray, beams: Beams, marg
     cells = field.cells[np.clip(row, 0, rows - 1), np.clip(col, 0, cols - 1)]
     wall = inside & (cells == OCCUPIED)
     long = np.any(wall & (t < reach[:, np.newaxis]), axis=1)
+    if far_term is not None:
+        ex = pose[0] + beams.ranges * np.cos(angle)
+        ey = pose[1] + beams.ranges * np.sin(angle)
+        long &= field.hit_terms(ex, ey) < far_term
     return float(np.count_nonzero(long)) / len(long)

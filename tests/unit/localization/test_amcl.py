@@ -165,3 +165,13 @@ def test_the_long_beam_gate_draws_only_when_beams_reach_past_the_walls(
     kidnapped = np.array([3.5, 1.0, 0.0])  # right of the wall stub, the filter left of it
     assert _resample(amcl, draws, 0.2, truth=kidnapped) > 800
     assert amcl.long_beams >= 0.2
+
+
+def test_the_gate_stays_shut_where_a_mapped_crate_is_gone(monkeypatch: pytest.MonkeyPatch) -> None:
+    draws = Draws(monkeypatch)
+    amcl = _lost(reset=False, long_beams=0.05)
+    on_the_map = CELLS.copy()
+    on_the_map[54:66, 50:62] = 100  # a 0.6 m crate ahead of the robot, moved away since
+    amcl.set_map(field(on_the_map))
+    amcl.recovery.w_slow, amcl.recovery.w_fast = 2.0, 1.0
+    assert _resample(amcl, draws, 0.1) == 0  # beams through it end on mapped walls

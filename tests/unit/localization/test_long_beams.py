@@ -50,3 +50,21 @@ def test_a_beam_is_long_only_beyond_the_margin() -> None:
 def test_no_beams_no_evidence() -> None:
     empty = Beams(np.zeros(0), np.zeros(0), 12.0)
     assert long_beam_share(FIELD, TRUTH, empty, margin=0.4) == 0.0
+
+
+FAR = 0.5 * np.exp(-2.0)  # z_hit's term 2 sigma_hit from a wall: what Amcl passes
+
+
+def test_a_mapped_obstacle_that_is_gone_lengthens_beams_onto_mapped_walls_only() -> None:
+    on_the_map = CELLS.copy()
+    on_the_map[50:62, 20:32] = 100  # a 0.6 m crate at (1.0-1.6, 2.5-3.1), moved away since
+    moved_away = field(on_the_map)
+    pose = np.array([0.5, 2.8, 0.0])  # the crate just ahead
+    beams = _beams(cast(CELLS, tuple(pose), BEARINGS))
+    assert long_beam_share(moved_away, pose, beams, margin=0.4) > 0.05  # through the crate
+    assert long_beam_share(moved_away, pose, beams, 0.4, far_term=FAR) == 0.0  # on walls
+
+
+def test_a_wrong_pose_still_has_long_beams_that_end_away_from_the_walls() -> None:
+    beams = _beams(cast(CELLS, (3.5, 1.0, 0.3), BEARINGS))
+    assert long_beam_share(FIELD, np.array([1.0, 1.0, 0.3]), beams, 0.4, far_term=FAR) > 0.1
