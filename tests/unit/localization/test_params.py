@@ -42,6 +42,7 @@ def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> No
         ({"alpha1": float("nan")}, "alpha1"),
         ({"recovery_min_long_beams": 1.5}, "recovery_min_long_beams"),
         ({"recovery_min_long_beams": -0.1}, "recovery_min_long_beams"),
+        ({"recovery_min_long_beams": 0.1, "laser_likelihood_max_dist": 0.4}, "2 sigma_hit"),
     ],
 )
 def test_bad_parameters_are_refused_by_name(values: dict[str, object], names: str) -> None:
