@@ -39,14 +39,15 @@ KIDNAP_AT_X = 5.0  # m along the corridor (y 9.75)
 KIDNAPPED_TO = (5.0, 6.75, 0.0)  # 3 m south: the west room, through the corridor's wall
 FOUND = 0.25  # m between estimate and truth: the filter has the robot again
 BY_THE_FILTER = 30.0  # sim s: issue 33's bound for the filter alone
-RESET_POSE = "reset_pose"  # the simulation's teleport (moving under {ns}/sim/: sim-keys)
+RESET_POSE = "reset_pose"  # the simulation's teleport, {ns}/sim/srv/reset_pose
 
 
-async def carry_off(bus: Bus, x: float, y: float, yaw: float) -> None:
+async def carry_off(world: World, x: float, y: float, yaw: float) -> None:
     """The robot moved by the simulation alone, localization not told (World.teleport
     tells it: not that)."""
-    ack = await bus.call(RESET_POSE, PoseStamped.from_xy_yaw(x, y, yaw), Ack, timeout=10.0)
-    assert ack.ok, f"{RESET_POSE}: {ack.message}"
+    pose = PoseStamped.from_xy_yaw(x, y, yaw)
+    ack = await world.bus.call(RESET_POSE, pose, Ack, timeout=10.0, namespace=world.sim)
+    assert ack.ok, f"sim/srv/{RESET_POSE}: {ack.message}"
 
 
 RECOVERIES = ("ClearingActions", "Relocalize", "Spin", "Wait", "BackUp")
@@ -101,7 +102,7 @@ async def test_a_kidnapped_robot_is_found_again_and_the_goal_ends_clearly(
                     break
     except TimeoutError:
         pytest.fail(f"the robot never reached x {KIDNAP_AT_X} in the corridor within 60 s")
-    await carry_off(bus, *KIDNAPPED_TO)
+    await carry_off(world, *KIDNAPPED_TO)
     try:
         async with asyncio.timeout(10.0):
             async for pose in truth:
