@@ -15,7 +15,7 @@ TREE = (Path(__file__).resolve().parents[3] / "trees"
 PLACEHOLDERS = (UnimplementedNode, UnimplementedControl, UnimplementedDecorator)
 
 
-def test_builds_with_real_nodes_and_relocalizes_then_turns_once_in_the_round() -> None:
+def test_builds_with_real_nodes_and_relocalizes_turns_once_then_clears_in_the_round() -> None:
     factory = BehaviorTreeFactory()
     register_nav2_nodes(factory)
     tree = factory.create_tree_from_file(TREE)
@@ -24,8 +24,18 @@ def test_builds_with_real_nodes_and_relocalizes_then_turns_once_in_the_round() -
     (round_robin,) = [n for n in nodes if n.config.registration_id == "RoundRobin"]
     (relocalize,) = [n for n in round_robin.children_nodes() if n.name == "Relocalize"]
     steps = relocalize.children_nodes()
-    assert [s.config.registration_id for s in steps] == ["ReinitializeGlobalLocalization", "Spin"]
+    assert [s.config.registration_id for s in steps] == [
+        "ReinitializeGlobalLocalization",
+        "Spin",
+        "ClearEntireCostmap",
+        "ClearEntireCostmap",
+    ]
     assert steps[1].config.inputs["spin_dist"].text == "6.28"  # a whole turn: every side seen
+    # then the obstacles laid in map from the wrong estimate go, from both costmaps
+    assert sorted(s.config.inputs["service_name"].text for s in steps[2:]) == [
+        "global_costmap/clear_entirely_global_costmap",
+        "local_costmap/clear_entirely_local_costmap",
+    ]
 
 
 def test_the_round_also_runs_on_start_or_goal_occupied() -> None:
