@@ -107,11 +107,14 @@ async def goals(bus: Bus) -> AsyncIterator[ServerGoals]:
 
 
 @pytest.fixture
-async def world(bus: Bus, track: RobotTrack, goals: ServerGoals) -> World:
+async def world(bus: Bus, track: RobotTrack, goals: ServerGoals, stack: NavStack) -> World:
     """A clean start: no goal on a navigator, no obstacle, robot at the start (the next
     test of the module starts the same way, whatever this one left)."""
     here = World(bus, track)
-    await here.clear()
+    try:
+        await here.clear()
+    except AssertionError as exc:  # a setup error: pytest shows no teardown output for it
+        raise AssertionError(f"{exc}\n{stack.logs()}") from None
     return here
 
 

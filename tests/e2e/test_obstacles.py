@@ -178,7 +178,7 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     door = await world.spawn(*EAST_DOOR, size_x=0.8, size_y=0.3)  # the short way in is shut
 
     paused = await tree.wait_for(lambda: tree.find("PauseNearGoal", "RUNNING"), 30.0)
-    assert paused, "the tree did not pause near the goal"
+    assert paused, f"the tree did not pause near the goal: {_pause_report(world, tree)}"
     assert await world.track.wait_still(0.5, timeout=10.0), "the robot did not stop"
     # CancelControl (or the controller's own collision stop just before it) left no follow
     following = await goals.wait_for(lambda: "follow_path" not in goals.active(), 5.0)
@@ -190,3 +190,11 @@ async def test_pause_near_goal_tree_waits_for_the_obstacle_at_the_door_to_leave(
     world.assert_at(*EAST_ROOM)
     strayed = max(math.dist((s.x, s.y), EAST_DOOR) for s in world.track.samples[since:])
     assert strayed < 2.5, f"it went {strayed:.1f} m from the door: took the long way round"
+
+
+def _pause_report(world: World, tree: TreeWatch) -> str:
+    """Where the robot went, and the pausing branch's transitions (the last 30)."""
+    watched = ("PathLongerOnApproach", "CancelControl", "Wait", "FollowPath", "ComputePathToPose")
+    events = [f"{e.stamp:.1f}:{e.node_id}[{e.name}]:{e.status}" for e in tree.events
+              if e.node_id in watched]  # fmt: skip
+    return f"{world.whereabouts()}; transitions {' '.join(events[-30:])}"

@@ -135,7 +135,9 @@ class World:
             )
             assert cleared.success, f"{name}: {cleared.message}"
         there = await self.track.wait_for(lambda s: math.dist((s.x, s.y), (x, y)) < 0.1, 10.0)
-        assert there is not None, f"the robot is not at {(x, y)} after reset: {self.track.latest}"
+        assert there is not None, (
+            f"the robot is not at {(x, y)} after reset: {self.track.latest}; {self.whereabouts()}"
+        )
 
     async def _settled_after(self, stamp: float) -> None:
         """Wait for a scan stamped after ``stamp`` (the filter's estimate at the new
@@ -169,7 +171,7 @@ class World:
         """Send NavigateToPose to (x, y, yaw) and return at once (``.end(timeout)`` waits)."""
         return await start_navigation(self.to_pose, PoseStamped.from_xy_yaw(x, y, yaw), tree)
 
-    def _whereabouts(self) -> str:
+    def whereabouts(self) -> str:
         """For a failure: the sim's true pose and the estimated track, a sample every 2 s."""
         truth = self.truth.get()
         true = "none" if truth is None else f"({truth.x:.2f}, {truth.y:.2f}, {truth.yaw:.2f})"
@@ -185,8 +187,12 @@ class World:
         here = self.track.latest
         assert here is not None, "no pose from the robot"
         assert math.dist((here.x, here.y), (x, y)) <= ARRIVED, (
-            f"at {here}, not ({x}, {y}); {self._whereabouts()}"
+            f"at {here}, not ({x}, {y}); {self.whereabouts()}"
         )
         if yaw is not None:
             error = abs((here.yaw - yaw + math.pi) % (2 * math.pi) - math.pi)
-            assert error <= YAW_TOLERANCE, f"heading {here.yaw:.2f}, wanted {yaw:.2f}"
+            assert error <= YAW_TOLERANCE, (
+                f"heading {here.yaw:.2f}, wanted {yaw:.2f}; the last headings "
+                f"{' '.join(f'{s.stamp:.2f}:{s.yaw:.3f}' for s in self.track.samples[-40::4])}; "
+                f"{self.whereabouts()}"
+            )

@@ -103,7 +103,10 @@ class DockingAttempt:
         if not goal.navigate_to_staging_pose or l2_norm(robot, staging) < tolerance:
             log.info("Robot already within pre-staging pose tolerance for dock")
             return
-        await self.navigate(staging, target.dock.frame, goal.max_staging_time)
+        frame = target.dock.frame
+        if not self.motion.frames.knows(frame):  # a frame of tf_static: the navigator's map
+            staging, frame = self.motion.frames.transform(staging, frame, "map"), "map"
+        await self.navigate(staging, frame, goal.max_staging_time)
         log.info("Successful navigation to staging pose")
 
     async def _initial_perception(self, target: DockTarget, estimate: Pose2D) -> Pose2D:

@@ -5,7 +5,10 @@ and the wheel odometry (``{ns}/odom``: the pose in ``odom``, smooth, drifting).
 Nav2 runs its docking control loop in ``fixed_frame`` (``odom``): detections of the
 dock, taken in ``base_link``, go into ``odom`` with the odometry at their stamp; the
 dock database's poses (``map``) go into ``odom`` through ``map -> odom``, the newest
-map pose composed with the inverse of the newest odometry.
+map pose composed with the inverse of the newest odometry. Any other frame (a camera's
+that a detection is given in, a dock's) reaches one of those through the static
+transforms of ``{ns}/tf_static`` (:class:`~aiobt.geometry.static_frames.StaticFrames`),
+as Nav2's tf2 buffer finds it; a detection in 3D, a pose planar (x, y, yaw of its chain).
 """
 
 from __future__ import annotations
@@ -13,6 +16,8 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 from aiobt.geometry import Pose2D
+from aiobt.geometry.pose_filter import StampedPose3D
+from aiobt.geometry.static_frames import StaticFrames
 from aiobt.msgs import Odometry, PoseStamped
 
 MAP_FRAMES = ("map", "")
@@ -25,16 +30,41 @@ def _pose2d(pose: PoseStamped | Odometry) -> Pose2D:
 
 
 class RobotFrames:
-    """``map``, ``odom`` and ``base_link`` from the newest pose and odometry messages;
-    a missing one is a LookupError naming what is missing (Nav2's transform error)."""
+    """``map``, ``odom`` and ``base_link`` from the newest pose and odometry messages,
+    other frames through ``statics``; a missing one is a LookupError naming what is
+    missing (Nav2's transform error)."""
 
     def __init__(
         self,
         pose: Callable[[], PoseStamped | None],
         odometry: Callable[[], Iterable[Odometry]],
+        statics: StaticFrames | None = None,
     ) -> None:
         self._pose = pose
         self._odometry = odometry  # newest first
+        self.statics = statics or StaticFrames()
+
+    @staticmethod
+    def knows(frame: str) -> bool:
+        return frame in FRAMES or frame in MAP_FRAMES
+
+    def lift(self, seen: StampedPose3D) -> StampedPose3D:
+        """A detection in any frame, in the first of ``map``, ``odom``, ``base_link`` up
+        its static chain."""
+        try:
+            return self.statics.lift(seen, self.knows)
+        except LookupError as exc:
+            raise LookupError(f"{exc}, and it is none of {', '.join(FRAMES)}") from None
+
+    def _known(self, pose: Pose2D, frame: str) -> tuple[Pose2D, str]:
+        """``pose`` in ``frame`` as a pose in a known frame, through the static chain."""
+        if self.knows(frame):
+            return pose, frame
+        try:
+            known, link = self.statics.up_to(frame, self.knows)
+        except LookupError as exc:
+            raise LookupError(f"{exc}, and it is none of {', '.join(FRAMES)}") from None
+        return link.planar().compose(pose), known
 
     def _odom(self, stamp: float | None = None) -> Pose2D:
         odoms = iter(self._odometry())
@@ -56,6 +86,9 @@ class RobotFrames:
 
     def robot(self, frame: str) -> Pose2D:
         """The robot (``base_link``) in ``frame``."""
+        if not self.knows(frame):
+            in_frame, known = self._known(Pose2D(), frame)  # frame's origin in a known one
+            return in_frame.inverse().compose(self.robot(known))
         if frame in MAP_FRAMES:
             return self._map()
         if frame == "odom":
@@ -68,6 +101,10 @@ class RobotFrames:
                   stamp: float | None = None) -> Pose2D:  # fmt: skip
         """``pose`` given in ``source`` expressed in ``target``; a ``base_link`` pose is
         placed with the odometry nearest ``stamp`` (default: the newest)."""
+        pose, source = self._known(pose, source)
+        if not self.knows(target):
+            origin, known = self._known(Pose2D(), target)
+            return origin.inverse().compose(self.transform(pose, source, known, stamp))
         if source == target or (source in MAP_FRAMES and target in MAP_FRAMES):
             return pose
         in_odom = self._to_odom(pose, source, stamp)

@@ -3,7 +3,8 @@
 Loads a dock database (``--dock-database``, Nav2's YAML; a shipped world's name picks
 its database; or Nav2's ``docks`` parameter, ``--docks``) and the dock plugins
 (``--dock-plugins``, Nav2's SimpleChargingDock); reads ``{ns}/pose``, ``{ns}/odom``,
-``{ns}/battery``, ``{ns}/scan`` (its approach's collision check), the dock's detections
+``{ns}/battery``, ``{ns}/scan`` (its approach's collision check, with ``--footprint``),
+latched ``{ns}/tf_static`` (frames beyond map, odom and base_link), the dock's detections
 on ``{ns}/detected_dock_pose`` and, with stall detection, ``{ns}/joint_states``; calls
 a plugin's ``detector_service_name`` (``{ns}/srv/...``, std_srvs/Trigger) to start and
 stop the detector; serves the actions ``dock_robot`` and ``undock_robot``
@@ -22,6 +23,8 @@ import functools
 import logging
 
 from aiobt.core.clock import Clock
+from aiobt.costmap import footprint_from_radius, parse_footprint
+from aiobt.geometry import FloatArray
 from aiobt.system.robot_flags import (
     add_command_argument,
     add_local_costmap_arguments,
@@ -50,7 +53,28 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("docking server", description=__doc__.split("\n\n")[1])
     add_docking_arguments(group)
     add_command_argument(group)
-    add_local_costmap_arguments(parser.add_argument_group("local costmap (the approach's check)"))
+    costmap = parser.add_argument_group("local costmap (the approach's check)")
+    add_local_costmap_arguments(costmap)
+    costmap.add_argument("--footprint", type=footprint_flag, default=None, metavar="POINTS",
+                         help="the robot's outline, Nav2's costmap footprint "
+                         "'[[x, y], [x, y], [x, y], ...]' in m (default: a circle of "
+                         "--robot-radius)")  # fmt: skip
+
+
+def footprint_flag(text: str) -> FloatArray | None:
+    """Nav2's ``footprint`` string; empty or ``[]`` (Nav2's default): none."""
+    if text.strip() in ("", "[]"):
+        return None
+    try:
+        return parse_footprint(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
+def footprint_of(args: argparse.Namespace) -> FloatArray:
+    """The polygon checked: ``--footprint``, else Nav2's 16 points of ``--robot-radius``."""
+    given: FloatArray | None = args.footprint
+    return footprint_from_radius(args.robot_radius) if given is None else given
 
 
 def database_or_explain(
@@ -85,7 +109,8 @@ def start(settings: Settings, args: argparse.Namespace, bus: Bus, clock: Clock) 
     wiring = DockWiring(wires.frames, clock, wires.detection, wires.battery, wires.show,
                         wires.subscribe, wires.trigger, wires.joint_states)  # fmt: skip
     plugins = make_plugins(settings.plugins, wiring)
-    costmap = ScanCollisions(local_costmap_from(args), wires.scan, wires.frames, clock)
+    costmap = ScanCollisions(local_costmap_from(args), footprint_of(args), wires.scan,
+                             wires.frames, clock)  # fmt: skip
     controller = DockController(settings.controller, costmap.collides)
     motion = Motion(settings.docking, controller, wires.frames, clock, wires.drive,
                     wires.turn_rate, costmap.refresh)  # fmt: skip

@@ -53,6 +53,11 @@ SHIPPED: dict[str, dict[str, str]] = {
 }
 
 
+# Nav2's controller parameters for reading the controller's costmap and footprint topics:
+# aiobt's controller publishes neither, so the server checks its own (docs/docking.md)
+NOT_READ = ("costmap_topic", "footprint_topic", "transform_tolerance")
+
+
 @dataclass(slots=True, frozen=True)
 class PluginSpec:
     name: str
@@ -124,6 +129,11 @@ def controller_params(args: argparse.Namespace) -> ControllerParams:
     law_keys = {f.name for f in dataclasses.fields(SmoothControlParams)}
     rotate_keys = {f.name for f in dataclasses.fields(RotateParams)}
     own_keys = {f.name for f in dataclasses.fields(ControllerParams)} - {"law", "rotate"}
+    for key in set(given) & set(NOT_READ):
+        raise ValueError(f"controller.{key}: not read: aiobt's controller publishes no "
+                         "local_costmap/costmap_raw nor published_footprint; the approach is "
+                         "checked on the server's own costmap from {ns}/scan with --footprint "
+                         "or --robot-radius (docs/docking.md)")  # fmt: skip
     for key in set(given) - law_keys - rotate_keys - own_keys:
         known = ", ".join(sorted(k.rstrip("_") for k in law_keys | rotate_keys | own_keys))
         raise ValueError(f"controller.{key}: no such parameter (known: {known})")

@@ -1,7 +1,7 @@
-"""Wires the docking server onto the bus: the robot's pose, odometry, battery and the
-dock's detections in; ``cmd_vel``, the poses it works with (``dock_pose``,
-``filtered_dock_pose``, ``staging_pose``), the docks and the docked state (latched,
-for viewers) out; the two actions and ``docking_server/reload_database``."""
+"""Wires the docking server onto the bus: the robot's pose, odometry, static transforms
+(``tf_static``), battery and the dock's detections in; ``cmd_vel``, the poses it works
+with (``dock_pose``, ``filtered_dock_pose``, ``staging_pose``), the docks and the docked
+state (latched, for viewers) out; the two actions and ``docking_server/reload_database``."""
 
 from __future__ import annotations
 
@@ -13,7 +13,17 @@ import numpy as np
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
-from aiobt.msgs import BatteryState, JointState, LaserScan, Odometry, PoseStamped, Trigger, Twist
+from aiobt.geometry.static_frames import StaticFrames
+from aiobt.msgs import (
+    BatteryState,
+    JointState,
+    LaserScan,
+    Odometry,
+    PoseStamped,
+    TFMessage,
+    Trigger,
+    Twist,
+)
 from aiobt.msgs.docking import DockEntry, DockingState, DockList, ReloadDockDatabase
 from aiobt.msgs.remote_actions import DockRobot, UndockRobot
 from aiobt.transport import Bus, Latest
@@ -48,7 +58,9 @@ class DockingBus:
         self._joints: Latest[JointState] | None = None  # once a plugin detects stalls
         self._battery = bus.latest("battery", BatteryState)
         self._scan = bus.latest("scan", LaserScan)
-        self.frames = RobotFrames(self._pose.get, self._odom.newest_first)
+        statics = StaticFrames()  # every latched publisher's, kept for good (tf2's)
+        bus.subscribe("tf_static", TFMessage, callback=statics.add, latched=True)
+        self.frames = RobotFrames(self._pose.get, self._odom.newest_first, statics)
         self._cmd = bus.publisher(cmd_vel_topic, Twist)
         self._shown = {name: bus.publisher(name, PoseStamped) for name in SHOWN}
         self._docks = bus.latched_publisher("docks", DockList)

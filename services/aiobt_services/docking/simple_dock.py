@@ -126,6 +126,7 @@ class SimpleDock:
 
     def _refine(self, seen: StampedPose3D, frame: str) -> Pose2D | None:
         try:
+            seen = self.wiring.frames.lift(seen)  # a camera's frame: up tf_static, in 3D
             placed = self.wiring.frames.transform(Pose2D(), seen.frame, frame, seen.stamp)
         except LookupError as exc:
             log.warning("Failed to transform detected dock pose: %s", exc)

@@ -6,6 +6,7 @@ import logging
 
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.costmap.feed import RobotFeed
+from aiobt.costmap.footprint import parse_footprint
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -25,7 +26,7 @@ from aiobt.transport.announce import announce
 
 from .actions import PlannerActions
 from .state import MAP_FRAMES, GlobalCostmap
-from .validity import invalid_poses, parse_footprint, pose_costs
+from .validity import invalid_poses, pose_costs
 
 log = logging.getLogger("aiobt_services.planner.service")
 COSTMAP = "global_costmap"

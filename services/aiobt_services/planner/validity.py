@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Sequence
 
@@ -68,19 +67,6 @@ def invalid_poses(
     bad = (bad & ~unknown) | (unknown & consider_unknown_as_obstacle)
     found = np.flatnonzero(bad) + first
     return found[:1].tolist() if stop_at_first_collision else found.tolist()
-
-
-def parse_footprint(text: str) -> FloatArray:
-    """Nav2's footprint string ``[[x, y], [x, y], [x, y], ...]`` (at least 3 points, m)."""
-    try:
-        points = np.array(json.loads(text), dtype=np.float64)
-    except (ValueError, TypeError) as exc:
-        raise ValueError(f"footprint {text!r} is not a list of [x, y] points: {exc}") from None
-    if points.ndim != 2 or points.shape[1] != 2 or len(points) < 3:
-        raise ValueError(f"footprint {text!r} needs at least 3 [x, y] points")
-    if not np.isfinite(points).all():
-        raise ValueError(f"footprint {text!r} has a non-finite coordinate")
-    return points
 
 
 def pose_costs(grid: CostGrid, xy: Sequence[tuple[float, float]]) -> tuple[list[float], bool]:

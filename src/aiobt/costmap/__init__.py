@@ -5,6 +5,7 @@ Arrays are ``(height, width)`` uint8, indexed ``[row, col]`` (row = y).
 
 from .collision import (
     footprint_cost,
+    footprints_cost,
     line_cells,
     oriented_footprint,
     point_cost,
@@ -14,6 +15,7 @@ from .collision import (
 )
 from .costmap import Costmap
 from .distance import distance_transform
+from .footprint import footprint_from_radius, parse_footprint
 from .grid import (
     FREE,
     INSCRIBED,
@@ -48,11 +50,14 @@ __all__ = [
     "costs_from_distance",
     "distance_transform",
     "footprint_cost",
+    "footprint_from_radius",
+    "footprints_cost",
     "inflate",
     "inflate_window",
     "line_cells",
     "occupancy_to_costs",
     "oriented_footprint",
+    "parse_footprint",
     "point_cost",
     "points_cost",
     "resample",

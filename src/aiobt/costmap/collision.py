@@ -72,14 +72,39 @@ def footprint_cost(grid: CostGrid, x: float, y: float, yaw: float, footprint: np
     With fewer than 3 vertices the robot is a point (circular robots rely on
     the inflation layer's inscribed cost).
     """
-    vertices = oriented_footprint(x, y, yaw, footprint)
+    vertices = np.asarray(footprint, dtype=np.float64).reshape(-1, 2)
     if len(vertices) < 3:
         return point_cost(grid, x, y)
-    spacing = grid.geometry.resolution * 0.5
-    edges = [
-        segment_points(a[0], a[1], b[0], b[1], spacing)
-        for a, b in zip(vertices, np.roll(vertices, -1, axis=0), strict=True)
-    ]
-    outline = np.concatenate(edges)
-    costs = points_cost(grid, outline[:, 0], outline[:, 1])
-    return LETHAL if (costs == LETHAL).any() else int(costs.max())  # lethal beats unknown
+    return int(footprints_cost(grid, np.array([[x, y, yaw]]), vertices)[0])
+
+
+def outline_points(footprint: npt.ArrayLike, spacing: float) -> FloatArray:
+    """``(m, 2)`` points along the closed outline of a polygon, each edge sampled as
+    :func:`segment_points` samples it (ends included), all edges at once."""
+    a = np.asarray(footprint, dtype=np.float64).reshape(-1, 2)
+    b = np.roll(a, -1, axis=0)
+    lengths = np.hypot(*(b - a).T)
+    counts = np.maximum(2, np.ceil(lengths / spacing).astype(np.intp) + 1)
+    edge = np.repeat(np.arange(len(a)), counts)
+    along = np.arange(int(counts.sum())) - np.repeat(np.cumsum(counts) - counts, counts)
+    t = along / (counts[edge] - 1)
+    points: FloatArray = a[edge] + (b - a)[edge] * t[:, None]
+    return points
+
+
+def footprints_cost(grid: CostGrid, poses: npt.ArrayLike, footprint: npt.ArrayLike) -> IntArray:
+    """:func:`footprint_cost` of a polygon (at least 3 vertices) at each of ``poses``
+    ``(n, 3)`` (x, y, yaw), vectorised: the outline is sampled once in the robot's frame
+    and moved to every pose (turning it keeps the spacing)."""
+    vertices = np.asarray(footprint, dtype=np.float64).reshape(-1, 2)
+    if len(vertices) < 3:
+        raise ValueError(f"a footprint polygon needs at least 3 vertices, got {len(vertices)}")
+    at = np.asarray(poses, dtype=np.float64).reshape(-1, 3)
+    outline = outline_points(vertices, grid.geometry.resolution * 0.5)
+    c, s = np.cos(at[:, 2])[:, None], np.sin(at[:, 2])[:, None]
+    xs = at[:, 0:1] + c * outline[:, 0] - s * outline[:, 1]
+    ys = at[:, 1:2] + s * outline[:, 0] + c * outline[:, 1]
+    costs = points_cost(grid, xs, ys)  # (n, m)
+    lethal = (costs == LETHAL).any(axis=1)
+    result: IntArray = np.where(lethal, LETHAL, costs.max(axis=1)).astype(np.intp)
+    return result  # lethal beats unknown

@@ -12,8 +12,10 @@ from typing import Any
 
 import pytest
 
-from aiobt.msgs import BatteryState, PoseStamped, PowerSupplyStatus, Trigger
+from aiobt.msgs import BatteryState, PoseStamped, PowerSupplyStatus, TFMessage, Trigger
 from aiobt.msgs.docking import DockingState, DockList, ReloadDockDatabase
+from aiobt.msgs.geometry import Header, Vector3
+from aiobt.msgs.localization import Transform, TransformStamped
 from aiobt.msgs.remote_actions import DockRobot, DockRobotError, UndockRobot
 from aiobt.msgs.sim import Ack
 from aiobt.testing.bus import ServiceProcess
@@ -117,18 +119,27 @@ async def test_docks_given_as_parameters_with_the_detector_only_while_docking(
     spawn: Spawn, bus: Bus, bus_settings: BusSettings
 ):
     """Nav2's ``docks`` parameter instead of a file, the robot's detector started and
-    stopped by the docking server through ``srv/dock_detector/toggle``, and docked by
-    stall detection alone (the robot's wheels on ``joint_states``; no battery status)."""
+    stopped by the docking server through ``srv/dock_detector/toggle``, docked by
+    stall detection alone (the robot's wheels on ``joint_states``; no battery status),
+    the approach checked with a footprint polygon (Nav2's ``footprint`` string), the dock
+    given in a frame of its own, ``bay``, that ``tf_static`` places in ``map``."""
     truth = bus.latest(SIM_POSE, PoseStamped)
-    pose = f"home.pose=[{DOCK[0]},{DOCK[1]},{DOCK[2]}]"
+    bay = TransformStamped(
+        header=Header(frame_id="map"),
+        child_frame_id="bay",
+        transform=Transform(translation=Vector3(x=DOCK[0] - 1.0, y=DOCK[1])),
+    )
+    bus.latched_publisher("tf_static", TFMessage).put(TFMessage(transforms=[bay]))
+    pose = f"home.pose=[1.0,0.0,{DOCK[2]}]"  # 1 m along the bay's x: the dock
     plugin = "simple_charging_dock."
     await start(spawn, bus, bus_settings, "--docks", "home", "--param",
-                "home.type=simple_charging_dock", "--param", pose,
+                "home.type=simple_charging_dock", "--param", pose, "--param", "home.frame=bay",
                 "--param", f"{plugin}detector_service_name=dock_detector/toggle",
                 "--param", f"{plugin}subscribe_toggle=true",
                 "--param", f"{plugin}use_stall_detection=true",
                 "--param", f"{plugin}stall_joint_names=[wheel_left_joint,wheel_right_joint]",
-                "--param", f"{plugin}use_battery_status=false")  # fmt: skip
+                "--param", f"{plugin}use_battery_status=false",
+                "--footprint", "[[0.2, 0.2], [0.2, -0.2], [-0.2, -0.2], [-0.2, 0.2]]")  # fmt: skip
     docks = await bus.latest("docks", DockList, latched=True).wait_latest(10.0)
     assert [d.name for d in docks.docks] == ["home"]
     await place(bus, 1.6, 9.6, 3.0)

@@ -422,3 +422,33 @@ async def test_garbage_goal_gets_an_error_reply_and_the_server_keeps_serving(
     goal = await client.send_goal(Wait.Goal(time=0.0), server_timeout=5.0)
     await goal.result(timeout=5.0)
     assert goal.status is GoalState.SUCCEEDED
+
+
+async def test_feedback_sent_with_the_acceptance_reaches_the_callback(
+    bus: Bus, client_bus: Bus
+) -> None:
+    """A server whose first step is one feedback, then nothing until told (the route
+    tracker's shape: it says more only once the robot moves, which the client does on
+    that feedback). The feedback arrives with the acceptance: ``on_feedback`` must get it
+    even so (it was set only after the acceptance was awaited, and missed it)."""
+    release = asyncio.Event()
+
+    async def execute(goal: Wait.Goal, handle: WaitHandle) -> Wait.Result:
+        handle.publish_feedback(Wait.Feedback(time_left=goal.time))
+        await release.wait()
+        return Wait.Result(total_elapsed_time=goal.time)
+
+    bus.action_server("wait", Wait, execute)
+    client = client_bus.action_client("wait", Wait)
+    for attempt in range(20):  # the two replies land in one batch often, not always
+        heard: list[Wait.Feedback] = []
+        goal = await client.send_goal(
+            Wait.Goal(time=float(attempt)), server_timeout=5.0, on_feedback=heard.append
+        )
+        async with asyncio.timeout(5.0):
+            async for _ in goal.feedback():  # the stream has it: so must the callback
+                break
+        assert [fb.time_left for fb in heard] == [float(attempt)], f"attempt {attempt}: {heard}"
+        release.set()
+        await goal.result(timeout=5.0)
+        release.clear()

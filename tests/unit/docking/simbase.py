@@ -11,10 +11,12 @@ from collections import deque
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
+from aiobt.costmap import footprint_from_radius
 from aiobt.costmap.local import LocalCostmap
-from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry import FloatArray, Pose2D, Velocity
 from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.geometry.smooth import SmoothControlParams
+from aiobt.geometry.static_frames import StaticFrames
 from aiobt.msgs import BatteryState, JointState, LaserScan, Odometry, PoseStamped, Trigger
 from aiobt.msgs.remote_actions import DockRobot
 from aiobt.system.plugin_params import params_from
@@ -123,11 +125,15 @@ def office_sim(battery: float = 0.5, seed: int = 3) -> Simulation:
 
 def docking_server(base: SimBase, navigate: object, params: DockingParams | None = None,
                    dock_params: dict[str, str] | None = None,
-                   kind: str = "opennav_docking::SimpleChargingDock") -> DockingServer:  # fmt: skip
+                   kind: str = "opennav_docking::SimpleChargingDock",
+                   footprint: FloatArray | None = None,
+                   statics: StaticFrames | None = None) -> DockingServer:  # fmt: skip
     """The server with one dock plugin of Nav2's type ``kind`` (set up as shipped, with
-    ``dock_params`` over it), for the office's dock."""
+    ``dock_params`` over it), for the office's dock; the approach checks ``footprint``
+    (default: the robot's circle, as ``aiobt docking`` without ``--footprint``); ``statics``
+    the transforms of ``tf_static``."""
     clock = SimClock(base)
-    frames = RobotFrames(base.pose, base.odoms)
+    frames = RobotFrames(base.pose, base.odoms, statics)
     wiring = DockWiring(frames, clock, base.detection, lambda: base.battery, lambda *_: None,
                         trigger=base.trigger, joint_states=lambda: base.joints)  # fmt: skip
     given = SHIPPED["simple_charging_dock"] | (dock_params or {})
@@ -135,7 +141,8 @@ def docking_server(base: SimBase, navigate: object, params: DockingParams | None
     plugin = make("simple_charging_dock", params_from(params_type, "simple_charging_dock", given),
                   wiring)  # fmt: skip
     law = SmoothControlParams(k_phi=5.0, k_delta=3.0, v_linear_min=0.15, v_linear_max=0.15)
-    costmap = ScanCollisions(LocalCostmap(), lambda: base.scan, frames, clock)
+    outline = footprint_from_radius(0.22) if footprint is None else footprint
+    costmap = ScanCollisions(LocalCostmap(), outline, lambda: base.scan, frames, clock)
     controller = DockController(ControllerParams(law), costmap.collides)
     motion = Motion(params or DockingParams(), controller, frames, clock, base.drive,
                     lambda: base.sim.odometry.angular, costmap.refresh)  # fmt: skip

@@ -77,7 +77,7 @@ def test_frames_from_the_map_pose_and_odometry_by_stamp() -> None:
     assert (ahead.x, ahead.y) == pytest.approx((1.0, 0.0))
     with pytest.raises(LookupError, match="no robot pose"):
         RobotFrames(lambda: None, lambda: odoms).robot("map")
-    with pytest.raises(LookupError, match="unknown frame 'world'"):
+    with pytest.raises(LookupError, match="frame 'world' on tf_static, and it is none of map"):
         frames.transform(Pose2D(), "world", "odom")
 
 

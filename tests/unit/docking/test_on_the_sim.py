@@ -7,6 +7,7 @@ import asyncio
 import math
 import random
 
+import numpy as np
 import pytest
 
 from aiobt.geometry import Pose2D
@@ -133,3 +134,29 @@ async def test_an_obstacle_on_the_approach_fails_to_control() -> None:
         assert result.error_msg == "Failed to get control"
         assert docked_error(sim)[0] > 0.9  # it never drove in
         assert base.last == (0.0, 0.0)
+
+
+@pytest.mark.timeout(90)
+async def test_a_wide_footprint_meets_a_box_the_round_robot_passes() -> None:
+    """``--footprint``: the outline, not the centre, is checked (Nav2's footprint check)."""
+    wide = np.array([[0.2, 0.42], [0.2, -0.42], [-0.2, -0.42], [-0.2, 0.42]])
+    with office_sim() as sim:
+        base = SimBase(sim)
+        for footprint, box, docks in ((wide, False, True), (wide, True, False),
+                                      (None, True, True)):  # fmt: skip
+            if box and "box" not in sim.obstacles:  # 0.33 m beside the approach's line:
+                # 0.1 m clear of the round robot
+                sim.spawn(ObstacleSpec("box", "box", Pose2D(1.0, 10.15), size_x=0.15,
+                                       size_y=0.15))  # fmt: skip
+            server = docking_server(base, no_navigation, DockingParams(max_retries=0),
+                                    footprint=footprint)  # fmt: skip
+            base.place(STAGING)
+            base.step(50)  # a scan or two into the docking costmap
+            result = await server.dock_robot(HOME, Feedback())
+            assert result.success is docks, (footprint, box, result.error_msg)
+            if not docks:
+                assert result.error_code == DockRobotError.FAILED_TO_CONTROL
+                assert docked_error(sim)[0] > 0.9  # it never drove in
+                continue
+            assert docked_error(sim)[0] <= 0.02
+            assert (await server.undock_robot(UndockRobot.Goal(), Feedback())).success

@@ -5,9 +5,10 @@ from __future__ import annotations
 
 import argparse
 
+import numpy as np
 import pytest
 
-from aiobt_services.docking.main import add_arguments, database_or_explain, run
+from aiobt_services.docking.main import add_arguments, database_or_explain, footprint_of, run
 from aiobt_services.docking.options import settings_from
 
 
@@ -41,6 +42,11 @@ def test_param_overrides_the_set_up() -> None:
     [
         (["--param", "dock2.docking_threshold=0.1"], "'dock2' is neither 'controller' nor"),
         (["--param", "controller.k_phy=1"], "controller.k_phy: no such parameter"),
+        (
+            ["--param", "controller.costmap_topic=local_costmap/costmap_raw"],
+            "controller.costmap_topic: not read: aiobt's controller publishes no",
+        ),
+        (["--param", "controller.transform_tolerance=0.1"], "transform_tolerance: not read"),
         (["--param", "controller.projection_time=0"], "projection_time .* must be > 0"),
         (["--param", "controller.use_collision_detection=maybe"], "bad value 'maybe'"),
         (["--param", "simple_charging_dock.plugin=opennav_docking::Pallet"], "no dock plugin"),
@@ -63,6 +69,23 @@ def test_a_bad_parameter_is_named(argv: list[str], problem: str) -> None:
 def test_the_command_exits_2_on_a_bad_parameter(caplog: pytest.LogCaptureFixture) -> None:
     assert run(parse("--param", "controller.k_phy=1")) == 2
     assert "controller.k_phy: no such parameter" in caplog.text
+
+
+def test_the_footprint_is_nav2s_string_or_the_robots_circle() -> None:
+    np.testing.assert_allclose(footprint_of(parse("--footprint", "[[0.3, 0.2], [0.3, -0.2], "
+                                                  "[-0.2, 0]]")),
+                               [[0.3, 0.2], [0.3, -0.2], [-0.2, 0.0]])  # fmt: skip
+    for argv in ((), ("--footprint", "[]")):  # Nav2's default "[]": the radius
+        circle = footprint_of(parse("--robot-radius", "0.3", *argv))
+        assert circle.shape == (16, 2)
+        np.testing.assert_allclose(np.hypot(circle[:, 0], circle[:, 1]), 0.3)
+        np.testing.assert_allclose(circle[0], [0.3, 0.0], atol=1e-12)
+
+
+def test_a_bad_footprint_stops_the_command(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        parse("--footprint", "[[0, 0], [1, 1]]")
+    assert "needs at least 3 [x, y] points" in capsys.readouterr().err
 
 
 DOCKS = ("--docks", "dock1, dock2", "--param", "dock1.type=simple_charging_dock",

@@ -229,10 +229,8 @@ class BtAction(NavNode, AsyncActionNode):
         except GoalRejected as exc:
             self._no_result(self._code("GOAL_REJECTED", "UNKNOWN"), str(exc))
             return False
-        self._handle, self._goal = handle, goal
-        if self._listener is not None and handle.latest_feedback is not None:
-            self._listener(handle.latest_feedback)  # came with the acceptance
-        return True
+        self._handle, self._goal = handle, goal  # feedback that came with the acceptance:
+        return True  # given to the listener already (send_goal sets it before sending)
 
     def _absent_timeout(self, client: ActionClient[Any, Any, Any], wait: float) -> float:
         """How long to wait for a server with no liveliness token: Nav2's

@@ -116,9 +116,7 @@ class ActionClient(Generic[G, R, F]):
         payload = goal.to_json()
         self._bridge.check_size(self.keys.goal, payload)
         absent = server_timeout if absent_timeout is None else absent_timeout
-        handle = await self._send(goal, payload, goal_id, server_timeout, absent)
-        handle.on_feedback = on_feedback
-        return handle
+        return await self._send(goal, payload, goal_id, server_timeout, absent, on_feedback)
 
     async def _send(
         self,
@@ -127,6 +125,7 @@ class ActionClient(Generic[G, R, F]):
         given_id: str | None,
         server_timeout: float,
         absent_timeout: float,
+        on_feedback: Callable[[F], object] | None,
     ) -> ClientGoal[G, R, F]:
         loop = asyncio.get_running_loop()
         deadline = loop.time() + server_timeout
@@ -135,6 +134,9 @@ class ActionClient(Generic[G, R, F]):
             min(absent_timeout, deadline - loop.time())
         ):
             handle = ClientGoal(self, goal_id, goal)
+            handle.on_feedback = (
+                on_feedback  # before the query: feedback may come with the acceptance
+            )
             self._goals[goal_id] = handle
             stream = _Stream(self, handle)
             self._querier.get(
