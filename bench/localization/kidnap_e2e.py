@@ -38,6 +38,7 @@ import argparse
 import itertools
 import math
 import time
+from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
@@ -62,6 +63,8 @@ PATH = np.array([(2.0, 9.75), (10.0, 9.75), (10.0, 6.0)])
 FOUND_M = 0.25
 AFTER_S = 30.0
 SPEED, LOOKAHEAD, STOP_AHEAD = 0.5, 0.6, 0.45
+QUEUE = 10  # the localization service's scan queue
+QUEUED = [False]  # --queue: scans through :class:`_Queued`, not :class:`_Dropping`
 COSTMAP_PERIOD_STEPS = 20  # 5 Hz at the 100 Hz physics step
 CHECK_PERIOD_STEPS = 5  # the behaviors service's 20 Hz cycle
 
@@ -120,6 +123,27 @@ class _Dropping(Amcl):
         return super().on_scan(odom_pose, beams)
 
 
+class _Queued(Amcl):
+    """The service's reader: scans wait in a queue of ``QUEUE`` (the oldest dropped
+    when full) and an update takes ``every`` scan intervals; a scan that does not
+    update (no motion since the last) costs nothing."""
+
+    def __init__(self, params: AmclParams, every: int) -> None:
+        super().__init__(params)
+        self.every, self._budget = every, 0.0
+        self._queue: deque[tuple[FloatArray, Beams]] = deque(maxlen=QUEUE)
+
+    def on_scan(self, odom_pose: FloatArray, beams: Beams) -> ScanOutcome:
+        self._queue.append((odom_pose, beams))
+        self._budget = min(1.0, self._budget + 1.0 / self.every)
+        updated = False
+        while self._queue and self._budget >= 1.0:
+            outcome = super().on_scan(*self._queue.popleft())
+            self._budget -= 1.0 if outcome.updated else 0.0
+            updated |= outcome.updated
+        return ScanOutcome(updated, False)
+
+
 class _Follower:
     def __init__(self, drive: Driver) -> None:
         self.drive, self.blocked, self._held = drive, 0.0, False
@@ -135,13 +159,17 @@ class _Follower:
         self.drive.step(v, w)
 
 
+TURN_SPEED = [1.0]  # rad/s of the relocalizing turn (--turn-speed)
+STEPPED = [1, 0.0]  # the turn in this many steps, with this many sim s still after each
+
+
 def _turn(drive: Driver, turns: float, out: Trial, since: float) -> None:
     """Turn on the spot, feeding a map-frame and an odom-frame local costmap at 5 Hz."""
     sim = drive.sim
     in_map, in_odom = LocalCostmap(), LocalCostmap()
     turned, last = 0.0, sim.true_pose.yaw
     while turned < turns * math.tau:
-        drive.step(0.0, 1.0)
+        drive.step(0.0, TURN_SPEED[0])
         turned += abs(math.remainder(sim.true_pose.yaw - last, math.tau))
         last = sim.true_pose.yaw
         if sim.steps % CHECK_PERIOD_STEPS:
@@ -173,7 +201,12 @@ def _relocalize(follow: _Follower, turns: float, settle: int, out: Trial, kidnap
         drive.amcl.request_nomotion_update()
         for _ in range(STEPS_PER_SCAN):
             drive.step(0.0, 0.0)
-    _turn(drive, turns, out, drive.sim.time)
+    steps, pause = int(STEPPED[0]), float(STEPPED[1])
+    since = drive.sim.time
+    for _ in range(steps):
+        _turn(drive, turns / steps, out, since)
+        for _ in range(round(pause / drive.sim.config.dt)):
+            drive.step(0.0, 0.0)
     out.after_turn = drive.error()[0]
     began = drive.sim.time
     while drive.sim.time - began < AFTER_S:
@@ -187,7 +220,7 @@ def trial(
     out = Trial()
     with _sim(seed) as sim:
         p = _params(params, seed)
-        amcl = _Dropping(p, every)
+        amcl = _Queued(p, every) if QUEUED[0] else _Dropping(p, every)
         amcl.set_map(_field(sim, p))
         sim.teleport(START)
         amcl.initialize(amcl.check_pose(START.x, START.y, START.yaw))
@@ -216,8 +249,17 @@ def main() -> None:
     parser.add_argument("--settle", type=int, default=0, metavar="N",
                         help="no-motion updates after the reinitialization")  # fmt: skip
     parser.add_argument("--scan-every", type=int, default=1, metavar="K")
+    parser.add_argument("--turn-speed", type=float, default=1.0, metavar="RAD_S")
+    parser.add_argument("--queue", action="store_true",
+                        help="--scan-every K as a queue of 10, updates K scans long")  # fmt: skip
+    parser.add_argument("--steps", type=int, default=1, help="the turn in N steps")
+    parser.add_argument("--pause", type=float, default=0.0, metavar="S",
+                        help="sim s still after each step")  # fmt: skip
     args = parser.parse_args()
     apply_sets(args.set)
+    TURN_SPEED[0] = args.turn_speed
+    QUEUED[0] = args.queue
+    STEPPED[:] = [args.steps, args.pause]
     began = time.monotonic()
     runs = []
     print(
@@ -240,7 +282,8 @@ def main() -> None:
     print(
         f"({time.monotonic() - began:.0f} s wall, params {args.params}, set {args.set}, "
         f"relocalize after {args.relocalize_after} s, turns {args.turns}, settle {args.settle}, "
-        f"scan every {args.scan_every})"
+        f"scan every {args.scan_every}, queue {args.queue}, turn speed {args.turn_speed} "
+        f"rad/s, {args.steps} steps, pause {args.pause} s)"
     )
 
 
