@@ -5,7 +5,8 @@ lidar.
 
 Run: ``.venv/bin/python -m bench.localization.kidnap_e2e [--trials 10] [--seed 1]
 [--params sim_robot|nav2] [--set NAME=VALUE ...] [--relocalize-after S]
-[--turns N] [--settle N] [--scan-every K]``
+[--turns N] [--settle N] [--scan-every K [--queue]] [--steps N --pause S]
+[--turn-speed RAD_S]``
 
 Each trial: the robot at (2, 9.75) heading east, the filter given that pose; a
 pure-pursuit follower (0.5 m/s, look-ahead 0.6 m, as RegulatedPurePursuit's
@@ -29,7 +30,10 @@ following the path where the robot is not.
   failure is Spin's 703 "the robot is in collision while spinning".
 - ``--scan-every K``: the filter reads every K-th scan only (the e2e stack's
   localization service, 20,000 particles at a 4x speed-up, drops scans: "the
-  reader falls behind").
+  reader falls behind"); with ``--queue`` the scans wait in the service's queue of
+  10 instead and an update takes K scan intervals (:class:`_Queued`).
+- ``--steps N --pause S``: the turn(s) in N steps with S sim s still after each
+  (the relocalizing tree's eighths); ``--turn-speed``: rad/s of the turn.
 """
 
 from __future__ import annotations
