@@ -4,7 +4,7 @@ default error) drives the filter's own logic (:class:`Amcl`, no transport), and
 the simulation's truth judges it.
 
 Run: ``.venv/bin/python -m bench.localization.kidnap [--trials 20] [--seed 1]
-[--params sim_robot|nav2] [--set NAME=VALUE ...] [--trace N]``
+[--params sim_robot|nav2] [--set NAME=VALUE ...] [--trace N | --corridor S [--gone]]``
 
 Each trial: the robot at a seeded free pose, the filter given it (initial pose);
 it wanders by its own lidar for 2 m, then the simulation moves it 3 m (a seeded
@@ -19,10 +19,13 @@ filter that was never lost, so a recovery setting that costs tracking shows.
 ``--corridor S``: the other side of the trade, the robot never lost: S sim
 seconds back and forth along the corridor past seven boxes that are not on the
 map (each seed); the worst error and the most particles show whether the
-recovery drew random particles and moved the estimate away.
+recovery drew random particles and moved the estimate away, and the largest
+long-beam share (``recovery_min_long_beams``'s gate) how near it came to it.
+``--gone`` turns it round: the boxes on the filter's map and not in the world.
 
-``--trace N`` prints trial N's recovery averages and particle count at every
-resample (what :mod:`bench/localization/README.md` explains failures with).
+``--trace N`` prints trial N's recovery averages, the gate's last long-beam share
+and the particle count at every scan (what :mod:`bench/localization/README.md`
+explains failures with).
 """
 
 from __future__ import annotations
@@ -37,7 +40,10 @@ import numpy as np
 
 from aiobt.geometry import Pose2D
 from aiobt_services.localization.amcl import Amcl
+from aiobt_services.localization.likelihood_field import LikelihoodField
+from aiobt_services.localization.params import AmclParams
 from aiobt_services.robot.obstacles import ObstacleSpec
+from aiobt_services.robot.sim import Simulation
 
 from .relocalize import (
     STEPS_PER_SCAN,
@@ -124,18 +130,38 @@ BOXES = [(5.0, 10.4), (7.0, 9.1), (9.0, 10.4), (11.0, 9.1), (13.0, 10.4), (6.0, 
 CORRIDOR_Y = 9.75
 
 
-def corridor(seed: int, params: str, seconds: float) -> tuple[float, int]:
-    """The worst error (m) and the most particles over ``seconds`` of driving the
-    corridor (x 3..15) back and forth past :data:`BOXES`, the filter never misled."""
+def _map_with_boxes(sim: Simulation, p: AmclParams) -> LikelihoodField:
+    """The filter's field with :data:`BOXES` drawn on its map (0.6 m squares)."""
+    w = sim.world
+    grid = w.grid.copy()
+    for x, y in BOXES:
+        c0, r0 = (int((x - 0.3 - w.origin[0]) / w.resolution),
+                  int((y - 0.3 - w.origin[1]) / w.resolution))  # fmt: skip
+        size = round(0.6 / w.resolution)
+        grid[r0 : r0 + size, c0 : c0 + size] = 100
+    return LikelihoodField.build(grid, w.resolution, (w.origin[0], w.origin[1]),
+                                 max_dist=p.laser_likelihood_max_dist, z_hit=p.z_hit,
+                                 sigma_hit=p.sigma_hit)  # fmt: skip
+
+
+def corridor(
+    seed: int, params: str, seconds: float, *, gone: bool = False
+) -> tuple[float, int, float]:
+    """The worst error (m), the most particles and the largest share of long beams
+    (:mod:`aiobt_services.localization.long_beams`, when the gate is on) over
+    ``seconds`` of driving the corridor (x 3..15) back and forth past :data:`BOXES`,
+    the filter never misled. ``gone``: the boxes are on the filter's map and not in
+    the world (furniture moved away: beams longer than the map says from the
+    right pose, which the long-beam gate cannot tell from a kidnap)."""
     with _sim(seed) as sim:
         p = _params(params, seed)
         amcl = Amcl(p)
-        amcl.set_map(_field(sim, p))
+        amcl.set_map(_map_with_boxes(sim, p) if gone else _field(sim, p))
         sim.teleport(Pose2D(2.0, CORRIDOR_Y, 0.0))
         amcl.initialize(amcl.check_pose(2.0, CORRIDOR_Y, 0.0))
-        for i, (x, y) in enumerate(BOXES):
+        for i, (x, y) in enumerate([] if gone else BOXES):
             sim.spawn(ObstacleSpec(f"box{i}", "box", Pose2D(x, y, 0.3), size_x=0.6, size_y=0.6))
-        drive, heading, worst, most = Driver(sim, amcl), 0.0, 0.0, 0
+        drive, heading, worst, most, long = Driver(sim, amcl), 0.0, 0.0, 0, 0.0
         while sim.time < seconds:
             t = sim.true_pose
             heading = math.pi if t.x > 15.0 else 0.0 if t.x < 3.0 else heading
@@ -147,13 +173,15 @@ def corridor(seed: int, params: str, seconds: float) -> tuple[float, int]:
                 drive.step(0.4, max(-0.5, min(0.5, turn - 1.5 * across)))
             if sim.steps % STEPS_PER_SCAN == 0 and sim.time > 3.0:
                 worst, most = max(worst, drive.error()[0]), max(most, len(amcl.particles))
-        return worst, most
+                long = max(long, amcl.long_beams)
+        return worst, most, long
 
 
 def _trace_line(after: float, error: float, amcl: Amcl) -> str:
     r = amcl.recovery
     return (f"{after:5.1f} s  error {error:6.2f} m  w_slow {r.w_slow:.3f} w_fast "
-            f"{r.w_fast:.3f} w_diff {r.w_diff:.3f}  particles {len(amcl.particles)}")  # fmt: skip
+            f"{r.w_fast:.3f} w_diff {r.w_diff:.3f}  long beams {amcl.long_beams:.2f}  "
+            f"particles {len(amcl.particles)}")  # fmt: skip
 
 
 def _print(kind: str, runs: list[Trial]) -> None:
@@ -184,14 +212,17 @@ def main() -> None:
     parser.add_argument("--trace", type=int, default=0, metavar="N", help="trace trial N")
     parser.add_argument("--corridor", type=float, default=0.0, metavar="S",
                         help="only the corridor drive past boxes, S sim s per seed")  # fmt: skip
+    parser.add_argument("--gone", action="store_true",
+                        help="with --corridor: the boxes on the map, not in the world")  # fmt: skip
     args = parser.parse_args()
     apply_sets(args.set)
     began = time.monotonic()
     seeds = [args.seed + i for i in range(args.trials)]
     if args.corridor:
         for seed in seeds:
-            worst, most = corridor(seed, args.params, args.corridor)
-            print(f"corridor seed {seed}: worst error {worst:.2f} m, most particles {most}")
+            worst, most, long = corridor(seed, args.params, args.corridor, gone=args.gone)
+            print(f"corridor seed {seed}: worst error {worst:.2f} m, most particles {most}, "
+                  f"long beams at most {long:.2f}")  # fmt: skip
         print(f"({time.monotonic() - began:.0f} s wall, params {args.params}, set {args.set})")
         return
     runs = [trial(s, args.params, trace=args.trace == i) for i, s in enumerate(seeds, 1)]

@@ -3,7 +3,9 @@
 Serves the actions ``spin``, ``backup``, ``drive_on_heading``, ``wait`` and
 ``assisted_teleop`` (teleop input on ``{ns}/cmd_vel_teleop``, ended early by
 ``{ns}/preempt_teleop``); publishes ``{ns}/cmd_vel``; reads ``{ns}/odom``,
-``{ns}/pose`` and ``{ns}/scan`` (local costmap for collision checks).
+``{ns}/pose`` and ``{ns}/scan`` (the local costmap for collision checks, kept in
+``odom`` as Nav2's behavior server's ``local_frame``: a relocalization does not
+move it).
 """
 
 from __future__ import annotations

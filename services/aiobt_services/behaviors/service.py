@@ -16,7 +16,7 @@ from typing import Any
 
 from aiobt.core.clock import Clock
 from aiobt.costmap.checker import CollisionChecker
-from aiobt.costmap.local import FrameShift, LocalCostmap, frame_transform
+from aiobt.costmap.local import LocalCostmap
 from aiobt.geometry import STOP, Velocity
 from aiobt.msgs import Empty, Twist
 from aiobt.robot.freshness import FRESH
@@ -65,10 +65,15 @@ class BehaviorService:
         self.safety = replace(
             self.options.safety or Safety(), cycle_period=self.options.cycle_period
         )
-        self.tracker = RobotTracker(clock, self.costmap, robot_time=self.options.robot_time)
+        # the costmap in odom, as Nav2's behavior server checks (local_frame odom): a
+        # relocalization (ReinitializeGlobalLocalization, then Spin) moves the estimate
+        # metres between scans, and a map-frame window would put the robot on obstacles
+        # laid from the estimate before the jump (Spin's 703 in the kidnap e2e test)
+        self.tracker = RobotTracker(
+            clock, self.costmap, robot_time=self.options.robot_time, costmap_frame="odom"
+        )
         self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
-        self._shift = FrameShift(self.costmap)
-        self.checker = CollisionChecker(self._shift)
+        self.checker = CollisionChecker(self.costmap)
         self._owner: _Run | None = None
         self._teleop: tuple[Velocity, float] | None = None
         self._teleop_run: AssistedTeleop | None = None
@@ -176,8 +181,6 @@ class BehaviorService:
         self.tracker.refresh_costmap()
         states = self.tracker.snapshot()
         odom = states.get("odom")
-        if odom is not None and "map" in states:
-            self._shift.transform = frame_transform(states["map"].pose, odom.pose)
         teleop, teleop_stamp = self._teleop or (None, float("-inf"))
         return Inputs(
             now=self.clock.now(),

@@ -14,6 +14,7 @@ or ``update_min_a``, or when a no-motion update was requested; then weigh them
 from __future__ import annotations
 
 import logging
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,6 +24,7 @@ from .estimate import Estimate, estimate
 from .initial_pose import DEFAULT_COVARIANCE, InitialPose, checked, sample
 from .laser_model import Beams, LikelihoodFieldModel
 from .likelihood_field import LikelihoodField
+from .long_beams import MARGIN_SIGMAS, long_beam_share
 from .motion_model import DifferentialMotionModel
 from .params import AmclParams
 from .recovery import RecoveryAverages
@@ -63,6 +65,7 @@ class Amcl:
         self._odom_ref: FloatArray | None = None  # AMCL's pf_odom_pose_ (None: pf_init_ false)
         self._force_update = False
         self._resample_count = 0
+        self.long_beams = 0.0  # the last gate's share of long beams (long_beams.py)
 
     # -- inputs other than scans ----------------------------------------
     def set_map(self, field: LikelihoodField) -> None:
@@ -120,7 +123,7 @@ class Amcl:
             self._odom_ref = odom_pose
             self._resample_count = 0
             self._weigh(beams)
-            return self._publish(odom_pose, resampled=self._maybe_resample())
+            return self._publish(odom_pose, resampled=self._maybe_resample(beams))
         delta = np.array(
             [
                 *(odom_pose[:2] - self._odom_ref[:2]),
@@ -135,7 +138,7 @@ class Amcl:
         self.particles = self.motion.odometry_update(self.particles, odom_pose, delta, self.rng)
         self._odom_ref = odom_pose
         self._weigh(beams)
-        resampled = self._maybe_resample()
+        resampled = self._maybe_resample(beams)
         if not resampled:
             return ScanOutcome(True, False)
         return self._publish(odom_pose, resampled=True)
@@ -152,12 +155,14 @@ class Amcl:
         else:
             self.weights = np.full(len(weights), 1.0 / len(weights))
 
-    def _maybe_resample(self) -> bool:
+    def _maybe_resample(self, beams: Beams) -> bool:
         self._resample_count += 1
         if self._resample_count % self.params.resample_interval:
             return False
         assert self.field is not None
         w_diff = self.recovery.w_diff
+        if w_diff > 0.0 and not self._may_inject(beams):
+            w_diff = 0.0
         self.particles = resample(
             self.particles,
             self.weights,
@@ -170,6 +175,20 @@ class Amcl:
         if w_diff > 0.0 and self.params.recovery_reset_after_injection:
             self.recovery.reset()
         return True
+
+    def _may_inject(self, beams: Beams) -> bool:
+        """The long-beam gate (not Nav2's, :mod:`.long_beams`): random particles only
+        while enough of the scan's beams reach past the map's walls from the heaviest
+        particle and end away from them. Ray cast only here, when the averages ask
+        for random particles."""
+        if self.params.recovery_min_long_beams <= 0.0:
+            return True
+        assert self.field is not None
+        best = self.particles[int(np.argmax(self.weights))]
+        margin = MARGIN_SIGMAS * self.params.sigma_hit
+        far = self.params.z_hit * math.exp(-0.5 * MARGIN_SIGMAS**2)
+        self.long_beams = long_beam_share(self.field, best, beams, margin, far)
+        return self.long_beams >= self.params.recovery_min_long_beams
 
     def _publish(self, odom_pose: FloatArray, *, resampled: bool) -> ScanOutcome:
         self.last_estimate = estimate(self.particles, self.weights)

@@ -14,6 +14,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from .long_beams import MARGIN_SIGMAS
+
 
 class ParamError(ValueError):
     """A parameter has a bad value (the message names it)."""
@@ -60,6 +62,7 @@ class AmclParams:
     recovery_alpha_fast: float = 0.0
     recovery_alpha_slow: float = 0.0
     recovery_reset_after_injection: bool = True  # not Nav2's (pf.c resets): recovery.py
+    recovery_min_long_beams: float = 0.0  # not Nav2's (0: no gate): long_beams.py
     resample_interval: int = 1
     robot_model_type: str = "nav2_amcl::DifferentialMotionModel"
     save_pose_rate: float = 0.5
@@ -87,6 +90,14 @@ class AmclParams:
         _check("pf_z", self.pf_z, low=0.0, strict=True, high=1.0)
         _check("recovery_alpha_slow", self.recovery_alpha_slow, low=0.0, high=1.0)
         _check("recovery_alpha_fast", self.recovery_alpha_fast, low=0.0, high=1.0)
+        _check("recovery_min_long_beams", self.recovery_min_long_beams, low=0.0, high=1.0)
+        if self.recovery_min_long_beams > 0.0 and self.laser_likelihood_max_dist <= (
+            MARGIN_SIGMAS * self.sigma_hit
+        ):
+            raise ParamError(
+                "recovery_min_long_beams needs laser_likelihood_max_dist > 2 sigma_hit (the "
+                f"gate's margin), got {self.laser_likelihood_max_dist} and {self.sigma_hit}"
+            )
         if self.z_hit + self.z_rand <= 0.0:
             raise ParamError("z_hit + z_rand must be > 0")
         if not self.max_beams >= 2:

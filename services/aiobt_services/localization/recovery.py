@@ -30,7 +30,10 @@ suggested 0.001 / 0.1, 1 found with the reset, 12 without; 0.01 / 0.2 without
 the reset, 17 (median 9.7 s). The price, either way: the averages cannot tell a
 kidnap from obstacles that are not on the map, and on a long drive past such
 boxes (``kidnap --corridor 400``) the random particles moved a robot that was
-never lost metres away; so the shipped params leave recovery off (Nav2's default).
+never lost metres away. ``recovery_min_long_beams`` (not a Nav2 parameter,
+:mod:`.long_beams`) tells the two apart by the sign of the scan's misfit and lets
+random particles in only on a kidnap's evidence; with it the shipped sim_robot
+params turn recovery on (figures in ``config/sim_robot.yaml``).
 """
 
 from __future__ import annotations

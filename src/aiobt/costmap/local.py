@@ -1,8 +1,11 @@
 """The local costmap: the costmap library's rolling window, fed by lidar, as a CostQuery.
 
-The window lives in the ``map`` frame (the robot pose from ``{ns}/pose``), so
-paths from the planner are checked without a transform; :class:`FrameShift`
-serves a path given in ``odom`` by moving query points through odom -> map.
+The window lives in the frame of the poses it is fed with
+(:class:`aiobt.robot.tracker.RobotTracker`'s ``costmap_frame``). The controller's is
+in ``map`` (the robot pose from ``{ns}/pose``), so paths from the planner are
+checked without a transform; :class:`FrameShift` serves a path given in ``odom``
+by moving query points through odom -> map. The behaviors' is in ``odom`` (Nav2's
+``local_frame``), so a relocalization does not move it.
 """
 
 from __future__ import annotations

@@ -32,6 +32,8 @@ if TYPE_CHECKING:
 
 log = logging.getLogger("aiobt.robot.tracker")
 
+FRAMES = ("map", "odom")  # the frames a local costmap can be kept in
+
 
 def twist_of(cmd: Velocity) -> Twist:
     return Twist.planar(cmd.v, cmd.w)
@@ -50,10 +52,16 @@ class RobotTracker:
     ``robot_time``: the clock follows the robot's own (``--sim-time``), so the
     robot's header stamps are on it and every pose is aged by its own stamp.
     ``scan`` False: the lidar is not read (the local costmap's obstacle layer off).
+    ``costmap_frame``: the frame the local costmap is kept in, ``map`` (the pose from
+    ``{ns}/pose``, the controller's) or ``odom`` (Nav2's ``local_frame``, the behaviors'):
+    a costmap in ``odom`` does not move when localization corrects or reinitializes
+    the estimate, so a relocalizing turn is not checked against obstacles laid from the
+    estimate before the jump.
     """
 
     __slots__ = (
         "_clock",
+        "_frame",
         "_pending_scan",
         "_robot_time",
         "_scan",
@@ -73,8 +81,14 @@ class RobotTracker:
         wall: Callable[[], float] = time.monotonic,
         robot_time: bool = False,
         scan: bool = True,
+        costmap_frame: str = "map",
     ) -> None:
+        if costmap_frame not in FRAMES:
+            raise ValueError(
+                f"RobotTracker costmap_frame must be one of {FRAMES}, got {costmap_frame!r}"
+            )
         self._clock = clock
+        self._frame = costmap_frame
         self._robot_time = robot_time
         self._scan = scan
         self._taken: dict[str, float] = {}  # frame -> the newest state's own stamp
@@ -149,22 +163,23 @@ class RobotTracker:
 
     def on_scan(self, msg: LaserScan) -> None:
         self.freshness.received("scan", msg.header.stamp)
-        state = self.states.get("map")
+        state = self.states.get(self._frame)
         if self.costmap is not None and state is not None:
             self._pending_scan = (msg, state.pose)
 
     def due_update(self) -> CostmapUpdate | None:
-        """The local costmap's update, if one is due: the window to the newest pose, then
-        the newest scan; at most once per update period of robot time (the first call
-        with a pose or a scan at once), as Nav2's costmap updates at its
+        """The local costmap's update, if one is due: the window to the newest pose (in
+        ``costmap_frame``), then the newest scan; at most once per update period of
+        robot time (the first call with a pose or a scan at once), as Nav2's costmap
+        updates at its
         ``update_frequency``. The scan is taken (the next update waits for a newer one)."""
-        if self.costmap is None or (self._pending_scan is None and "map" not in self.states):
+        if self.costmap is None or (self._pending_scan is None and self._frame not in self.states):
             return None
         if not self._updates.due(self._clock.now()):
             return None
         pending, self._pending_scan = self._pending_scan, None
         scan, sensor = pending if pending is not None else (None, None)
-        state = self.states.get("map")
+        state = self.states.get(self._frame)
         return CostmapUpdate(scan, sensor, state.pose if state is not None else sensor)
 
     def refresh_costmap(self) -> bool:

@@ -111,3 +111,34 @@ def test_one_way_delay_by_stamps_smoothed_from_its_own_first_sample():
     delay.observed(3.1, Velocity(0.02, 0.0), stamp=3.14)  # the clock trails the robot
     assert delay.one_way == pytest.approx(0.1)
     assert delay.estimate == pytest.approx(0.125)
+
+
+def test_a_costmap_kept_in_odom_does_not_move_with_the_estimate():
+    """The behaviors' costmap (Nav2's local_frame odom): scans are laid at the odometry
+    pose, so a jump of the map-frame estimate (a relocalization) moves nothing."""
+    clock = ManualClock()
+    costmap = LocalCostmap(LocalCostmapParams(update_frequency=5.0))
+    tracker = RobotTracker(clock, costmap, costmap_frame="odom")
+    tracker.on_odom(Odometry())  # odom (0, 0, 0)
+    tracker.on_pose(PoseStamped.from_xy_yaw(3.0, 2.0, 1.0))  # the estimate in map
+    tracker.on_scan(_scan_with_wall_ahead(1.0))
+    assert tracker.refresh_costmap()
+    assert costmap.costs_at(np.array([[1.0, 0.0]]))[0] >= INSCRIBED  # ahead in odom
+    tracker.on_pose(PoseStamped.from_xy_yaw(1.0, 0.0, 0.0))  # the estimate jumps onto it
+    tracker.on_scan(_scan_with_wall_ahead(1.0))
+    clock.advance(0.2)
+    assert tracker.refresh_costmap()
+    assert costmap.costs_at(np.array([[0.0, 0.0]]))[0] < INSCRIBED  # the robot stays clear
+    map_frame = LocalCostmap(LocalCostmapParams(update_frequency=5.0))
+    controller = RobotTracker(ManualClock(), map_frame)  # the default: map
+    controller.on_odom(Odometry())
+    controller.on_pose(PoseStamped.from_xy_yaw(3.0, 2.0, 1.0))
+    controller.on_scan(_scan_with_wall_ahead(1.0))
+    controller.refresh_costmap()
+    wall = (3.0 + np.cos(1.0), 2.0 + np.sin(1.0))
+    assert map_frame.costs_at(np.array([wall]))[0] >= INSCRIBED  # laid at the estimate
+
+
+def test_an_unknown_costmap_frame_is_refused():
+    with pytest.raises(ValueError, match=r"costmap_frame.*'base_link'"):
+        RobotTracker(ManualClock(), LocalCostmap(), costmap_frame="base_link")

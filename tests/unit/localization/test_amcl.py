@@ -112,10 +112,11 @@ class Draws:
         monkeypatch.setattr(LikelihoodField, "random_free_poses", counted)
 
 
-def _lost(reset: bool) -> Amcl:
+def _lost(reset: bool, long_beams: float = 0.0) -> Amcl:
     """A filter tracking in the room whose averages say its fit just dropped by half."""
     amcl = _filter(recovery_alpha_slow=0.001, recovery_alpha_fast=0.01,
-                   recovery_reset_after_injection=reset, update_min_d=0.05)  # fmt: skip
+                   recovery_reset_after_injection=reset, update_min_d=0.05,
+                   recovery_min_long_beams=long_beams)  # fmt: skip
     truth = np.array([1.0, 3.0, 0.0])
     amcl.initialize(amcl.check_pose(*truth))
     amcl.on_scan(np.zeros(3), _beams(truth))
@@ -123,10 +124,11 @@ def _lost(reset: bool) -> Amcl:
     return amcl
 
 
-def _resample(amcl: Amcl, draws: Draws, step: float) -> int:
-    """One update 0.1 m on; how many random poses its resample drew (of 2,000)."""
+def _resample(amcl: Amcl, draws: Draws, step: float, truth: np.ndarray | None = None) -> int:
+    """One update ``step`` m on (the scan taken at ``truth``, by default where the
+    odometry says); how many random poses its resample drew (of 2,000)."""
     before = len(draws.counts)
-    truth = np.array([1.0 + step, 3.0, 0.0])
+    truth = np.array([1.0 + step, 3.0, 0.0]) if truth is None else truth
     assert amcl.on_scan(np.array([step, 0.0, 0.0]), _beams(truth)).resampled
     return sum(draws.counts[before:])
 
@@ -150,3 +152,26 @@ def test_without_the_reset_random_particles_keep_coming_while_the_fit_stays_low(
     assert amcl.recovery.w_slow > amcl.recovery.w_fast > 0.0  # kept, as Augmented MCL
     amcl.recovery.w_slow, amcl.recovery.w_fast = 2.0, 1.0  # the fit still half of before
     assert _resample(amcl, draws, 0.2) > 800
+
+
+def test_the_long_beam_gate_draws_only_when_beams_reach_past_the_walls(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    draws = Draws(monkeypatch)
+    amcl = _lost(reset=False, long_beams=0.2)
+    assert _resample(amcl, draws, 0.1) == 0  # the fit dropped, but the scan fits the map
+    assert amcl.long_beams < 0.2
+    amcl.recovery.w_slow, amcl.recovery.w_fast = 2.0, 1.0
+    kidnapped = np.array([3.5, 1.0, 0.0])  # right of the wall stub, the filter left of it
+    assert _resample(amcl, draws, 0.2, truth=kidnapped) > 800
+    assert amcl.long_beams >= 0.2
+
+
+def test_the_gate_stays_shut_where_a_mapped_crate_is_gone(monkeypatch: pytest.MonkeyPatch) -> None:
+    draws = Draws(monkeypatch)
+    amcl = _lost(reset=False, long_beams=0.05)
+    on_the_map = CELLS.copy()
+    on_the_map[54:66, 50:62] = 100  # a 0.6 m crate ahead of the robot, moved away since
+    amcl.set_map(field(on_the_map))
+    amcl.recovery.w_slow, amcl.recovery.w_fast = 2.0, 1.0
+    assert _resample(amcl, draws, 0.1) == 0  # beams through it end on mapped walls

@@ -11,6 +11,7 @@ def test_defaults_are_nav2s() -> None:
     assert (p.max_beams, p.update_min_d, p.update_min_a, p.resample_interval) == (60, 0.25, 0.2, 1)
     assert (p.recovery_alpha_slow, p.recovery_alpha_fast, p.do_beamskip) == (0.0, 0.0, False)
     assert p.recovery_reset_after_injection  # not Nav2's name; pf.c's behaviour by default
+    assert p.recovery_min_long_beams == 0.0  # not Nav2's name; no gate, as pf.c
 
 
 def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> None:
@@ -39,6 +40,9 @@ def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> No
         ({"robot_model_type": "nav2_amcl::OmniMotionModel"}, "robot_model_type"),
         ({"max_beams": "60"}, "max_beams"),
         ({"alpha1": float("nan")}, "alpha1"),
+        ({"recovery_min_long_beams": 1.5}, "recovery_min_long_beams"),
+        ({"recovery_min_long_beams": -0.1}, "recovery_min_long_beams"),
+        ({"recovery_min_long_beams": 0.1, "laser_likelihood_max_dist": 0.4}, "2 sigma_hit"),
     ],
 )
 def test_bad_parameters_are_refused_by_name(values: dict[str, object], names: str) -> None:
