@@ -32,8 +32,8 @@ kidnap from obstacles that are not on the map, and on a long drive past such
 boxes (``kidnap --corridor 400``) the random particles moved a robot that was
 never lost metres away. ``recovery_min_long_beams`` (not a Nav2 parameter,
 :mod:`.long_beams`) tells the two apart by the sign of the scan's misfit and lets
-random particles in only on a kidnap's evidence; with it the shipped sim_robot
-params turn recovery on (figures in ``config/sim_robot.yaml``).
+random particles in only on a kidnap's evidence (figures in
+``config/sim_robot.yaml``, which ships recovery off all the same).
 """
 
 from __future__ import annotations
