@@ -6,6 +6,7 @@ service's ``main`` wires these methods to keys; tests call them directly.
 from __future__ import annotations
 
 import logging
+import math
 import threading
 import time
 from dataclasses import dataclass, field
@@ -62,6 +63,7 @@ class UpdateStats:
     scans: int = 0
     updates: int = 0
     skipped_no_odom: int = 0
+    skipped_before_reset: int = 0  # taken before the last initial pose or global reset
     update_cpu: list[float] = field(default_factory=list)
     update_wall: list[float] = field(default_factory=list)  # scan read -> outputs sent
 
@@ -90,6 +92,10 @@ class LocalizationNode:
         # initial pose and the services change it under this lock too (the pose stream,
         # on_odom, only reads map_to_odom, replaced whole)
         self.lock = threading.RLock()
+        # the newest odometry's stamp when the filter was last set (initial pose, global
+        # localization): a scan taken before it may show another place (a robot carried
+        # off, then the pose given), and is not weighed against the new particles
+        self._reset_at = -math.inf
 
     @property
     def has_map(self) -> bool:
@@ -161,6 +167,9 @@ class LocalizationNode:
         """The filter's update from one scan; safe on another thread than :meth:`on_odom`
         (the service runs it on one, so the pose stream goes on meanwhile)."""
         with self.lock:
+            if job.stamp < self._reset_at:
+                self.stats.skipped_before_reset += 1
+                return []
             start = time.thread_time()
             outcome = self.amcl.on_scan(job.odom_pose, job.beams)
             if outcome.updated:
@@ -206,6 +215,7 @@ class LocalizationNode:
             return Reply(False, str(exc))
         with self.lock:
             self.amcl.initialize(pose)
+            self._mark_reset()
         log.info("%s: pose set to (%.3f, %.3f, %.3f)", where, x, y, yaw)
         return Reply(True, f"pose set to ({x:.3f}, {y:.3f}, {yaw:.3f})")
 
@@ -216,8 +226,13 @@ class LocalizationNode:
             )
         with self.lock:
             self.amcl.global_localization()
+            self._mark_reset()
         log.info("global localization: %d particles over the free space", len(self.amcl.particles))
         return Reply(True, "particles spread over the free space")
+
+    def _mark_reset(self) -> None:
+        newest = self.odom.newest
+        self._reset_at = -math.inf if newest is None else newest[0]
 
     def request_nomotion_update(self) -> Reply:
         if not self.amcl.initialized:

@@ -162,3 +162,23 @@ def test_the_pose_stream_goes_on_while_an_update_holds_the_filter() -> None:
     finally:
         release.set()
         worker.join(10.0)
+
+
+def test_a_scan_taken_before_an_initial_pose_is_not_weighed_against_it() -> None:
+    """The robot carried off (a teleport, a kidnap), then its pose given: a scan still
+    queued from before shows the old place; weighed against the new particles it reads
+    as a kidnap (and, with recovery on, draws random particles). Scans from the newest
+    odometry's stamp on are used; so after a global reset."""
+    node = _node()
+    old, new = (1.0, 3.0, 0.0), (3.0, 1.0, math.pi / 2)
+    node.on_initialpose(PoseWithCovarianceStamped.from_xy_yaw(*old))
+    node.on_odom(_odom(1.0, 0.0, 0.0, 0.0))
+    node.on_odom(_odom(2.0, 0.0, 0.0, 0.0))
+    node.on_initialpose(PoseWithCovarianceStamped.from_xy_yaw(*new))
+    assert node.on_scan(_scan(1.5, old)) == []  # taken at the old place, before the pose
+    assert node.stats.skipped_before_reset == 1
+    assert node.on_scan(_scan(2.0, new))  # from the pose's time on: weighed
+    node.on_odom(_odom(3.0, 0.0, 0.0, 0.0))
+    assert node.reinitialize_global_localization().ok
+    assert node.on_scan(_scan(2.5, new)) == []
+    assert node.stats.skipped_before_reset == 2
