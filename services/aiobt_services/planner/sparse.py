@@ -63,6 +63,8 @@ class Reach:
         while node != root:
             node = int(parent[node])
             path.append(node)
+            if node < 0 or len(path) > len(parent):  # never, on a sound reach
+                raise ValueError(f"the reach's parents from node {path[0]} never lead to {root}")
         return path
 
 
@@ -133,12 +135,13 @@ class GridGraph:
         (see :meth:`Reach.path_from`; one compiled call: not interruptible)."""
         if self._reversed is None:
             m = self._matrix
-            self._reversed_weights = np.empty_like(self._weights)
+            weights = np.empty_like(self._weights)
             rows, cols = self._weights.shape[:2]
-            _reversed_edge_weights(self._padded, self._reversed_weights, (0, rows, 0, cols))
-            self._reversed = csr_array(
-                (self._reversed_weights.ravel(), m.indices, m.indptr), shape=m.shape
-            )
+            _reversed_edge_weights(self._padded, weights, (0, rows, 0, cols))
+            # published only once filled: updated() on another thread copies them (an
+            # unfilled np.empty copied there gave a later graph garbage, negative weights)
+            self._reversed_weights = weights
+            self._reversed = csr_array((weights.ravel(), m.indices, m.indptr), shape=m.shape)
         cost, parent = dijkstra(
             self._reversed, directed=True, indices=target, return_predecessors=True
         )

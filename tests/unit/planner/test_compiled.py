@@ -163,3 +163,13 @@ def test_the_service_option_selects_the_python_astar() -> None:
     assert plan(Traversal(grid, world.options.search), *ends, budget=cancelled)
     with pytest.raises(PlanningCancelled):
         plan(Traversal(grid, SearchParams(downsample=1)), *ends, budget=cancelled)
+
+
+def test_a_reach_whose_parents_loop_is_an_error_not_a_hang() -> None:
+    """Parents that never lead to the root (negative weights gave scipy's Dijkstra such
+    a reach: the planner hung on it in a CI run) raise instead of looping forever."""
+    looping = Reach(np.zeros(4), np.array([1, 2, 1, -9999], dtype=np.int32))
+    with pytest.raises(ValueError, match="never lead to 3"):
+        looping.path_from(0, 3)
+    sound = Reach(np.zeros(4), np.array([1, 3, 3, -9999], dtype=np.int32))
+    assert sound.path_from(0, 3) == [0, 1, 3]
