@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import asyncio
 import math
+import os
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -33,7 +34,16 @@ from aiobt.transport.keys import SIM_POSE
 from .conftest import SAFETY_CHAIN, SPEED
 from .world import World
 
-pytestmark = [pytest.mark.e2e, pytest.mark.timeout(420)]
+KIDNAP = os.environ.get("AIOBT_E2E_KIDNAP", "0") == "1"
+pytestmark = [
+    pytest.mark.e2e,
+    pytest.mark.timeout(420),
+    pytest.mark.skipif(
+        not KIDNAP,
+        reason="not yet reliable (issue 33: failed 1 of about 10 runs, the fresh-clone CI "
+        "of 86b1f8d): AIOBT_E2E_KIDNAP=1 runs it",
+    ),
+]
 
 TREES = Path(__file__).resolve().parents[2] / "trees"
 TREE = TREES / "navigate_to_pose_w_relocalization_and_recovery.xml"
