@@ -139,7 +139,8 @@ class GridGraph:
             rows, cols = self._weights.shape[:2]
             _reversed_edge_weights(self._padded, weights, (0, rows, 0, cols))
             # published only once filled: updated() on another thread copies them (an
-            # unfilled np.empty copied there gave a later graph garbage, negative weights)
+            # unfilled np.empty copied there would give a later graph garbage weights, the
+            # likely cause of a CI run's 'negative weights' and silent planner)
             self._reversed_weights = weights
             self._reversed = csr_array((weights.ravel(), m.indices, m.indptr), shape=m.shape)
         cost, parent = dijkstra(

@@ -134,9 +134,8 @@ class ActionClient(Generic[G, R, F]):
             min(absent_timeout, deadline - loop.time())
         ):
             handle = ClientGoal(self, goal_id, goal)
-            handle.on_feedback = (
-                on_feedback  # before the query: feedback may come with the acceptance
-            )
+            # set before the query: a feedback may come in one batch with the acceptance
+            handle.on_feedback = on_feedback
             self._goals[goal_id] = handle
             stream = _Stream(self, handle)
             self._querier.get(
