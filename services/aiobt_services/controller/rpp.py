@@ -26,7 +26,7 @@ from aiobt.geometry import (
     turn_rate,
     wrap_angle,
 )
-from aiobt.robot.latency import holding_time
+from aiobt.robot.latency import LEAD_CAP, holding_time
 
 from .base import ControlContext, PlanFollower
 from .errors import no_valid_control
@@ -164,7 +164,12 @@ class RegulatedPurePursuit(PlanFollower):
     def _rotate(self, pose: Pose2D, angle_error: float, ctx: ControlContext) -> Velocity:
         p = self.params
         w = turn_rate(
-            angle_error, p.rotate_to_heading_angular_vel, p.max_angular_accel, self._last_w, ctx.dt
+            angle_error,
+            p.rotate_to_heading_angular_vel,
+            p.max_angular_accel,
+            self._last_w,
+            ctx.dt,
+            min(ctx.lead, LEAD_CAP),  # the turn in flight is reckoned, as Spin does
         )
         if (
             p.use_collision_detection

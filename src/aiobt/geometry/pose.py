@@ -18,14 +18,24 @@ def wrap_angle(angle: float) -> float:
 
 
 def turn_rate(
-    angle_error: float, max_rate: float, accel: float, previous: float, dt: float
+    angle_error: float,
+    max_rate: float,
+    accel: float,
+    previous: float,
+    dt: float,
+    lead: float = 0.0,
 ) -> float:
     """Angular speed to turn in place by ``angle_error``, stopping on the heading.
 
-    At most ``max_rate`` and ``sqrt(2 accel |error|)`` (decelerates instead of
-    overshooting), and within ``accel * dt`` of the ``previous`` rate.
+    At most ``max_rate`` and ``sqrt(2 accel |coming|)`` (decelerates instead of
+    overshooting), and within ``accel * dt`` of the ``previous`` rate. ``coming`` is
+    the error less the turn still in flight: the base goes on at the ``previous`` rate
+    for the ``lead`` (clock seconds until a command sent now acts) before this one
+    takes over, as the Spin behavior reckons. With no lead it is the error itself.
     """
-    magnitude = min(max_rate, math.sqrt(2.0 * accel * abs(angle_error)))
+    in_flight = previous * lead if previous * angle_error > 0.0 else 0.0
+    coming = max(0.0, abs(angle_error) - abs(in_flight))
+    magnitude = min(max_rate, math.sqrt(2.0 * accel * coming))
     w = math.copysign(magnitude, angle_error)
     step = accel * dt
     return min(max(w, previous - step), previous + step)
