@@ -10,6 +10,7 @@ from aiobt.core.status import Status
 from tests.unit.nav.test_nav2_support import Script, build
 
 S, F, R, IDLE = Status.SUCCESS, Status.FAILURE, Status.RUNNING, Status.IDLE
+K = Status.SKIPPED
 
 PIPELINE = '<PipelineSequence><Leaf name="A"/><Leaf name="B"/><Leaf name="C"/></PipelineSequence>'
 
@@ -111,8 +112,22 @@ async def test_round_robin_rotates_across_activations_with_wrap() -> None:
 async def test_round_robin_without_wrap_fails_after_the_last_child() -> None:
     script = Script()
     tree = build(script, ROBIN.format(attrs=""))  # Nav2's default: no wrap-around
-    assert [await tree.tick_exactly_once() for _ in range(5)] == [S, S, S, F, S]
-    assert script.take() == ["A", "B", "C", "A"]  # the 4th activation ticked nothing
+    # Nav2 main's round_robin_node.cpp: the last child's return ends the round before
+    # its status is looked at, so even its SUCCESS comes out as FAILURE, and the
+    # next activation starts over at the first child
+    assert [await tree.tick_exactly_once() for _ in range(5)] == [S, S, F, S, S]
+    assert script.take() == ["A", "B", "C", "A", "B"]
+
+
+async def test_round_robin_all_skipped_is_skipped() -> None:
+    # Nav2's test_wrap_around_disabled (and with wrap-around, the loop's bound)
+    for attrs in ('wrap_around="false"', 'wrap_around="true"'):
+        script = Script()
+        for name in "ABC":
+            script.set(name, "K")
+        tree = build(script, ROBIN.format(attrs=attrs))
+        assert await tree.tick_exactly_once() is K, attrs
+        assert script.take() == ["A", "B", "C"], attrs
 
 
 async def test_round_robin_failures_try_the_next_child_in_the_same_tick() -> None:

@@ -10,22 +10,23 @@ from aiobt.core.status import FAILURE, RUNNING, SKIPPED, SUCCESS, Status
 
 
 class RoundRobin(ControlNode):
-    """``<RoundRobin wrap_around="false">`` (Nav2).
+    """``<RoundRobin wrap_around="false">`` (Nav2), as Nav2 main's ``round_robin_node.cpp``.
 
     - ticks the current child; RUNNING: RUNNING;
     - SUCCESS: the next activation starts at the following child; reset all
       children, SUCCESS;
     - FAILURE (or SKIPPED): the following child is ticked in the same tick;
-      once every child failed in a row: reset, FAILURE.
+      once every child failed in a row (failures count across activations, until
+      a success or a halt): reset, FAILURE; every child SKIPPED in this tick:
+      SKIPPED.
 
-    ``wrap_around`` (Nav2 Kilted+, default false): without it, the node does
-    not go back to the first child after the last one. Nav2's quirk, matched
-    here: a failure of the last child returns FAILURE at once, even when the
-    round started mid-way and the first children were not tried; and after
-    the last child *succeeded*, the next activation returns FAILURE without
-    ticking anything. Either FAILURE starts the rotation over at the first
-    child. With ``wrap_around="true"`` it rotates forever (Nav2's old
-    behaviour). A halt also starts over at the first child.
+    ``wrap_around`` (Nav2 Kilted+, default false): without it the node does not go
+    back to the first child after the last one. Nav2's quirk, matched here: once
+    the last child has returned, whatever it returned, the node resets and
+    returns FAILURE (SKIPPED if every child of this tick was skipped), even when
+    the last child succeeded or the round started mid-way; the next activation
+    starts over at the first child. With ``wrap_around="true"`` it rotates forever
+    (Nav2's old behaviour). A halt also starts over at the first child.
     """
 
     __slots__ = ("_current", "_failed")
@@ -49,32 +50,32 @@ class RoundRobin(ControlNode):
     def execute_sync(self) -> Status:
         wrap: bool = self.get_input("wrap_around")
         count = len(self.children)
-        if self._current >= count:  # the last child succeeded without wrap-around
-            self.on_halt_sync()
-            return FAILURE
         self._set_status(RUNNING)
-        while self._failed < count:
+        skipped = 0
+        while self._failed + skipped < count:
             child = self.children[self._current]
             status = child.tick_sync()
+            if status not in (RUNNING, SUCCESS, FAILURE, SKIPPED):
+                raise self.logic_error(f"child {child.path} returned {status.name}")
+            if status is not RUNNING:
+                self._current += 1
+                if self._current == count:
+                    if not wrap:  # the end of the round: FAILURE, whatever the child said
+                        skipped += status is SKIPPED
+                        break
+                    self._current = 0
             if status is RUNNING:
                 return RUNNING
             if status is SUCCESS:
-                self._current += 1
-                if self._current >= count and wrap:
-                    self._current = 0
                 self._failed = 0
                 self.reset_children()
                 return SUCCESS
-            if status is not FAILURE and status is not SKIPPED:
-                raise self.logic_error(f"child {child.path} returned {status.name}")
-            self._failed += 1
-            self._current += 1
-            if self._current >= count:
-                if not wrap:
-                    break
-                self._current = 0
+            if status is FAILURE:
+                self._failed += 1
+            else:
+                skipped += 1
         self.on_halt_sync()
-        return FAILURE
+        return SKIPPED if skipped == count else FAILURE
 
     def on_halt_sync(self) -> None:
         self._current = self._failed = 0
