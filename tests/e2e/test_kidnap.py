@@ -8,7 +8,9 @@ particles: this module's stack turns recovery on, behind the long-beam gate;
 sim_robot.yaml ships it off), or the controller, following its path where the robot
 is not, makes no progress and the navigator's recoveries run: with the relocalizing
 tree (trees/navigate_to_pose_w_relocalization_and_recovery.xml) one of them
-reinitializes global localization and turns once on the spot, in eighths. Required:
+reinitializes global localization and turns once on the spot, in eighths, and the
+next round does it again if the robot is still lost (the turn can settle on a
+look-alike place: the fresh-clone CI of 86b1f8d). Required:
 the estimate back on the robot (within 0.25 m of the truth) by the end, a clear
 result, no bump.
 """
