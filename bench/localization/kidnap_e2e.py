@@ -6,7 +6,7 @@ lidar.
 Run: ``.venv/bin/python -m bench.localization.kidnap_e2e [--trials 10] [--seed 1]
 [--params sim_robot|nav2] [--set NAME=VALUE ...] [--relocalize-after S]
 [--turns N] [--settle N] [--scan-every K [--queue]] [--steps N --pause S]
-[--turn-speed RAD_S]``
+[--turn-speed RAD_S] [--relocalizations N]``
 
 Each trial: the robot at (2, 9.75) heading east, the filter given that pose; a
 pure-pursuit follower (0.5 m/s, look-ahead 0.6 m, as RegulatedPurePursuit's
@@ -34,6 +34,9 @@ following the path where the robot is not.
   10 instead and an update takes K scan intervals (:class:`_Queued`).
 - ``--steps N --pause S``: the turn(s) in N steps with S sim s still after each
   (the relocalizing tree's eighths); ``--turn-speed``: rad/s of the turn.
+- ``--relocalizations N``: the tree's Relocalize N times, each with its 30 s of
+  following (the next recovery round's, whether or not the last one found the
+  robot); the error right after each turn is reported.
 """
 
 from __future__ import annotations
@@ -43,7 +46,7 @@ import itertools
 import math
 import time
 from collections import deque
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -78,7 +81,7 @@ class Trial:
     back_s: float = math.nan  # sim s after the kidnap until within FOUND_M (nan: never)
     collides_map_s: float = math.nan  # Spin's check failed on the map-frame costmap
     collides_odom_s: float = math.nan  # ... on the odom-frame costmap
-    after_turn: float = math.nan  # error right after the turn(s), m
+    after_turns: list[float] = field(default_factory=list)  # error right after each turn, m
     end_error: float = math.nan
     blocked_s: float = 0.0  # sim s the follower was held by an obstacle ahead
 
@@ -165,6 +168,7 @@ class _Follower:
 
 TURN_SPEED = [1.0]  # rad/s of the relocalizing turn (--turn-speed)
 STEPPED = [1, 0.0]  # the turn in this many steps, with this many sim s still after each
+RELOCALIZATIONS = [1]  # Relocalize this many times (--relocalizations)
 
 
 def _turn(drive: Driver, turns: float, out: Trial, since: float) -> None:
@@ -211,7 +215,7 @@ def _relocalize(follow: _Follower, turns: float, settle: int, out: Trial, kidnap
         _turn(drive, turns / steps, out, since)
         for _ in range(round(pause / drive.sim.config.dt)):
             drive.step(0.0, 0.0)
-    out.after_turn = drive.error()[0]
+    out.after_turns.append(drive.error()[0])
     began = drive.sim.time
     while drive.sim.time - began < AFTER_S:
         follow.step()
@@ -239,7 +243,7 @@ def trial(
             follow.step()
             if relocalized:
                 _note_back(drive, out, kidnapped)
-        if not relocalized:
+        for _ in range(0 if relocalized else RELOCALIZATIONS[0]):
             _relocalize(follow, turns, settle, out, kidnapped)
         out.end_error, out.blocked_s = drive.error()[0], follow.blocked
     return out
@@ -259,11 +263,13 @@ def main() -> None:
     parser.add_argument("--steps", type=int, default=1, help="the turn in N steps")
     parser.add_argument("--pause", type=float, default=0.0, metavar="S",
                         help="sim s still after each step")  # fmt: skip
+    parser.add_argument("--relocalizations", type=int, default=1, metavar="N")
     args = parser.parse_args()
     apply_sets(args.set)
     TURN_SPEED[0] = args.turn_speed
     QUEUED[0] = args.queue
     STEPPED[:] = [args.steps, args.pause]
+    RELOCALIZATIONS[0] = args.relocalizations
     began = time.monotonic()
     runs = []
     print(
@@ -275,7 +281,8 @@ def main() -> None:
                   args.scan_every)  # fmt: skip
         runs.append(r)
         print(f"| {seed} | {r.back_s:.1f} | {r.collides_map_s:.1f} / {r.collides_odom_s:.1f} "
-              f"| {r.after_turn:.2f} | {r.end_error:.2f} | {r.blocked_s:.1f} |",
+              f"| {' '.join(f'{e:.2f}' for e in r.after_turns)} | {r.end_error:.2f} "
+              f"| {r.blocked_s:.1f} |",
               flush=True)  # fmt: skip
     ok = sum(r.end_error < FOUND_M for r in runs)
     back = sum(not math.isnan(r.back_s) for r in runs)
@@ -283,6 +290,11 @@ def main() -> None:
           f"{ok}/{len(runs)}; Spin's check failed on the map-frame costmap in "
           f"{sum(not math.isnan(r.collides_map_s) for r in runs)}, on the odom-frame in "
           f"{sum(not math.isnan(r.collides_odom_s) for r in runs)}")  # fmt: skip
+    turns = [[e < FOUND_M for e in r.after_turns] for r in runs]
+    if any(turns):
+        each = " ".join(f"{sum(t[i] for t in turns)}/{len(runs)}" for i in range(len(turns[0])))
+        print(f"within {FOUND_M} m right after turn 1, 2, ...: {each}; after any: "
+              f"{sum(any(t) for t in turns)}/{len(runs)}")  # fmt: skip
     print(
         f"({time.monotonic() - began:.0f} s wall, params {args.params}, set {args.set}, "
         f"relocalize after {args.relocalize_after} s, turns {args.turns}, settle {args.settle}, "
