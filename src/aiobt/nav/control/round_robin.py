@@ -55,17 +55,16 @@ class RoundRobin(ControlNode):
         while self._failed + skipped < count:
             child = self.children[self._current]
             status = child.tick_sync()
-            if status not in (RUNNING, SUCCESS, FAILURE, SKIPPED):
-                raise self.logic_error(f"child {child.path} returned {status.name}")
-            if status is not RUNNING:
-                self._current += 1
-                if self._current == count:
-                    if not wrap:  # the end of the round: FAILURE, whatever the child said
-                        skipped += status is SKIPPED
-                        break
-                    self._current = 0
             if status is RUNNING:
                 return RUNNING
+            if status not in (SUCCESS, FAILURE, SKIPPED):
+                raise self.logic_error(f"child {child.path} returned {status.name}")
+            self._current += 1
+            if self._current == count:
+                if not wrap:  # the end of the round: FAILURE, whatever the child said
+                    skipped += status is SKIPPED
+                    break
+                self._current = 0
             if status is SUCCESS:
                 self._failed = 0
                 self.reset_children()
