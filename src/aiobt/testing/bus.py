@@ -2,6 +2,9 @@
 
 Processes start with ``subprocess`` (fork+exec: a forked Zenoh process hangs)
 and are stopped by PID. Their output goes to a log file, shown on failure.
+Each dies with the process that started it (SIGTERM on Linux, even when that is
+SIGKILLed: :func:`aiobt.system.lifeline.popen_bound`); a test's or benchmark's
+own SIGTERM stops them in order when it calls :func:`exit_on_sigterm`.
 :func:`service_main` is the other end: the ``main`` of such a process.
 """
 
@@ -21,6 +24,7 @@ import uuid
 from collections.abc import AsyncIterator, Callable, Iterator, Mapping, Sequence
 from pathlib import Path
 
+from aiobt.system.lifeline import popen_bound
 from aiobt.transport import Bus, BusSettings, add_bus_arguments, open_bus
 from aiobt.transport.endpoints import LOOPBACK
 from aiobt.transport.endpoints import free_endpoint as free_endpoint  # for the tests
@@ -42,7 +46,8 @@ def wait_port(port: int, timeout: float = 10.0, host: str = LOOPBACK) -> bool:
 
 
 class ServiceProcess:
-    """A child Python process (``python ARGS``), stopped by PID."""
+    """A child Python process (``python ARGS``), stopped by PID; it gets SIGTERM if
+    this process dies first."""
 
     def __init__(self, args: Sequence[str], env: Mapping[str, str] | None = None) -> None:
         self.args = list(args)
@@ -50,7 +55,7 @@ class ServiceProcess:
         os.close(handle)
         self.log_path = Path(name)
         with self.log_path.open("wb") as log_file:
-            self.popen = subprocess.Popen(
+            self.popen: subprocess.Popen[bytes] = popen_bound(
                 [sys.executable, *self.args],
                 stdout=log_file,
                 stderr=subprocess.STDOUT,
@@ -133,6 +138,18 @@ def running_router(
         yield proc, where
     finally:
         proc.cleanup()
+
+
+def exit_on_sigterm() -> None:
+    """SIGTERM raises ``SystemExit`` in the main thread, as SIGINT raises
+    ``KeyboardInterrupt``: a benchmark's ``finally`` blocks and ``with`` exits still stop
+    the processes it started (Python's default SIGTERM ends it without them, leaving
+    its stack running)."""
+
+    def stop(signum: int, frame: object) -> None:
+        raise SystemExit(128 + signum)
+
+    signal.signal(signal.SIGTERM, stop)
 
 
 def service_main(declare: Callable[[Bus], object]) -> int:

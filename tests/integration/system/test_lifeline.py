@@ -1,0 +1,80 @@
+"""Processes started by the test spawner die with their parent, however it ends.
+
+The parent is a real process (lifeline_parent.py) that starts a real router and a
+service with ``aiobt.testing.bus``; the test signals it and waits, on pidfds, for
+its children. (test_up.py checks the same of ``aiobt up``'s children.)
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+from tests.integration.system.helpers import wait_gone
+
+pytestmark = [pytest.mark.integration, pytest.mark.timeout(120)]
+PARENT = "tests.integration.system.lifeline_parent"
+ROOT = Path(__file__).resolve().parents[3]
+
+
+@contextlib.contextmanager
+def parent(*flags: str) -> Iterator[tuple[subprocess.Popen[str], list[int]]]:
+    """The parent started, with the pids of its router and service once they serve;
+    after: the parent and any child left killed by PID."""
+    command = [sys.executable, "-m", PARENT, *flags]
+    pids: list[int] = []
+    with subprocess.Popen(
+        command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    ) as proc:  # its pipes closed on the way out
+        try:
+            assert proc.stdout is not None
+            line = proc.stdout.readline()  # the parent's own waits are bounded (60 s)
+            assert line.startswith("pids "), line + proc.stdout.read()
+            pids = [int(word) for word in line.split()[1:]]
+            yield proc, pids
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+            proc.wait(10)
+            for pid in wait_gone(pids, 0.0):
+                os.kill(pid, signal.SIGKILL)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_the_children_of_a_killed_parent_exit(sig: signal.Signals) -> None:
+    with parent() as (proc, children):
+        proc.send_signal(sig)
+        assert proc.wait(10) == -sig  # its finally did not run: the children are on their own
+        assert wait_gone(children, 20.0) == []
+
+
+def test_children_started_on_a_thread_outlive_it_and_die_with_the_process() -> None:
+    with parent("--from-thread") as (proc, children):  # they served after the thread ended
+        proc.kill()
+        assert wait_gone(children, 20.0) == []
+
+
+def test_a_parent_that_ends_normally_stops_its_children_gracefully() -> None:
+    with parent() as (proc, children):
+        assert proc.stdin is not None
+        assert proc.stdout is not None
+        proc.stdin.close()
+        assert proc.stdout.read().split() == ["stopped", "0", "0"]
+        assert proc.wait(30) == 0
+        assert wait_gone(children, 0.0) == []
+
+
+def test_exit_on_sigterm_stops_the_children_as_the_normal_path_does() -> None:
+    with parent("--exit-on-sigterm") as (proc, children):
+        assert proc.stdout is not None
+        proc.send_signal(signal.SIGTERM)
+        assert proc.stdout.read().split() == ["stopped", "0", "0"]
+        assert proc.wait(30) == 128 + signal.SIGTERM
+        assert wait_gone(children, 0.0) == []
