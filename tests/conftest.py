@@ -7,8 +7,13 @@ same way it reaches users' test suites.
 Hypothesis runs without its per-example deadline: a deadline is a timed
 assertion, and on two loaded cores an example that takes 200 ms is not a bug
 (each test is still bounded by pytest-timeout).
+
+SIGTERM stops the run as Ctrl-C does (``KeyboardInterrupt``), so fixtures' teardown
+still stops the processes the tests started; Python's default SIGTERM would end
+pytest without it (they would then only get their parent-death signal).
 """
 
+import signal
 from collections.abc import AsyncIterator
 
 import pytest
@@ -19,6 +24,24 @@ from aiobt.transport import Bus
 
 settings.register_profile("aiobt", deadline=None)
 settings.load_profile("aiobt")
+
+
+def _sigterm_interrupts() -> None:
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+
+
+def pytest_configure() -> None:
+    _sigterm_interrupts()
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_setup() -> None:
+    _sigterm_interrupts()  # again: a closed event loop that had a SIGTERM handler left SIG_DFL
+
+
+@pytest.hookimpl(tryfirst=True)
+def pytest_runtest_teardown() -> None:
+    _sigterm_interrupts()
 
 
 @pytest.fixture

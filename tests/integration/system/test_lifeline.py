@@ -78,3 +78,48 @@ def test_exit_on_sigterm_stops_the_children_as_the_normal_path_does() -> None:
         assert proc.stdout.read().split() == ["stopped", "0", "0"]
         assert proc.wait(30) == 128 + signal.SIGTERM
         assert wait_gone(children, 0.0) == []
+
+
+INNER_TEST = """
+import time
+import pytest
+from aiobt.testing.bus import start_router
+
+@pytest.fixture
+def router():
+    proc, _ = start_router()
+    assert proc.wait_for_output("listening on", 30.0)  # its SIGTERM handler is set
+    yield proc
+    print("stopped", proc.stop(), flush=True)
+
+def test_serves(router):
+    print("pid", router.pid, flush=True)
+    time.sleep(100)  # what the SIGTERM interrupts
+"""
+
+
+def test_a_sigterm_to_pytest_tears_its_fixtures_down(tmp_path: Path) -> None:
+    """tests/conftest.py turns SIGTERM into Ctrl-C: the router fixture stops its router."""
+    (tmp_path / "test_inner.py").write_text(INNER_TEST)
+    (tmp_path / "pytest.ini").write_text("[pytest]\n")
+    conftest = ["-p", "tests.conftest", "-p", "no:cacheprovider", "-p", "no:randomly"]
+    command = [sys.executable, "-m", "pytest", "-s", "-q", *conftest, "-c", "pytest.ini"]
+    pids: list[int] = []
+    with subprocess.Popen(command, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(ROOT)},
+                          stdout=subprocess.PIPE, text=True) as pytest_run:  # fmt: skip
+        try:
+            assert pytest_run.stdout is not None
+            line = next((x for x in pytest_run.stdout if x.startswith("pid ")), "")
+            assert line, "the inner test did not start its router"
+            pids = [int(line.split()[1])]
+            pytest_run.send_signal(signal.SIGTERM)
+            output = pytest_run.stdout.read()
+            assert pytest_run.wait(30) == pytest.ExitCode.INTERRUPTED, output
+            assert "stopped 0" in output
+            assert wait_gone(pids, 0.0) == []
+        finally:
+            if pytest_run.poll() is None:
+                pytest_run.kill()
+            pytest_run.wait(10)
+            for pid in wait_gone(pids, 0.0):
+                os.kill(pid, signal.SIGKILL)
