@@ -9,8 +9,9 @@ SIGTERM, so a child still closes its session and files:
   the main thread, or on one that lives as long as the process.
 - ``aiobt up``'s supervisor puts its pid in the child's environment
   (:func:`child_env`); the child, as it starts (``aiobt``'s ``main``), binds
-  itself (:func:`die_with_supervisor`). The variable is taken out of the
-  environment: the child's own children are not bound.
+  itself (:func:`die_with_supervisor`): bound to the thread that runs the
+  supervisor's loop, the main thread of ``aiobt up`` and ``aiobt demo``. The
+  variable is taken out of the environment: the child's own children are not bound.
 
 Both exit at once if the parent is already gone. Off Linux neither binds, and
 nothing is bound unless the spawner asks: a service in its own container
