@@ -40,7 +40,8 @@ import numpy as np
 from aiobt.geometry import PlanarPath, Pose2D, Velocity
 from aiobt.msgs import FollowPath, GoalState, OccupancyGrid, Path, PoseStamped
 from aiobt.robot.state import RobotState
-from aiobt.testing.bus import ServiceProcess, running_router
+from aiobt.system.lifeline import popen_bound
+from aiobt.testing.bus import ServiceProcess, exit_on_sigterm, running_router
 from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt_services.controller.observed import costmap_msg, path_msg
 from aiobt_services.controller.session import (
@@ -78,7 +79,7 @@ class Interpreted(ServiceProcess):
         os.close(handle)
         self.log_path = pathlib.Path(name)
         with self.log_path.open("wb") as log:
-            self.popen = subprocess.Popen(
+            self.popen = popen_bound(
                 [python, *args], stdout=log, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL
             )
 
@@ -171,6 +172,7 @@ def main() -> None:
     parser.add_argument("--goals", type=int, default=4, help="goals per configuration")
     parser.add_argument("--cycles", type=int, default=2000, help="in-process repetitions")
     parser.add_argument("--baseline-python", help="interpreter of a controller without the topics")
+    exit_on_sigterm()
     asyncio.run(main_async(parser.parse_args()))
 
 

@@ -43,7 +43,7 @@ import numpy as np
 from aiobt.deploy.certs import CertPlan, write_certs
 from aiobt.deploy.zenoh_configs import write_configs
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
-from aiobt.testing.bus import ServiceProcess, spawn_service
+from aiobt.testing.bus import ServiceProcess, exit_on_sigterm, spawn_service
 from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt.transport.endpoints import free_port
 from bench.system.procstat import cpu_seconds
@@ -193,6 +193,7 @@ def main() -> int:
     parser.add_argument("--rates", type=float, default=1.0, help="streams K times as often")
     parser.add_argument("--hold", type=float, default=0.0, help="s the log reader is held off")
     parser.add_argument("--baseline-python", default=None, help="a baseline checkout's Python")
+    exit_on_sigterm()
     args = parser.parse_args()
     variants = _variants(args)
     busy: list[subprocess.Popen[bytes]] = [spin() for _ in range(args.busy)]

@@ -16,6 +16,7 @@ import argparse
 import asyncio
 
 from aiobt.msgs import Empty, NavigateToPose
+from aiobt.testing.bus import exit_on_sigterm
 from aiobt.testing.navwatch import RobotTrack
 from aiobt.testing.stack import NavStack, StackConfig, running_stack
 from aiobt.transport import open_bus
@@ -101,6 +102,7 @@ def main() -> None:
         help="the robot, localization, controller, planner and navigator under SCHED_FIFO "
         "(--realtime-priority; root or CAP_SYS_NICE)",
     )  # fmt: skip
+    exit_on_sigterm()
     args = parser.parse_args()
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     print(f"load average at start: {loadavg()}")

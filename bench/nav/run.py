@@ -21,6 +21,7 @@ import time
 from dataclasses import dataclass
 
 from aiobt.msgs import NavigateToPose, PoseStamped
+from aiobt.testing.bus import exit_on_sigterm
 from aiobt.testing.navwatch import NavClient, RobotTrack, navigate
 from aiobt.testing.stack import NavStack, StackConfig, running_stack
 from aiobt.transport import ActionError, Bus, ServiceError, open_bus
@@ -150,6 +151,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--speed", type=float, default=4.0, help="sim speed-up (robot --speed)")
     parser.add_argument("--timeout", type=float, default=240.0, help="wall s per goal")
+    exit_on_sigterm()
     args = parser.parse_args()
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     at_start = loadavg()

@@ -32,7 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from aiobt.msgs import Clock, LaserScan, Odometry, PoseStamped, Twist
-from aiobt.testing.bus import ServiceProcess, spawn_service, start_router
+from aiobt.testing.bus import ServiceProcess, exit_on_sigterm, spawn_service, start_router
 from aiobt.transport import Bus, BusSettings, open_bus
 
 from ..nav.run import loadavg
@@ -163,6 +163,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seconds", type=float, default=15.0, help="wall s measured per run")
     parser.add_argument("--warmup", type=float, default=3.0, help="wall s before measuring")
     parser.add_argument("--rounds", type=int, default=3)
+    exit_on_sigterm()
     args = parser.parse_args(argv)
     base = args.base.resolve()
     services = next(

@@ -32,7 +32,7 @@ import numpy as np
 from aiobt.msgs import Twist
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.realtime import raise_priority
-from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
+from aiobt.testing.bus import ServiceProcess, exit_on_sigterm, running_router, spawn_service
 from aiobt.transport import Bus, BusSettings, SimClockFollower, open_bus
 
 PERIOD = 0.05  # s of sim time between commands: a 20 Hz controller
@@ -155,6 +155,7 @@ def main() -> None:
         "--layouts", nargs="+", choices=sorted(LAYOUTS), default=["separate"],
         help="the chain's processes, each run in this order (default: separate)",
     )  # fmt: skip
+    exit_on_sigterm()
     args = parser.parse_args()
     if args.realtime:  # this process plays the controller; before its bus: its threads too
         raise_priority(realtime_priority("controller"))

@@ -28,7 +28,7 @@ import numpy as np
 from aiobt.msgs import PoseStamped, Twist
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.realtime import raise_priority
-from aiobt.testing.bus import start_router
+from aiobt.testing.bus import exit_on_sigterm, start_router
 from aiobt.testing.navwatch import navigate
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import Bus, open_bus
@@ -112,6 +112,7 @@ def main() -> None:
     parser.add_argument(
         "--composed", action="store_true", help="the chain in one process (aiobt safety_chain)"
     )
+    exit_on_sigterm()
     args = parser.parse_args()
     extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
     config = StackConfig(

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from aiobt.msgs import Clock, ComputePathToPose, FollowPath, PoseStamped
-from aiobt.testing.bus import running_router, spawn_service
+from aiobt.testing.bus import exit_on_sigterm, running_router, spawn_service
 from aiobt.transport import ActionError, Bus, BusSettings, open_bus
 from aiobt_services.robot.mapfile import MapInfo, load_map
 from aiobt_services.robot.worlds import OFFICE
@@ -232,6 +232,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--baseline", default=None, help="run the goals at this speed first")
     parser.add_argument("--spacing", type=float, default=3.0)
     parser.add_argument("--timeout", type=float, default=120.0, help="wall s per action")
+    exit_on_sigterm()
     args = parser.parse_args(argv)
     goals = seeded_goals(load_map(OFFICE), args.goals, args.seed, args.spacing)
     print(f"{len(goals)} goals, seed {args.seed}, office world; load average before: "

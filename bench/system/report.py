@@ -54,8 +54,9 @@ from pathlib import Path
 from aiobt.msgs import FollowPath, NavigateToPose, PoseStamped
 from aiobt.system.catalog import realtime_priority
 from aiobt.system.heap import settle
+from aiobt.system.lifeline import popen_bound
 from aiobt.system.realtime import raise_priority
-from aiobt.testing.bus import start_router
+from aiobt.testing.bus import exit_on_sigterm, start_router
 from aiobt.testing.navwatch import NavClient, start_navigation
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import ActionError, Bus, ServiceError, open_bus
@@ -357,6 +358,7 @@ def main(argv: list[str] | None = None) -> int:
         metavar="NAME=N",
         help=f"with --realtime: service NAME ({', '.join(REALTIME)}) at level N, not its default",
     )
+    exit_on_sigterm()
     args = parser.parse_args(argv)
     if args.busy < 0:
         parser.error(f"--busy must be 0 or more processes, got {args.busy}")
@@ -411,7 +413,7 @@ def priorities(given: list[str]) -> dict[str, int]:
 
 def spin() -> subprocess.Popen[bytes]:
     """A process that spins on a core at ordinary priority until killed (``--busy``)."""
-    return subprocess.Popen([sys.executable, "-c", "while True: pass"])
+    return popen_bound([sys.executable, "-c", "while True: pass"])
 
 
 if __name__ == "__main__":

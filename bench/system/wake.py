@@ -21,7 +21,7 @@ import time
 from collections.abc import Awaitable, Callable
 
 from aiobt.msgs import ComputePathToPose, PoseStamped, Wait
-from aiobt.testing.bus import start_router
+from aiobt.testing.bus import exit_on_sigterm, start_router
 from aiobt.testing.stack import NavStack, StackConfig
 from aiobt.transport import Bus, open_bus
 
@@ -75,6 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--speed", type=float, default=10.0, help="sim speed-up (robot --speed)")
     parser.add_argument("--rounds", type=int, default=5)
     parser.add_argument("--gap", type=float, default=2.5, help="idle wall s before each cold one")
+    exit_on_sigterm()
     args = parser.parse_args(argv)
     before = loadavg()
     config = StackConfig(world="office", speed=args.speed)

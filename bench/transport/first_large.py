@@ -34,7 +34,7 @@ from pathlib import Path
 
 import zenoh
 
-from aiobt.testing.bus import running_router
+from aiobt.testing.bus import exit_on_sigterm, running_router
 from aiobt.transport import BusSettings
 
 KEY = "bench/first_large"
@@ -121,6 +121,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--queries", type=int, default=6, help="queries per sender")
     parser.add_argument("--size", type=int, default=57_000, help="bytes per query")
     parser.add_argument("--gap", type=float, default=0.1, help="wall s between queries")
+    exit_on_sigterm()
     args = parser.parse_args(argv)
     results: dict[str, list[list[tuple[float, float]]]] = {"zenoh": [], "aiobt": []}
     with tempfile.TemporaryDirectory() as tmp:

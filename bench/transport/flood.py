@@ -36,7 +36,7 @@ from collections.abc import Iterator, Sequence
 
 from aiobt.msgs import Clock, Empty, Header, IsPathValid, Path, PoseStamped
 from aiobt.msgs.sim import ObstacleList
-from aiobt.testing.bus import ServiceProcess, running_router, spawn_service
+from aiobt.testing.bus import ServiceProcess, exit_on_sigterm, running_router, spawn_service
 from aiobt.testing.flood import MIB, Call, Figures, Flood, flood_and_measure
 from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt.transport.keys import sim_namespace
@@ -135,6 +135,7 @@ def main() -> None:
     parser.add_argument("--seconds", type=float, default=5.0, help="length of each phase")
     parser.add_argument("--speed", type=float, default=4.0, help="the robot's sim speed-up")
     parser.add_argument("--repeat", type=int, default=1, help="rounds of the three floods")
+    exit_on_sigterm()
     args = parser.parse_args()
     before = os.getloadavg()
     print(

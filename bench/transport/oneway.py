@@ -25,7 +25,7 @@ import time
 import zenoh
 
 from aiobt.msgs import PoseStamped
-from aiobt.testing.bus import running_router, spawn_service
+from aiobt.testing.bus import exit_on_sigterm, running_router, spawn_service
 from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt.transport.bridge import callback
 from bench.transport.summary import load, summarize
@@ -137,6 +137,7 @@ def main() -> None:
     parser.add_argument(
         "--repeat", type=int, default=1, help="measure this many times (a new peer each run)"
     )
+    exit_on_sigterm()
     args = parser.parse_args()
     with running_router() as (_, endpoint):
         first = asyncio.run(run(endpoint, args.count, args.rotate))

@@ -29,7 +29,7 @@ from collections.abc import Awaitable, Callable
 import zenoh
 
 from aiobt.msgs import ClearCostmapResponse, ClearEntireCostmap, PoseStamped, Wait
-from aiobt.testing.bus import running_router, spawn_service
+from aiobt.testing.bus import exit_on_sigterm, running_router, spawn_service
 from aiobt.transport import Bus, BusSettings, open_bus
 from aiobt.transport.bridge import callback
 from bench.transport.summary import load, summarize
@@ -241,6 +241,7 @@ def main() -> None:
     parser.add_argument(
         "--repeat", type=int, default=1, help="measure this many times (same processes)"
     )
+    exit_on_sigterm()
     args = parser.parse_args()
     with running_router() as (_, endpoint):
         print(asyncio.run(run(args.n, endpoint, args.repeat)))

@@ -23,6 +23,7 @@ from typing import Any
 
 from aiobt.msgs import PoseStamped
 from aiobt.testing.browser import headless_chromium, measured_rate, missing_browser, page_value
+from aiobt.testing.bus import exit_on_sigterm
 from aiobt.testing.stack import StackConfig, running_stack
 from aiobt.transport import open_bus
 from aiobt.web import WebOptions, serve_web
@@ -72,6 +73,7 @@ async def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--speeds", type=float, nargs="+", default=[1.0, 10.0])
     parser.add_argument("--seconds", type=float, default=10.0)
     parser.add_argument("--rate", type=float, default=20.0, help="the view's cap, updates/s")
+    exit_on_sigterm()
     args = parser.parse_args(argv)
     reason = missing_browser()
     if reason is not None:

@@ -31,6 +31,7 @@ from types import TracebackType
 
 import pytest
 
+from aiobt.system.lifeline import popen_bound
 from aiobt.testing.bus import ServiceProcess
 
 TEST_NET = ipaddress.ip_network("198.18.0.0/15")
@@ -64,7 +65,7 @@ class HostProcess(ServiceProcess):
         os.close(handle)
         self.log_path = Path(name)
         with self.log_path.open("wb") as log_file:
-            self.popen = subprocess.Popen(
+            self.popen = popen_bound(
                 [*host.exec_prefix(), *_program(args)],
                 stdout=log_file,
                 stderr=subprocess.STDOUT,

@@ -13,6 +13,8 @@ import time
 from pathlib import Path
 from typing import IO
 
+from aiobt.system.lifeline import popen_bound
+
 WAIT = 90.0  # s for the whole system to come up on a loaded 2-core machine
 
 
@@ -63,7 +65,7 @@ class SystemProcess:
     """``python -m aiobt.cli.main ARGS`` with stdout read line by line on a thread."""
 
     def __init__(self, args: list[str], cwd: Path | None = None) -> None:
-        self.proc = subprocess.Popen(
+        self.proc: subprocess.Popen[str] = popen_bound(
             [sys.executable, "-m", "aiobt.cli.main", *args],
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,

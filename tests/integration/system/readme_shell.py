@@ -20,6 +20,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
+from aiobt.system.lifeline import popen_bound
 from tests.integration.system.helpers import OutputLines
 from tests.unit.cli.test_readme import _blocks
 
@@ -86,7 +87,7 @@ class Terminal:
 
     def __init__(self, command: str, cwd: Path, env: dict[str, str]) -> None:
         self.command = command
-        self.proc = subprocess.Popen(
+        self.proc: subprocess.Popen[str] = popen_bound(
             ["bash", "-c", command], cwd=cwd, env=env, text=True, start_new_session=True,
             stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
         )  # fmt: skip
