@@ -14,6 +14,7 @@ import subprocess
 import sys
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -25,19 +26,22 @@ ROOT = Path(__file__).resolve().parents[3]
 
 
 @contextlib.contextmanager
-def parent(*flags: str) -> Iterator[tuple[subprocess.Popen[str], list[int]]]:
-    """The parent started, with the pids of its router and service once they serve;
-    after: the parent and any child left killed by PID."""
-    command = [sys.executable, "-m", PARENT, *flags]
+def started(
+    command: list[str], **options: Any
+) -> Iterator[tuple[subprocess.Popen[str], list[int]]]:
+    """``command`` started, with the pids its output names on a line ``pids ...``
+    (once its children serve); after: it and any of them left killed by PID."""
     pids: list[int] = []
-    with subprocess.Popen(
-        command, stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
-    ) as proc:  # its pipes closed on the way out
-        try:
+    with subprocess.Popen(command, stdout=subprocess.PIPE, text=True, **options) as proc:
+        try:  # its pipes closed on the way out
             assert proc.stdout is not None
-            line = proc.stdout.readline()  # the parent's own waits are bounded (60 s)
-            assert line.startswith("pids "), line + proc.stdout.read()
-            pids = [int(word) for word in line.split()[1:]]
+            lines = [""]
+            for line in proc.stdout:  # bounded by its own waits (and the test's timeout)
+                lines.append(line)
+                if line.startswith("pids "):
+                    break
+            assert lines[-1].startswith("pids "), "".join(lines)
+            pids = [int(word) for word in lines[-1].split()[1:]]
             yield proc, pids
         finally:
             if proc.poll() is None:
@@ -45,6 +49,12 @@ def parent(*flags: str) -> Iterator[tuple[subprocess.Popen[str], list[int]]]:
             proc.wait(10)
             for pid in wait_gone(pids, 0.0):
                 os.kill(pid, signal.SIGKILL)
+
+
+def parent(
+    *flags: str,
+) -> contextlib.AbstractContextManager[tuple[subprocess.Popen[str], list[int]]]:
+    return started([sys.executable, "-m", PARENT, *flags], stdin=subprocess.PIPE)
 
 
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
@@ -93,7 +103,7 @@ def router():
     print("stopped", proc.stop(), flush=True)
 
 def test_serves(router):
-    print("pid", router.pid, flush=True)
+    print("pids", router.pid, flush=True)
     time.sleep(100)  # what the SIGTERM interrupts
 """
 
@@ -104,22 +114,11 @@ def test_a_sigterm_to_pytest_tears_its_fixtures_down(tmp_path: Path) -> None:
     (tmp_path / "pytest.ini").write_text("[pytest]\n")
     conftest = ["-p", "tests.conftest", "-p", "no:cacheprovider", "-p", "no:randomly"]
     command = [sys.executable, "-m", "pytest", "-s", "-q", *conftest, "-c", "pytest.ini"]
-    pids: list[int] = []
-    with subprocess.Popen(command, cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(ROOT)},
-                          stdout=subprocess.PIPE, text=True) as pytest_run:  # fmt: skip
-        try:
-            assert pytest_run.stdout is not None
-            line = next((x for x in pytest_run.stdout if x.startswith("pid ")), "")
-            assert line, "the inner test did not start its router"
-            pids = [int(line.split()[1])]
-            pytest_run.send_signal(signal.SIGTERM)
-            output = pytest_run.stdout.read()
-            assert pytest_run.wait(30) == pytest.ExitCode.INTERRUPTED, output
-            assert "stopped 0" in output
-            assert wait_gone(pids, 0.0) == []
-        finally:
-            if pytest_run.poll() is None:
-                pytest_run.kill()
-            pytest_run.wait(10)
-            for pid in wait_gone(pids, 0.0):
-                os.kill(pid, signal.SIGKILL)
+    env = {**os.environ, "PYTHONPATH": str(ROOT)}
+    with started(command, cwd=tmp_path, env=env) as (pytest_run, pids):
+        assert pytest_run.stdout is not None
+        pytest_run.send_signal(signal.SIGTERM)
+        output = pytest_run.stdout.read()
+        assert pytest_run.wait(30) == pytest.ExitCode.INTERRUPTED, output
+        assert "stopped 0" in output
+        assert wait_gone(pids, 0.0) == []
