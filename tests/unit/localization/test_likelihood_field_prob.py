@@ -190,7 +190,8 @@ def test_the_product_does_not_underflow_where_nav2s_would() -> None:
     model = LikelihoodFieldProbModel(FIELD, Z_RAND, 1440)
     factors, log_scale = model.weigh(particles, beams, converged=False)
     assert math.exp(log_scale) == 0.0  # the best particle's exp(sum log pz) itself
-    assert factors[0] == 1.0 and np.all(factors[1:] < 1.0)  # the truth weighs most
+    assert factors[0] == 1.0  # the truth weighs most
+    assert np.all(factors[1:] < 1.0)
 
 
 def test_the_prob_models_stride_is_ceil_n_over_max_beams() -> None:
@@ -200,3 +201,23 @@ def test_the_prob_models_stride_is_ceil_n_over_max_beams() -> None:
                         laser_model_type="likelihood_field_prob")  # fmt: skip
     plain = select_beams(ranges, bearings, max_beams=60, range_min=0.05, range_max=12.0)
     assert (len(prob.ranges), len(plain.ranges)) == (52, 61)  # steps 7 and 6
+
+
+def test_beams_the_scan_lacks_count_as_skipped_against_max_beams() -> None:
+    """50 of ``max_beams`` 60 beams in the scan: with 41 or 42 agreeing, 19 or 18 are
+    skipped, at or above 0.3 x 60, so all beams are used (Nav2 counts the missing
+    ones as skipped); with 43, 17 skipped: the 43 alone. A beam agreeing for exactly
+    ``beam_skip_threshold`` of the particles is skipped (``>``)."""
+    model = LikelihoodFieldProbModel(FIELD, Z_RAND, max_beams=60)
+    skip = BeamSkip(distance=0.5, threshold=0.3, error_threshold=0.3)
+
+    def used(agreeing: int) -> npt.NDArray[np.bool_]:
+        dist = np.full((10, 50), np.inf, dtype=np.float32)
+        dist[:, :agreeing] = 0.1
+        dist[:3, agreeing:] = 0.1  # 3 of 10 particles: exactly the threshold, not above
+        return model.used_beams(dist, skip)
+
+    assert used(41).all()
+    assert used(42).all()
+    assert used(43).sum() == 43
+    assert used(43)[:43].all()
