@@ -1,5 +1,5 @@
-"""The filter with ``laser_model_type: likelihood_field_prob``: it tracks the
-robot, keeps ``pf.c``'s ``converged`` flag for beam skipping, and feeds the
+"""The filter with ``laser_model_type: likelihood_field_prob`` (its tracking:
+``test_amcl``): it keeps ``pf.c``'s ``converged`` flag for beam skipping, and feeds the
 recovery averages the unscaled mean likelihood."""
 
 import math
@@ -13,7 +13,6 @@ from aiobt_services.localization.likelihood_field_prob import LikelihoodFieldPro
 from aiobt_services.localization.params import AmclParams
 
 from .maps import cast, field, room
-from .test_amcl import _drive, _error
 
 BEARINGS = -np.pi + 2 * np.pi / 360 * np.arange(360, dtype=np.float64)
 CELLS = room()
@@ -40,17 +39,6 @@ def test_the_filter_uses_the_model_laser_model_type_names() -> None:
     assert model.beam_skip.distance == 0.3
     assert isinstance(_filter(do_beamskip=False).laser, LikelihoodFieldProbModel)
     assert _filter(do_beamskip=False).laser.beam_skip is None  # type: ignore[union-attr]
-
-
-def test_tracks_the_robot_through_a_5_percent_odometry_scale_error() -> None:
-    amcl = _filter(do_beamskip=True)
-    truth = np.array([1.0, 3.0, 0.0])
-    amcl.initialize(amcl.check_pose(*truth))
-    truth, odom = _drive(amcl, truth, np.zeros(3), 60, scale=1.05)
-    error, heading = _error(amcl, truth, odom)
-    assert error < 0.1
-    assert heading < np.deg2rad(3)
-    assert amcl.converged
 
 
 def test_converged_is_every_particle_within_half_a_metre_of_the_mean_in_x_and_y() -> None:

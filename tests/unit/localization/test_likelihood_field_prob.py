@@ -140,40 +140,41 @@ def test_without_beam_skipping_it_is_nav2s_log_sum_on_random_cases() -> None:
             np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-4)
 
 
+def _agrees(
+    particles: npt.NDArray[np.float64],
+    ranges: npt.NDArray[np.float64],
+    skip: BeamSkip,
+    *,
+    converged: bool,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Ours against Nav2's transcription (asserted), and ours with every beam."""
+    got = ours(particles, ranges, max_beams=60, skip=skip, converged=converged)
+    expected = nav2_log_weights(particles, ranges, max_beams=60, skip=skip, converged=converged)
+    np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-4)
+    return got, ours(particles, ranges, max_beams=60, skip=None, converged=True)
+
+
 def test_beam_skipping_leaves_out_the_beams_most_particles_disagree_with() -> None:
     rng = np.random.default_rng(11)
     truth = (2.5, 1.5, 0.4)
-    particles = _cloud(rng, truth, 40, 0.05)
-    ranges = _scan(rng, truth, blocked=0.3)
-    expected = nav2_log_weights(particles, ranges, max_beams=60, skip=SKIP, converged=True)
-    got = ours(particles, ranges, max_beams=60, skip=SKIP, converged=True)
-    np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-4)
-    all_beams = ours(particles, ranges, max_beams=60, skip=None, converged=True)
+    particles, ranges = _cloud(rng, truth, 40, 0.05), _scan(rng, truth, blocked=0.3)
+    got, all_beams = _agrees(particles, ranges, SKIP, converged=True)
     assert np.all(got > all_beams + 5.0)  # the blocked beams' low pz left out
 
 
 def test_beam_skipping_waits_for_the_filter_to_converge() -> None:
     rng = np.random.default_rng(12)
     truth = (2.5, 1.5, 0.4)
-    particles = _cloud(rng, truth, 30, 0.05)
-    ranges = _scan(rng, truth, blocked=0.3)
-    got = ours(particles, ranges, max_beams=60, skip=SKIP, converged=False)
-    expected = nav2_log_weights(particles, ranges, max_beams=60, skip=SKIP, converged=False)
-    np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-4)
-    all_beams = ours(particles, ranges, max_beams=60, skip=None, converged=True)
+    particles, ranges = _cloud(rng, truth, 30, 0.05), _scan(rng, truth, blocked=0.3)
+    got, all_beams = _agrees(particles, ranges, SKIP, converged=False)
     np.testing.assert_allclose(got, all_beams)
 
 
 def test_too_many_skipped_beams_fall_back_to_all_of_them() -> None:
     rng = np.random.default_rng(13)
-    truth = (2.5, 1.5, 0.4)
     particles = _cloud(rng, (4.5, 2.8, -2.0), 30, 0.05)  # converged, on a wrong pose
-    ranges = _scan(rng, truth)
     strict = BeamSkip(distance=0.1, threshold=0.9, error_threshold=0.5)
-    expected = nav2_log_weights(particles, ranges, max_beams=60, skip=strict, converged=True)
-    got = ours(particles, ranges, max_beams=60, skip=strict, converged=True)
-    np.testing.assert_allclose(got, expected, rtol=1e-5, atol=1e-4)
-    all_beams = ours(particles, ranges, max_beams=60, skip=None, converged=True)
+    got, all_beams = _agrees(particles, _scan(rng, (2.5, 1.5, 0.4)), strict, converged=True)
     np.testing.assert_allclose(got, all_beams)  # the fallback: every beam
 
 
