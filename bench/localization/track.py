@@ -9,8 +9,10 @@ Run: ``.venv/bin/python -m bench.localization.track [--trials 10] [--seconds 120
 
 Per seed and over all: position error RMS, p99 and max, heading RMS (the first 5
 sim s left out: the initial pose's spread), updates, particles (mean), CPU per
-update p50 / p99. ``--set min_particles=2000 --set max_particles=2000`` holds the
-filter at 2,000 particles (the issue's cost case: 2,000 x 60 beams).
+update p50 / p99 / mean, and the updates' CPU per sim second (the share of a core
+the filter's own work takes at 1x, without the service's messaging). ``--set
+min_particles=2000 --set max_particles=2000`` holds the filter at 2,000 particles
+(the issue's cost case: 2,000 x 60 beams).
 """
 
 from __future__ import annotations
@@ -75,7 +77,9 @@ def trial(seed: int, params: str, seconds: float) -> tuple[np.ndarray, list[floa
         return np.array(errors), amcl.cpu, counts
 
 
-def _line(name: str, errors: np.ndarray, cpu: list[float], counts: list[int]) -> str:
+def _line(
+    name: str, errors: np.ndarray, cpu: list[float], counts: list[int], seconds: float
+) -> str:
     dist, heading = errors[:, 0], errors[:, 1]
     ms = np.array(cpu) * 1e3
     return (
@@ -83,7 +87,7 @@ def _line(name: str, errors: np.ndarray, cpu: list[float], counts: list[int]) ->
         f"{100 * float(np.percentile(dist, 99)):.1f} | {100 * float(dist.max()):.1f} | "
         f"{math.degrees(math.sqrt(float(np.mean(heading**2)))):.2f} | {len(cpu)} | "
         f"{statistics.fmean(counts):.0f} | {np.percentile(ms, 50):.2f} / "
-        f"{np.percentile(ms, 99):.2f} |"
+        f"{np.percentile(ms, 99):.2f} / {np.mean(ms):.2f} | {100 * sum(cpu) / seconds:.1f} |"
     )
 
 
@@ -95,16 +99,16 @@ def main() -> None:
     apply_sets(args.set)
     began = time.monotonic()
     print("| seed | position RMS cm | p99 cm | max cm | heading RMS deg | updates | "
-          "particles | CPU per update p50 / p99 ms |")  # fmt: skip
-    print("|---|---|---|---|---|---|---|---|")
+          "particles | CPU per update p50 / p99 / mean ms | % of a core at 1x |")  # fmt: skip
+    print("|---|---|---|---|---|---|---|---|---|")
     errors, cpu, counts = [], [], []
     for seed in range(args.seed, args.seed + args.trials):
         e, c, n = trial(seed, args.params, args.seconds)
-        print(_line(str(seed), e, c, n))
+        print(_line(str(seed), e, c, n, args.seconds))
         errors.append(e)
         cpu += c
         counts += n
-    print(_line("all", np.vstack(errors), cpu, counts))
+    print(_line("all", np.vstack(errors), cpu, counts, args.seconds * args.trials))
     print(f"\n({time.monotonic() - began:.0f} s wall, params {args.params}, set {args.set})")
 
 
