@@ -22,12 +22,13 @@ converged on a wrong pose, and all beams are used.
 
 The range: ``pz`` lies between ``z_rand / range_max`` and ``z_hit + z_rand /
 range_max``, so 60 beams give ``exp`` of -190 to -37 with Nav2's defaults and a
-12 m lidar, in range for doubles but not far from its end (a few hundred beams,
-or a longer ``range_max``, underflow to 0 for every particle; AMCL then falls
-back to uniform weights). Here the log sums are shifted by their maximum before
-``exp`` (the best particle's factor is 1) and the shift is returned as
-:class:`.Likelihood`'s ``log_scale``: the normalised weights are the same, and
-the mean likelihood the recovery averages need is ``sum * exp(log_scale)``.
+12 m lidar, in range for doubles (down to ``exp(-745)``) but not far from its end:
+past about 230 beams the worst-fitting particles underflow to 0, past about 1,200
+every particle does (AMCL then falls back to uniform weights). Here the log sums
+are shifted by their maximum before ``exp`` (the best particle's factor is 1) and
+the shift is returned as :class:`.Likelihood`'s ``log_scale``: the normalised
+weights are the same, and the mean likelihood the recovery averages need is
+``sum * exp(log_scale)``.
 
 Two differences from the C++: the end points fall in the cell they are in (as in
 ``likelihood_field`` here; AMCL's ``MAP_GXWX`` rounds, half a cell off); in the
