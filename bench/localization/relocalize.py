@@ -105,8 +105,10 @@ class Driver:
         self.driven += before.distance_to(sim.true_pose)
         if sim.steps % STEPS_PER_SCAN == 0:
             scan, o = sim.scan(), sim.odometry.pose
-            beams = select_beams(scan.ranges, self.angles, max_beams=self.amcl.params.max_beams,
-                                 range_min=0.05, range_max=scan.config.range_max)  # fmt: skip
+            p = self.amcl.params
+            beams = select_beams(scan.ranges, self.angles, max_beams=p.max_beams, range_min=0.05,
+                                 range_max=scan.config.range_max,
+                                 laser_model_type=p.laser_model_type)  # fmt: skip
             self.updates += self.amcl.on_scan(np.array([o.x, o.y, o.yaw]), beams).updated
 
     def _wander(self) -> tuple[float, float]:

@@ -6,9 +6,11 @@ Flow per scan (``laserReceived``): the first scan after an initialisation only
 records the odometry; later ones move the particles by the odometry since the
 last update (:mod:`.motion_model`) once it exceeds ``update_min_d`` (in x or y)
 or ``update_min_a``, or when a no-motion update was requested; then weigh them
-(:mod:`.laser_model`), update the recovery averages, and every
-``resample_interval`` updates resample (:mod:`.resample`). The estimate and the
-``map`` -> ``odom`` correction are recomputed after each resample.
+(``laser_model_type``: :mod:`.laser_model` or :mod:`.likelihood_field_prob`),
+update the recovery averages, and every ``resample_interval`` updates resample
+(:mod:`.resample`). The estimate, the ``map`` -> ``odom`` correction and
+``pf.c``'s ``converged`` flag (beam skipping waits for it) are recomputed after
+each resample.
 """
 
 from __future__ import annotations
@@ -22,8 +24,9 @@ import numpy as np
 from . import se2
 from .estimate import Estimate, estimate
 from .initial_pose import DEFAULT_COVARIANCE, InitialPose, checked, sample
-from .laser_model import Beams, LikelihoodFieldModel
+from .laser_model import Beams, LaserModel, LikelihoodFieldModel
 from .likelihood_field import LikelihoodField
+from .likelihood_field_prob import BeamSkip, LikelihoodFieldProbModel
 from .long_beams import MARGIN_SIGMAS, long_beam_share
 from .motion_model import DifferentialMotionModel
 from .params import AmclParams
@@ -32,6 +35,32 @@ from .resample import resample
 from .se2 import FloatArray
 
 log = logging.getLogger("aiobt_services.localization.amcl")
+
+LOG_DOUBLE_MAX = 709.0  # math.exp raises above ~709.78
+CONVERGED_DIST = 0.5  # pf.c's dist_threshold: converged when every particle is this near
+
+
+def laser_model(params: AmclParams, field: LikelihoodField) -> LaserModel:
+    """The model ``laser_model_type`` names (``amcl_node``'s ``createLaserObject``)."""
+    if params.laser_model_type == "likelihood_field_prob":
+        skip = BeamSkip(
+            params.beam_skip_distance,
+            params.beam_skip_threshold,
+            params.beam_skip_error_threshold,
+        )
+        return LikelihoodFieldProbModel(
+            field, params.z_rand, params.max_beams, skip if params.do_beamskip else None
+        )
+    return LikelihoodFieldModel(field, params.z_rand)
+
+
+def converged(particles: FloatArray) -> bool:
+    """``pf_update_converged``: every particle within ``CONVERGED_DIST`` of the
+    mean position in x and in y."""
+    if len(particles) == 0:
+        return False
+    spread = np.abs(particles[:, :2] - particles[:, :2].mean(axis=0))
+    return bool(np.all(spread <= CONVERGED_DIST))
 
 
 @dataclass(slots=True, frozen=True)
@@ -57,7 +86,8 @@ class Amcl:
         )
         self.recovery = RecoveryAverages(params.recovery_alpha_slow, params.recovery_alpha_fast)
         self.field: LikelihoodField | None = None
-        self.laser: LikelihoodFieldModel | None = None
+        self.laser: LaserModel | None = None
+        self.converged = False  # pf.c's flag: set at each resample, cleared at each reset
         self.particles = np.zeros((0, 3))
         self.weights = np.zeros(0)
         self.last_estimate: Estimate | None = None
@@ -72,7 +102,7 @@ class Amcl:
         """Use ``field`` from now on (a new map keeps the particles, as AMCL does
         unless ``always_reset_initial_pose``)."""
         self.field = field
-        self.laser = LikelihoodFieldModel(field, self.params.z_rand)
+        self.laser = laser_model(self.params, field)
 
     @property
     def initialized(self) -> bool:
@@ -111,6 +141,7 @@ class Amcl:
         self.particles = particles
         self.weights = np.full(len(particles), 1.0 / len(particles))
         self._odom_ref = None
+        self.converged = False
         self.recovery.reset()
 
     # -- scans -----------------------------------------------------------
@@ -145,12 +176,16 @@ class Amcl:
 
     def _weigh(self, beams: Beams) -> None:
         assert self.laser is not None
-        weights = self.weights * self.laser.likelihood(self.particles, beams)
+        factors, log_scale = self.laser.weigh(self.particles, beams, converged=self.converged)
+        weights = self.weights * factors
         total = float(weights.sum())
         if total > 0.0 and np.isfinite(total):
-            # the prior weights sum to 1, so ``total`` is the measurement's mean likelihood
-            # (see :mod:`.recovery` for why not AMCL's ``total / N``)
-            self.recovery.update(total)
+            # the prior weights sum to 1, so ``total`` times the model's scale is the
+            # measurement's mean likelihood (see :mod:`.recovery` for why not AMCL's
+            # ``total / N``); out of doubles' range, the averages are left as they were
+            mean_likelihood = total * math.exp(min(log_scale, LOG_DOUBLE_MAX))
+            if 0.0 < mean_likelihood < math.inf:
+                self.recovery.update(mean_likelihood)
             self.weights = weights / total
         else:
             self.weights = np.full(len(weights), 1.0 / len(weights))
@@ -172,6 +207,7 @@ class Amcl:
             rng=self.rng,
         )
         self.weights = np.full(len(self.particles), 1.0 / len(self.particles))
+        self.converged = converged(self.particles)
         if w_diff > 0.0 and self.params.recovery_reset_after_injection:
             self.recovery.reset()
         return True

@@ -27,7 +27,8 @@ class MapError(ValueError):
 
 @dataclass(slots=True, frozen=True)
 class LikelihoodField:
-    """Per-cell ``z_hit * exp(-d^2 / (2 sigma_hit^2))`` and the free cells' centres."""
+    """Per-cell ``z_hit * exp(-d^2 / (2 sigma_hit^2))``, the distance ``d`` itself (for
+    beam skipping) and the free cells' centres."""
 
     resolution: float
     origin_x: float
@@ -37,6 +38,7 @@ class LikelihoodField:
     cells: npt.NDArray[np.int8]
     free_xy: FloatArray  # (M, 2) centres of free cells
     padded: npt.NDArray[np.float32]  # hit_term framed by one cell of off_map_term, flat
+    padded_dist: npt.NDArray[np.float32]  # the capped distance framed by +inf (off map), flat
 
     @classmethod
     def build(
@@ -75,6 +77,7 @@ class LikelihoodField:
         hit_term = z_hit * np.exp(-(dist * dist) / denom)
         off_map = float(z_hit * np.exp(-(max_dist * max_dist) / denom))
         padded = np.pad(hit_term, 1, constant_values=off_map).astype(np.float32)
+        padded_dist = np.pad(dist, 1, constant_values=np.inf).astype(np.float32)
         return cls(
             resolution=float(resolution),
             origin_x=float(origin[0]),
@@ -84,6 +87,7 @@ class LikelihoodField:
             cells=cells,
             free_xy=free_xy.astype(np.float64),
             padded=padded.ravel(),
+            padded_dist=padded_dist.ravel(),
         )
 
     @property
@@ -101,16 +105,23 @@ class LikelihoodField:
         inside = (row >= 0) & (row < rows) & (col >= 0) & (col < cols)
         return row, col, inside
 
-    def hit_terms(
+    def flat_index(
         self, x: npt.NDArray[np.floating[Any]], y: npt.NDArray[np.floating[Any]]
-    ) -> npt.NDArray[np.float32]:
-        """The ``z_hit`` term at beam end points (any shape); off the map the capped one:
-        indices clipped into the frame of off-map cells, one flat lookup."""
+    ) -> npt.NDArray[np.intp]:
+        """Indices of points (any shape) into the framed grids (``padded``,
+        ``padded_dist``): off the map, clipped into the frame of off-map cells."""
         rows, cols = self.shape
         inv = 1.0 / self.resolution
         col = np.clip(np.floor((x - self.origin_x) * inv), -1, cols).astype(np.intp) + 1
         row = np.clip(np.floor((y - self.origin_y) * inv), -1, rows).astype(np.intp) + 1
-        terms: npt.NDArray[np.float32] = self.padded[row * (cols + 2) + col]
+        index: npt.NDArray[np.intp] = row * (cols + 2) + col
+        return index
+
+    def hit_terms(
+        self, x: npt.NDArray[np.floating[Any]], y: npt.NDArray[np.floating[Any]]
+    ) -> npt.NDArray[np.float32]:
+        """The ``z_hit`` term at beam end points (any shape); off the map the capped one."""
+        terms: npt.NDArray[np.float32] = self.padded[self.flat_index(x, y)]
         return terms
 
     def where(self, x: float, y: float) -> str:

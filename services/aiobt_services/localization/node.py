@@ -160,6 +160,7 @@ class LocalizationNode:
         beams = select_beams(
             scan.ranges_array(), scan.angles_array(),
             max_beams=self.params.max_beams, range_min=low, range_max=high,
+            laser_model_type=self.params.laser_model_type,
         )  # fmt: skip
         return ScanJob(scan.header.stamp, odom_pose, beams)
 

@@ -1,9 +1,11 @@
 """AMCL's parameters: Nav2's names and defaults (``nav2_amcl/src/amcl_node.cpp``).
 
-Only the likelihood-field laser model and the differential motion model exist
-here; the parameters of the others (``z_short``, ``z_max``, ``lambda_short``,
-beam skipping) are accepted with Nav2's defaults so a Nav2 params file loads,
-and ``do_beamskip: true`` or another model type is refused.
+The laser models ``likelihood_field`` (Nav2's default) and
+``likelihood_field_prob`` (with beam skipping) and the differential motion model
+exist here; the beam model's parameters (``z_short``, ``z_max``,
+``lambda_short``) are accepted with Nav2's defaults so a Nav2 params file loads,
+and the beam model, ``do_beamskip: true`` with ``likelihood_field`` (which never
+skips beams) or another model type is refused.
 """
 
 from __future__ import annotations
@@ -15,6 +17,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .long_beams import MARGIN_SIGMAS
+
+LASER_MODEL_TYPES = ("likelihood_field", "likelihood_field_prob")  # Nav2's also: "beam"
 
 
 class ParamError(ValueError):
@@ -91,6 +95,9 @@ class AmclParams:
         _check("recovery_alpha_slow", self.recovery_alpha_slow, low=0.0, high=1.0)
         _check("recovery_alpha_fast", self.recovery_alpha_fast, low=0.0, high=1.0)
         _check("recovery_min_long_beams", self.recovery_min_long_beams, low=0.0, high=1.0)
+        _check("beam_skip_distance", self.beam_skip_distance, low=0.0)
+        _check("beam_skip_threshold", self.beam_skip_threshold, low=0.0, high=1.0)
+        _check("beam_skip_error_threshold", self.beam_skip_error_threshold, low=0.0, high=1.0)
         if self.recovery_min_long_beams > 0.0 and self.laser_likelihood_max_dist <= (
             MARGIN_SIGMAS * self.sigma_hit
         ):
@@ -112,11 +119,22 @@ class AmclParams:
         self._check_models()
 
     def _check_models(self) -> None:
-        if self.do_beamskip:
-            raise ParamError("do_beamskip: beam skipping is not implemented; set it false")
-        if self.laser_model_type != "likelihood_field":
+        if self.laser_model_type == "beam":
             raise ParamError(
-                f"laser_model_type {self.laser_model_type!r}: only 'likelihood_field' exists here"
+                "laser_model_type 'beam': Nav2's beam model (a ray cast per particle and "
+                "beam) is not implemented here; use 'likelihood_field' or "
+                "'likelihood_field_prob'"
+            )
+        if self.laser_model_type not in LASER_MODEL_TYPES:
+            raise ParamError(
+                f"laser_model_type {self.laser_model_type!r}: must be one of "
+                f"{', '.join(repr(t) for t in LASER_MODEL_TYPES)}"
+            )
+        if self.do_beamskip and self.laser_model_type != "likelihood_field_prob":
+            raise ParamError(
+                f"do_beamskip: true does nothing with laser_model_type "
+                f"{self.laser_model_type!r} (Nav2 skips beams only in "
+                "'likelihood_field_prob'); set it false or use that model"
             )
         model = self.robot_model_type.rsplit("::", 1)[-1]
         if model != "DifferentialMotionModel":

@@ -59,8 +59,9 @@ def test_no_update_before_update_min_d_of_motion_unless_asked() -> None:
     assert amcl.on_scan(np.array([0.26, 0.0, 0.1]), _beams(truth)).updated
 
 
-def test_tracks_the_robot_through_a_5_percent_odometry_scale_error() -> None:
-    amcl = _filter(update_min_d=0.05, update_min_a=0.05)
+@pytest.mark.parametrize("laser_model_type", ["likelihood_field", "likelihood_field_prob"])
+def test_tracks_the_robot_through_a_5_percent_odometry_scale_error(laser_model_type: str) -> None:
+    amcl = _filter(update_min_d=0.05, update_min_a=0.05, laser_model_type=laser_model_type)
     truth = np.array([1.0, 3.0, 0.0])
     amcl.initialize(amcl.check_pose(*truth))
     truth, odom = _drive(amcl, truth, np.zeros(3), 60, scale=1.05)

@@ -182,3 +182,18 @@ def test_a_scan_taken_before_an_initial_pose_is_not_weighed_against_it() -> None
     assert node.reinitialize_global_localization().ok
     assert node.on_scan(_scan(2.5, new)) == []
     assert node.stats.skipped_before_reset == 2
+
+
+@pytest.mark.parametrize(
+    ("laser_model_type", "step"), [("likelihood_field", 7), ("likelihood_field_prob", 8)]
+)
+def test_a_scans_beams_are_strided_as_the_laser_model_does(
+    laser_model_type: str, step: int
+) -> None:
+    node = _node(laser_model_type=laser_model_type, max_beams=50)
+    node.on_odom(_odom(0.0, 0.0, 0.0, 0.0))
+    assert node.on_initialpose(PoseWithCovarianceStamped.from_xy_yaw(1.0, 3.0, 0.0)).ok
+    job = node.scan_job(_scan(0.0, (1.0, 3.0, 0.0)))
+    assert job is not None
+    gaps = np.diff(job.beams.bearings) / (2 * math.pi / 360)
+    assert gaps.min() == pytest.approx(step)  # 359 // 49 and ceil(360 / 50)

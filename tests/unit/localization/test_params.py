@@ -12,6 +12,24 @@ def test_defaults_are_nav2s() -> None:
     assert (p.recovery_alpha_slow, p.recovery_alpha_fast, p.do_beamskip) == (0.0, 0.0, False)
     assert p.recovery_reset_after_injection  # not Nav2's name; pf.c's behaviour by default
     assert p.recovery_min_long_beams == 0.0  # not Nav2's name; no gate, as pf.c
+    assert p.laser_model_type == "likelihood_field"
+    assert (p.beam_skip_distance, p.beam_skip_threshold, p.beam_skip_error_threshold) == (
+        0.5,
+        0.3,
+        0.9,
+    )
+
+
+def test_the_prob_model_takes_beam_skipping() -> None:
+    p = AmclParams.from_mapping(
+        {"laser_model_type": "likelihood_field_prob", "do_beamskip": True,
+         "beam_skip_distance": 0.3, "beam_skip_threshold": 0.5, "beam_skip_error_threshold": 1.0}
+    )  # fmt: skip
+    assert (p.laser_model_type, p.do_beamskip, p.beam_skip_error_threshold) == (
+        "likelihood_field_prob",
+        True,
+        1.0,
+    )
 
 
 def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> None:
@@ -35,8 +53,22 @@ def test_a_nav2_params_mapping_loads_with_dotted_and_nested_initial_pose() -> No
         ({"min_particles": 3000}, "min_particles"),
         ({"pf_err": 0.0}, "pf_err"),
         ({"sigma_hit": -1.0}, "sigma_hit"),
-        ({"do_beamskip": True}, "do_beamskip"),
-        ({"laser_model_type": "beam"}, "laser_model_type"),
+        (
+            {"do_beamskip": True},
+            "do_beamskip: true does nothing with laser_model_type 'likelihood_field'",
+        ),
+        (
+            {"laser_model_type": "beam"},
+            "laser_model_type 'beam': Nav2's beam model .* is not implemented here",
+        ),
+        (
+            {"laser_model_type": "likelihood"},
+            "laser_model_type 'likelihood': must be one of "
+            "'likelihood_field', 'likelihood_field_prob'",
+        ),
+        ({"beam_skip_distance": -0.1}, "beam_skip_distance must be finite and >= 0"),
+        ({"beam_skip_threshold": 1.5}, "beam_skip_threshold must be finite and >= 0 and <= 1"),
+        ({"beam_skip_error_threshold": float("nan")}, "beam_skip_error_threshold"),
         ({"robot_model_type": "nav2_amcl::OmniMotionModel"}, "robot_model_type"),
         ({"max_beams": "60"}, "max_beams"),
         ({"alpha1": float("nan")}, "alpha1"),
