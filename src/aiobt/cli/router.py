@@ -133,20 +133,24 @@ def run(args: argparse.Namespace) -> int:
         return 1
     denials = access_control.enabled(config) and not args.no_denial_log
     watch_refusals(log, access_control=denials)
-    try:
-        session = zenoh.open(config)
-    except zenoh.ZError as exc:
-        log.error("cannot start the router (listen %s): %s", where, clean(str(exc)))
-        return 1
+    # the handlers before the session: it listens (and peers connect) before zenoh.open
+    # returns, and a SIGTERM then must still close it and exit 0, not kill the process
     stop = threading.Event()
     previous = {sig: signal.signal(sig, _setter(stop)) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
-        log.info("router %s listening on %s%s", session.zid(), where, realtime)
-        while not stop.wait(0.5):
-            pass
-        log.info("router stopping")
+        try:
+            session = zenoh.open(config)
+        except zenoh.ZError as exc:
+            log.error("cannot start the router (listen %s): %s", where, clean(str(exc)))
+            return 1
+        try:
+            log.info("router %s listening on %s%s", session.zid(), where, realtime)
+            while not stop.wait(0.5):
+                pass
+            log.info("router stopping")
+        finally:
+            _z.close(session)
     finally:
-        _z.close(session)
         for sig, handler in previous.items():
             signal.signal(sig, handler)
     return 0
