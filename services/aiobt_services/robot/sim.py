@@ -216,8 +216,8 @@ class Simulation:
         """The robot camera's detection of the dock's marker (in ``base_link``, noisy),
         or None when it is out of view or hidden."""
         station, pose = self.dock_station, self._true
-        if station is None:
-            return None
+        if station is None or not station.visible(pose, math.inf):
+            return None  # out of range or view, whatever stands between: no ray to cast
         hit = float(self.cast_from(pose, np.array([station.bearing_from(pose)]))[0])
         return station.detect(pose, self._camera_rng) if station.visible(pose, hit) else None
 
