@@ -70,7 +70,7 @@ def particle_cloud(
     )
 
 
-def map_pose(pose: FloatArray, stamp: float, frame: str) -> PoseStamped:
+def map_pose(pose: tuple[float, float, float], stamp: float, frame: str) -> PoseStamped:
     header = {"stamp": stamp, "frame_id": frame}
-    x, y, yaw = (float(v) for v in pose)
+    x, y, yaw = pose
     return PoseStamped.model_validate({"header": header, "pose": pose_fields(x, y, yaw)})

@@ -63,6 +63,10 @@ class Outputs:
         self._pubs = {name: bus.publisher(name, model) for name, model in PUBLISHED.items()}
         self._pubs["amcl_pose"] = bus.latched_publisher("amcl_pose", PoseWithCovarianceStamped)
 
+    def listened(self, topic: str) -> bool:
+        """Whether a subscriber matches ``topic`` now (latched ones: always)."""
+        return self._pubs[topic].matched
+
     def send(self, messages: list[tuple[str, Msg]]) -> None:
         for topic, msg in messages:
             self._pubs[topic].put(msg)
@@ -166,8 +170,9 @@ async def serve(args: argparse.Namespace, params: AmclParams) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        node = LocalizationNode(params)
-        worker = ScanWorker(node, Outputs(bus))
+        outputs = Outputs(bus)
+        node = LocalizationNode(params, wanted=outputs.listened)
+        worker = ScanWorker(node, outputs)
         maps = bus.subscribe(params.map_topic, OccupancyGrid, latched=True, queue_size=1)
         scans = _wire(bus, node, worker)
         announce(bus, "localization", sim_time=args.sim_time)

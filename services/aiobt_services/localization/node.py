@@ -9,6 +9,7 @@ import logging
 import math
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -64,6 +65,7 @@ class UpdateStats:
     updates: int = 0
     skipped_no_odom: int = 0
     skipped_before_reset: int = 0  # taken before the last initial pose or global reset
+    skipped_still: int = 0  # no motion since the last update: the filter takes no scan
     update_cpu: list[float] = field(default_factory=list)
     update_wall: list[float] = field(default_factory=list)  # scan read -> outputs sent
 
@@ -81,8 +83,16 @@ class LocalizationNode:
     """One robot's AMCL: call :meth:`on_map`, :meth:`on_odom`, :meth:`on_scan`, ...;
     each returns the messages to publish as ``(topic, message)`` pairs."""
 
-    def __init__(self, params: AmclParams, rng: np.random.Generator | None = None) -> None:
+    def __init__(
+        self,
+        params: AmclParams,
+        rng: np.random.Generator | None = None,
+        wanted: Callable[[str], bool] = lambda _topic: True,
+    ) -> None:
         self.params = params
+        # whether ``pose`` or ``particle_cloud`` has a reader now: neither is built for
+        # none (an idle stack reads no pose; only viewers read the cloud)
+        self._wanted = wanted
         self.amcl = Amcl(params, rng)
         self.odom = OdomBuffer()
         self.stats = UpdateStats()
@@ -131,9 +141,10 @@ class LocalizationNode:
         stamp = msg.header.stamp
         here = (msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
         self.odom.add(stamp, *here)
-        if self.amcl.map_to_odom is None:
+        correction = self.amcl.map_to_odom
+        if correction is None or not self._wanted("pose"):
             return []
-        pose = se2.compose(self.amcl.map_to_odom, np.array(here))
+        pose = se2.compose_one(correction, *here)
         return [("pose", convert.map_pose(pose, stamp, self._frame))]
 
     # -- scans ---------------------------------------------------------------
@@ -154,6 +165,10 @@ class LocalizationNode:
         if odom_pose is None:
             self.stats.skipped_no_odom += 1
             return None
+        with self.lock:
+            if not self.amcl.takes_scan_at(odom_pose):  # standing still: nothing to weigh
+                self.stats.skipped_still += 1
+                return None
         low, high = effective_range_limits(
             scan.range_min, scan.range_max, self.params.laser_min_range, self.params.laser_max_range
         )
@@ -184,7 +199,7 @@ class LocalizationNode:
             if self.params.tf_broadcast:
                 tf = convert.map_to_odom(amcl.map_to_odom, stamp, frame, self.params.odom_frame_id)
                 out.append(("tf", tf))
-        if updated:
+        if updated and self._wanted("particle_cloud"):
             cloud = convert.particle_cloud(amcl.particles, amcl.weights, stamp, frame)
             out.append(("particle_cloud", cloud))
         return out
