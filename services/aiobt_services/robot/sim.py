@@ -20,9 +20,9 @@ from aiobt.geometry import Pose2D, wrap_angle
 from .bumper import Bumper, ContactEvent
 from .dock import build_station
 from .drive import CommandVerdict, DriveController, DriveLimits
-from .lidar import Disc, Rectangles, cast
+from .lidar import Solid, cast_solids
 from .mapfile import MapInfo
-from .obstacles import Motion, ObstacleError, ObstacleSpec, validate
+from .obstacles import Motion, ObstacleError, ObstacleSpec, solid, validate
 from .sensors import (
     Battery,
     BatteryConfig,
@@ -60,6 +60,9 @@ class Scan:
     config: LidarConfig
 
 
+CastKey = tuple[Pose2D, tuple[Solid, ...]]
+
+
 @dataclass(slots=True)
 class _Obstacle:
     spec: ObstacleSpec
@@ -87,6 +90,8 @@ class Simulation:
         self.dock_station, self._dock_body = build_station(world, self.config.robot, self._physics)
         self._camera_rng = np.random.default_rng(self.config.noise.seed + 1)
         self._headings = self.config.lidar.angles()
+        # the last scan's rays: the robot's pose and the solids then, the distances
+        self._last_cast: tuple[CastKey, npt.NDArray[np.float64]] | None = None
         start = Pose2D(*world.start)
         self._robot = self._physics.robot(self.config.robot, start)
         self._true = start
@@ -188,28 +193,36 @@ class Simulation:
 
     def scan(self) -> Scan:
         """The lidar at the current step: walls and the obstacles taller than its plane,
-        at their poses now (:mod:`.lidar`; the robot's own body is not seen)."""
+        at their poses now (:mod:`.lidar`; the robot's own body is not seen). The rays
+        are cast again only when the robot or such an obstacle moved (a robot standing
+        still sees the same distances); the noise and dropouts are drawn for each scan."""
         cfg, pose = self.config.lidar, self._true
-        dist = self.cast_from(pose, pose.yaw + self._headings)
-        return Scan(self.time, lidar_ranges(dist, cfg, self._rng), cfg)
+        solids = self._solids()
+        if self._last_cast is None or self._last_cast[0] != (pose, solids):
+            dist = self.cast_from(pose, pose.yaw + self._headings, solids)
+            self._last_cast = ((pose, solids), dist)
+        return Scan(self.time, lidar_ranges(self._last_cast[1], cfg, self._rng), cfg)
 
-    def cast_from(self, pose: Pose2D, headings: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    def cast_from(
+        self,
+        pose: Pose2D,
+        headings: npt.NDArray[np.float64],
+        solids: tuple[Solid, ...] | None = None,
+    ) -> npt.NDArray[np.float64]:
         """Distances from ``pose`` along world ``headings`` to the walls and to the
-        obstacles taller than the lidar's plane (``inf``: nothing)."""
-        cfg = self.config.lidar
-        rects: list[Rectangles] = []
-        discs: list[Disc] = []
-        for oid, obstacle in self._obstacles.items():
-            spec = obstacle.spec
-            if spec.height <= cfg.height:
-                continue
-            here = self.obstacle_pose(oid)
-            if spec.shape == "box":
-                half_x, half_y = [0.5 * spec.size_x], [0.5 * spec.size_y]
-                rects.append(Rectangles.from_centres([here.x], [here.y], half_x, half_y, here.yaw))
-            else:
-                discs.append(Disc(here.x, here.y, spec.radius))
-        return cast(self._wall_rects, rects, discs, (pose.x, pose.y), headings)
+        obstacles taller than the lidar's plane (``solids``: those, where they stand now;
+        ``inf``: nothing)."""
+        solids = self._solids() if solids is None else solids
+        return cast_solids(self._wall_rects, solids, (pose.x, pose.y), headings)
+
+    def _solids(self) -> tuple[Solid, ...]:
+        """The obstacles taller than the lidar's plane, where they stand now."""
+        height = self.config.lidar.height
+        return tuple(
+            solid(o.spec, self.obstacle_pose(oid))
+            for oid, o in self._obstacles.items()
+            if o.spec.height > height
+        )
 
     # -- the dock ----------------------------------------------------------
     def detect_dock(self) -> Pose2D | None:
