@@ -121,10 +121,12 @@ def test_the_stack_is_summed_without_the_bench_client() -> None:
     figures = Figures(
         cpu_idle={"router": 1.0, "robot": 8.0, "planner": 0.5, "bench client": 3.0},
         cpu_driving={"router": 2.0, "robot": 9.0, "planner": 1.5, "bench client": 6.0},
+        speed_idle=0.95,
+        speed_driving=0.5,
     )
-    line = summed_row(figures, 1.0)
+    line = summed_row(figures, 1.0, 1.0)
     assert line.startswith("| CPU the stack summed % of a core: idle / driving (3 processes, ")
-    assert "a plan every 1 s) | 9.5 / 12.5 |" in line
+    assert "a plan every 1 s); the same per sim time at x1 | 9.5 / 12.5; 10.0 / 25.0 |" in line
 
 
 def test_the_probe_period_must_be_positive(capsys: pytest.CaptureFixture[str]) -> None:
