@@ -32,10 +32,9 @@ log = logging.getLogger("aiobt_services.robot.runner")
 TOPICS = ("odom", "pose", "scan", "battery", "clock", "bumper")
 JOINT_STATES = "joint_states"  # the wheels, with odometry (Nav2's stall detection reads it)
 DOCK_DETECTION = "detected_dock_pose"  # Nav2's topic: the dock's marker, as a camera sees it
-# Built and sent only while someone listens (``wanted``): the truth is for tests, benches
-# and viewers, the wheels for a docking server's stall detection; at 50 Hz each, a third
-# of the robot's messages, read by no navigation service.
-ON_DEMAND = (SIM_POSE, JOINT_STATES)
+# SIM_POSE and JOINT_STATES are built and sent only while someone listens (``wanted``):
+# the truth is for tests, benches and viewers, the wheels for a docking server's stall
+# detection; at 50 Hz each, a third of the robot's messages, read by no navigation service.
 COMMAND_POLL = 0.001  # wall s between looks for a late command
 # A command later than this (wall s) is a stalled client; one scheduler slot on a loaded
 # machine (CFS's latency on 2 cores: 12 ms) is not: the base drives on the last command.
@@ -107,7 +106,7 @@ class SimRunner:
         self._patience = 0.0 if math.isinf(speed) else min(LATE_WALL * speed, limit)
         self.wall: Clock = wall or SystemClock()
         self._outputs = outputs
-        self._wanted = wanted  # whether an ON_DEMAND topic has a reader now
+        self._wanted = wanted  # whether SIM_POSE or JOINT_STATES has a reader now
         rates = rates or Rates()
         self._periods = {t: rates.period_steps(t, sim.config.dt) for t in TOPICS[:5]}
         if not publish_clock:
