@@ -1,5 +1,6 @@
-"""Filter state -> wire messages: ``amcl_pose``, the ``map`` -> ``odom`` transform on
-``tf``, the particle cloud (thinned for viewers) and ``pose``."""
+"""Filter state -> wire messages: ``amcl_pose``, the particle cloud (thinned for viewers)
+and ``pose`` (the ``map`` -> ``odom`` transform on ``tf``: the library's
+:func:`aiobt.robot.correction.correction_message`, which its readers share)."""
 
 from __future__ import annotations
 
@@ -9,9 +10,7 @@ from aiobt.msgs import (
     ParticleCloud,
     PoseStamped,
     PoseWithCovarianceStamped,
-    TFMessage,
     pose_fields,
-    yaw_to_quaternion,
 )
 
 from .estimate import Estimate
@@ -30,24 +29,6 @@ def amcl_pose(est: Estimate, stamp: float, frame: str) -> PoseWithCovarianceStam
         {
             "header": {"stamp": stamp, "frame_id": frame},
             "pose": {"pose": pose_fields(x, y, yaw), "covariance": cov6.ravel().tolist()},
-        }
-    )
-
-
-def map_to_odom(transform: FloatArray, stamp: float, parent: str, child: str) -> TFMessage:
-    qx, qy, qz, qw = yaw_to_quaternion(float(transform[2]))
-    return TFMessage.model_validate(
-        {
-            "transforms": [
-                {
-                    "header": {"stamp": stamp, "frame_id": parent},
-                    "child_frame_id": child,
-                    "transform": {
-                        "translation": {"x": float(transform[0]), "y": float(transform[1])},
-                        "rotation": {"x": qx, "y": qy, "z": qz, "w": qw},
-                    },
-                }
-            ]
         }
     )
 

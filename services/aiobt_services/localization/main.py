@@ -3,7 +3,8 @@
 Reads the latched ``{ns}/map``, ``{ns}/odom`` and ``{ns}/scan``; takes
 ``{ns}/initialpose`` (a PoseWithCovarianceStamped, or a PoseStamped / its short
 form with Nav2's default covariance). Publishes ``{ns}/amcl_pose`` (latched),
-the ``map`` -> ``odom`` transform on ``{ns}/tf``, ``{ns}/particle_cloud``
+the ``map`` -> ``odom`` transform on ``{ns}/tf`` (with every scan taken, as AMCL),
+``{ns}/particle_cloud``
 (thinned) and ``{ns}/pose``: the estimate composed with the newest odometry, at
 odometry rate. Serves ``{ns}/srv/reinitialize_global_localization``,
 ``{ns}/srv/request_nomotion_update`` and ``{ns}/srv/localization/stats``;
@@ -117,12 +118,12 @@ class ScanWorker:
             except ScanError as exc:
                 log.warning("scan at %.3f refused: %s", scan.header.stamp, exc)
                 continue
-            if job is None:
-                continue
-            # off the event loop: odometry (and so {ns}/pose) flows on while it runs
-            self.outputs.send(await asyncio.to_thread(self.node.update, job))
-            if stats.updates > updates:
-                stats.record_latency(time.perf_counter() - began)
+            if job is not None:
+                # off the event loop: odometry (and so {ns}/pose) flows on while it runs
+                self.outputs.send(await asyncio.to_thread(self.node.update, job))
+                if stats.updates > updates:
+                    stats.record_latency(time.perf_counter() - began)
+            self.outputs.send(self.node.correction(scan.header.stamp))  # with every scan
 
     async def _odom_up_to(self, stamp: float) -> None:
         newest = self.node.odom.newest

@@ -21,8 +21,9 @@ from aiobt.msgs import (
     Odometry,
     PoseWithCovarianceStamped,
 )
+from aiobt.robot.correction import compose, correction_message
 
-from . import convert, se2
+from . import convert
 from .amcl import Amcl
 from .initial_pose import InitialPoseError, covariance_from_6x6
 from .laser_model import (
@@ -144,14 +145,27 @@ class LocalizationNode:
         correction = self.amcl.map_to_odom
         if correction is None or not self._wanted("pose"):
             return []
-        pose = se2.compose_one(correction, *here)
+        pose = compose((float(correction[0]), float(correction[1]), float(correction[2])), *here)
         return [("pose", convert.map_pose(pose, stamp, self._frame))]
 
     # -- scans ---------------------------------------------------------------
     def on_scan(self, scan: LaserScan) -> list[tuple[str, Msg]]:
-        """One scan through the filter (:class:`ScanError` for a malformed one)."""
+        """One scan through the filter (:class:`ScanError` for a malformed one), then
+        the correction as it stands (:meth:`correction`)."""
         job = self.scan_job(scan)
-        return [] if job is None else self.update(job)
+        return ([] if job is None else self.update(job)) + self.correction(scan.header.stamp)
+
+    def correction(self, stamp: float) -> list[tuple[str, Msg]]:
+        """``map`` -> ``odom`` on ``tf``, stamped ``stamp`` (the scan's), once the filter
+        has one and ``tf_broadcast``: sent with every scan taken, updated or not, as
+        AMCL republishes the last transform "to keep everybody happy", so a reader
+        composing its own pose from odometry (:mod:`aiobt.robot.correction`) has it
+        within a scan of listening, and knows localization is alive."""
+        transform = self.amcl.map_to_odom
+        if transform is None or not self.params.tf_broadcast:
+            return []
+        xyyaw = (float(transform[0]), float(transform[1]), float(transform[2]))
+        return [("tf", correction_message(xyyaw, stamp, self._frame, self.params.odom_frame_id))]
 
     def scan_job(self, scan: LaserScan) -> ScanJob | None:
         """What the filter needs of ``scan``: its beams and the odometry at its stamp
@@ -196,9 +210,6 @@ class LocalizationNode:
         amcl, frame = self.amcl, self._frame
         if estimated and amcl.last_estimate is not None and amcl.map_to_odom is not None:
             out.append(("amcl_pose", convert.amcl_pose(amcl.last_estimate, stamp, frame)))
-            if self.params.tf_broadcast:
-                tf = convert.map_to_odom(amcl.map_to_odom, stamp, frame, self.params.odom_frame_id)
-                out.append(("tf", tf))
         if updated and self._wanted("particle_cloud"):
             cloud = convert.particle_cloud(amcl.particles, amcl.weights, stamp, frame)
             out.append(("particle_cloud", cloud))

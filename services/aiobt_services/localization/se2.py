@@ -6,8 +6,6 @@ the few rigid-body operations it needs, vectorised over rows.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import numpy.typing as npt
 
@@ -36,15 +34,6 @@ def compose(a: FloatArray, b: FloatArray) -> FloatArray:
         ],
         axis=-1,
     )
-
-
-def compose_one(a: FloatArray, x: float, y: float, yaw: float) -> tuple[float, float, float]:
-    """:func:`compose` of one pose ``a`` with one ``(x, y, yaw)``, in plain floats: the
-    pose stream's per-message work, where numpy's per-call cost is most of the time."""
-    ax, ay, ayaw = float(a[0]), float(a[1]), float(a[2])
-    c, s = math.cos(ayaw), math.sin(ayaw)
-    turned = (ayaw + yaw + math.pi) % (2.0 * math.pi) - math.pi
-    return ax + c * x - s * y, ay + s * x + c * y, turned
 
 
 def inverse(a: FloatArray) -> FloatArray:

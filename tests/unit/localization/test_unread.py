@@ -6,7 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from aiobt.msgs import PoseStamped, PoseWithCovarianceStamped
+from aiobt.msgs import PoseStamped, PoseWithCovarianceStamped, TFMessage
+from aiobt.robot.correction import Correction, compose, correction_of
 from aiobt_services.localization import se2
 from aiobt_services.localization.node import LocalizationNode
 from aiobt_services.localization.params import AmclParams
@@ -71,11 +72,49 @@ def test_pose_and_cloud_are_built_only_for_a_reader() -> None:
     assert pose.header.stamp == 1.04
     node.on_odom(_odom(1.1, 0.3, 0.0, 0.0))
     outputs = [t for t, _ in node.on_scan(_scan(1.1, (1.3, 3.0, 0.0)))]
-    assert outputs == ["amcl_pose", "tf", "particle_cloud"]
+    assert outputs == ["amcl_pose", "particle_cloud", "tf"]
 
 
 def test_one_pose_composed_in_floats_is_the_arrays_composition() -> None:
     rng = np.random.default_rng(4)
     for a, b in zip(rng.uniform(-4, 4, (50, 3)), rng.uniform(-4, 4, (50, 3)), strict=True):
         a[2], b[2] = a[2] * math.pi / 4, b[2] * math.pi / 4
-        assert se2.compose_one(a, *map(float, b)) == pytest.approx(se2.compose(a, b), abs=1e-12)
+        one = compose((float(a[0]), float(a[1]), float(a[2])), *map(float, b))
+        assert one == pytest.approx(se2.compose(a, b), abs=1e-12)
+
+
+def test_a_reader_composing_odometry_with_the_sent_correction_has_localizations_pose() -> None:
+    """The correction comes with every scan (still or not, as AMCL republishes), stamped
+    as the scan; a reader composing each odometry with the newest one it read back from
+    the wire has ``pose`` exactly (to float rounding)."""
+    node = _started({"pose"})
+    held: Correction | None = None
+    track = [(1.02 + 0.02 * i, 0.012 * i, 0.004 * i, 0.01 * i) for i in range(60)]
+    for i, (stamp, x, y, yaw) in enumerate(track):
+        msg = _odom(stamp, x, y, yaw)
+        poses = [m for t, m in node.on_odom(msg) if t == "pose"]
+        assert (held is None) == (not poses)  # neither has a pose before the first update
+        if held is not None:
+            (pose,) = poses
+            assert isinstance(pose, PoseStamped)
+            mine = compose(held.transform, msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
+            assert mine == pytest.approx((pose.x, pose.y, pose.yaw), abs=1e-12)
+        if i % 5 == 4:  # a scan every 0.1 s, the robot still for the first ones
+            sent = dict(node.on_scan(_scan(stamp, (TRUTH[0] + x, TRUTH[1] + y, yaw))))
+            wire = TFMessage.model_validate_json(sent["tf"].model_dump_json())
+            held = correction_of(wire)
+            assert held is not None
+            assert held.stamp == stamp
+    assert node.stats.skipped_still >= 1
+    assert node.stats.updates >= 2
+
+
+def test_no_correction_before_a_pose_or_with_tf_broadcast_off() -> None:
+    node = LocalizationNode(AmclParams.from_mapping({"random_seed": 1}))
+    assert node.on_map(_grid()).ok
+    assert node.on_scan(_scan(1.0, TRUTH)) == []  # no pose yet: nothing to correct with
+    quiet = LocalizationNode(AmclParams.from_mapping({"random_seed": 1, "tf_broadcast": False}))
+    assert quiet.on_map(_grid()).ok
+    assert quiet.on_initialpose(PoseWithCovarianceStamped.from_xy_yaw(*TRUTH)).ok
+    quiet.on_odom(_odom(1.0, 0.0, 0.0, 0.0))
+    assert "tf" not in dict(quiet.on_scan(_scan(1.0, TRUTH)))
