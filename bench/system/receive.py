@@ -10,6 +10,7 @@ controller's control loop), with the streams the case names subscribed with a ca
 that does nothing (:class:`~aiobt.transport.topics.Subscription`, as the controller's
 tracker reads them); its CPU over ``--seconds`` wall s, in % of one core. The cases:
 
+- ``wall``: the loop on the wall clock and nothing else (the process's own cost);
 - ``clock``: the loop on ``{ns}/clock`` (100 Hz) and nothing else;
 - ``odomtime``: the loop on the odometry's stamps (50 Hz, :func:`make_clock`'s
   ``odometry``) and nothing else;
@@ -42,7 +43,7 @@ from aiobt.transport import Bus, BusSettings, open_bus
 from ..nav.run import loadavg
 from .procstat import cpu_seconds
 
-CASES = ("clock", "odomtime", "clock+odom+pose", "clock+odom+tf", "odomtime+odom+tf")
+CASES = ("wall", "clock", "odomtime", "clock+odom+pose", "clock+odom+tf", "odomtime+odom+tf")
 MODELS: dict[str, type[Any]] = {"odom": Odometry, "pose": PoseStamped, "tf": TFMessage}
 NAMESPACE = "recv"
 PERIOD = 0.05  # robot s: the controller's 20 Hz
@@ -52,7 +53,8 @@ async def child(case: str, settings: BusSettings) -> None:
     """One case's process: the loop and the subscriptions, until SIGTERM."""
     async with open_bus(settings) as bus:
         parts = case.split("+")
-        clock, _ = await make_clock(bus, True, "odom" if parts[0] == "odomtime" else None)
+        sim_time, odometry = parts[0] != "wall", "odom" if parts[0] == "odomtime" else None
+        clock, _ = await make_clock(bus, sim_time, odometry)
         for topic in parts[1:]:
             bus.subscribe(topic, MODELS[topic], lambda _msg: None)
         print("ready", flush=True)
