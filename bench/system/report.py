@@ -33,7 +33,9 @@ keeps each process's output there (``controller.log``, ``robot.log``, ...).
 run with ``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so
 root or CAP_SYS_NICE), and so does this client at the navigator's level: it asks for the
 plans and paths in the navigator's stead. ``--priority NAME=N`` (repeatable) gives
-one of the services level N instead of its default.
+one of the services level N instead of its default. ``--clock-hz HZ``: the robot's
+``{ns}/clock`` at that rate (its ``--clock-hz``): what fewer stamps give the processes
+that follow them (each sleeper then wakes on that grid).
 
 The table's "rest of the machine" row is every other process's CPU (each one's
 ``/proc/<pid>/stat``) and the CPU stolen by the hypervisor (``/proc/stat``): what the
@@ -367,6 +369,11 @@ def main(argv: list[str] | None = None) -> int:
         help="the velocity smoother and the collision monitor, as `aiobt up` runs them",
     )
     parser.add_argument("--reactions", type=int, default=3)
+    parser.add_argument(
+        "--clock-hz",
+        type=float,
+        help="the robot's {ns}/clock rate in Hz of sim time (its --clock-hz; default: its own)",
+    )
     parser.add_argument("--timeout", type=float, default=120.0, help="wall s per goal")
     parser.add_argument("--logs", type=Path, help="keep each process's output here")
     parser.add_argument(
@@ -404,6 +411,8 @@ def main(argv: list[str] | None = None) -> int:
     before = loadavg()
     extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
     extra.update({name: ["--realtime-priority", str(level)] for name, level in levels.items()})
+    if args.clock_hz is not None:
+        extra["robot"] = [*extra.get("robot", []), "--clock-hz", str(args.clock_hz)]
     config = StackConfig(
         world="office", speed=args.speed, seed=args.seed, extra=extra,
         safety_chain=args.safety_chain,

@@ -151,7 +151,9 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
             sim,
             targets.tap(outputs),
             speed=args.speed,
-            rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
+            rates=Rates(
+                scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz, clock=args.clock_hz
+            ),
             command_wait=args.command_wait,
             max_lag=args.max_lag,
             publish_pose=args.pose_source == "truth",

@@ -188,3 +188,14 @@ def test_unread_streams_leave_the_noise_alone() -> None:
             sent.append([(t, m) for t, m in out.messages if t in ("odom", "scan")])
     assert sent[0] == sent[1]
     assert len(sent[0]) == 36
+
+
+def test_the_clock_at_a_lower_rate_stamps_fewer_steps(sim: Simulation) -> None:
+    out = Recorder()
+    runner = SimRunner(sim, out, rates=Rates(clock=50.0))  # the robot's --clock-hz 50
+    for _ in range(100):
+        runner.tick()
+    stamps = [m.clock for m in out.of("clock") if isinstance(m, ClockMsg)]
+    assert len(stamps) == 50
+    assert stamps[0] == pytest.approx(0.02)
+    assert len(out.of("odom")) == 50  # the rest as before
