@@ -35,7 +35,10 @@ root or CAP_SYS_NICE), and so does this client at the navigator's level: it asks
 plans and paths in the navigator's stead. ``--priority NAME=N`` (repeatable) gives
 one of the services level N instead of its default. ``--clock-hz HZ``: the robot's
 ``{ns}/clock`` at that rate (its ``--clock-hz``): what fewer stamps give the processes
-that follow them (each sleeper then wakes on that grid).
+that follow them (each sleeper then wakes on that grid). ``--clock``: the services on
+the simulation's clock (``sim``, the default: as the end-to-end tests run them), on the
+wall clock (``wall``: as ``aiobt up`` runs them at 1x, and as on hardware, where there
+is no simulation's clock), or as ``aiobt up`` chooses at ``--speed`` (``auto``).
 
 The table's "rest of the machine" row is every other process's CPU (each one's
 ``/proc/<pid>/stat``) and the CPU stolen by the hypervisor (``/proc/stat``): what the
@@ -370,6 +373,15 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--reactions", type=int, default=3)
     parser.add_argument(
+        "--clock",
+        dest="sim_time",
+        choices=("sim", "wall", "auto"),
+        default="sim",
+        type=str,
+        help="the services' time: the simulation's clock (sim, the default), the wall "
+        "clock (wall), or as `aiobt up` chooses (auto: sim time unless --speed is 1)",
+    )
+    parser.add_argument(
         "--clock-hz",
         type=float,
         help="the robot's {ns}/clock rate in Hz of sim time (its --clock-hz; default: its own)",
@@ -398,6 +410,7 @@ def main(argv: list[str] | None = None) -> int:
         help=f"with --realtime: service NAME ({', '.join(REALTIME)}) at level N, not its default",
     )
     args = parser.parse_args(argv)
+    args.sim_time = {"sim": True, "wall": False, "auto": None}[args.sim_time]
     if not args.probe_period > 0.0:
         parser.error(f"--probe-period must be > 0 s, got {args.probe_period}")
     if args.busy < 0:
@@ -415,7 +428,7 @@ def main(argv: list[str] | None = None) -> int:
         extra["robot"] = [*extra.get("robot", []), "--clock-hz", str(args.clock_hz)]
     config = StackConfig(
         world="office", speed=args.speed, seed=args.seed, extra=extra,
-        safety_chain=args.safety_chain,
+        safety_chain=args.safety_chain, sim_time=args.sim_time,
     )  # fmt: skip
     spinners = [spin() for _ in range(args.busy)]
     try:
@@ -436,6 +449,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"real-time priority (SCHED_FIFO): {named}; this client {NAVIGATOR_PRIORITY}\n")
     if args.busy:
         print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")
+    clock = "the simulation's clock" if config.uses_sim_time else "the wall clock"
+    print(f"the services on {clock} (--clock)\n")
     print("\n".join(table(figures, args.speed, args.probe_period)))
     print(f"\nload average before: {before}; after: {loadavg()}")
     for failure in sorted(set(figures.probe_failures))[:5]:
