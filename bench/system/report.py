@@ -2,11 +2,16 @@
 
 Run: ``.venv/bin/python -m bench.system.report --speed 10``
 
-Starts a router and the stack (robot at ``--speed``, planner, controller, behaviors,
-navigator; processes as the end-to-end tests run them) and measures:
+Starts a router and the stack (robot at ``--speed``, localization, planner, controller,
+behaviors, navigator, and the safety chain (velocity smoother, collision monitor) as
+``aiobt up`` runs it unless ``--no-safety-chain``; processes as the end-to-end tests run
+them) and measures:
 
 - CPU of each process (router included) in % of one core, from ``/proc/<pid>/stat``,
-  over an idle phase (robot standing, ``--idle`` wall s) and over the driving phase;
+  over an idle phase (robot standing, ``--idle`` wall s) and over the driving phase, and
+  the stack's processes summed (the bench's own client left out; the planner serves the
+  probe below: at ``--probe-period 1`` it plans as often as a navigator replanning at
+  Nav2's 1 Hz, what a user's stack does);
 - the driving phase: ``--goals`` seeded reachable goals, each planned (ComputePathToPose)
   and followed (FollowPath), while a client sends ComputePathToPose from the robot's pose
   every ``--probe-period`` s: the planner's round trip over Zenoh (p50/p99/max, wall;
@@ -28,7 +33,12 @@ keeps each process's output there (``controller.log``, ``robot.log``, ...).
 run with ``--realtime-priority`` (Nav2's ``use_realtime_priority``; SCHED_FIFO, so
 root or CAP_SYS_NICE), and so does this client at the navigator's level: it asks for the
 plans and paths in the navigator's stead. ``--priority NAME=N`` (repeatable) gives
-one of the services level N instead of its default.
+one of the services level N instead of its default. ``--clock-hz HZ``: the robot's
+``{ns}/clock`` at that rate (its ``--clock-hz``): what fewer stamps give the processes
+that follow them (each sleeper then wakes on that grid). ``--clock``: the services on
+the simulation's clock (``sim``, the default: as the end-to-end tests run them), on the
+wall clock (``wall``: as ``aiobt up`` runs them at 1x, and as on hardware, where there
+is no simulation's clock), or as ``aiobt up`` chooses at ``--speed`` (``auto``).
 
 The table's "rest of the machine" row is every other process's CPU (each one's
 ``/proc/<pid>/stat``) and the CPU stolen by the hypervisor (``/proc/stat``): what the
@@ -77,6 +87,7 @@ Goal = tuple[float, float, float]
 REALTIME = ("robot", "localization", "controller", "planner", "navigator")  # ``--realtime`` raises
 
 NAVIGATOR_PRIORITY = realtime_priority("navigator")
+CLIENT = "bench client"  # this process: the instrument, not the stack
 
 
 @dataclass
@@ -164,7 +175,7 @@ async def measure(stack: NavStack, router_pid: int, args: argparse.Namespace) ->
     figures = Figures()
     goals = pick_goals(static_grid(), START, args.goals, args.seed)
     pids = {"router": router_pid, **{n: p.pid for n, p in stack.processes.items()}}
-    pids["bench client"] = os.getpid()  # the instrument's own cost, on the same 2 cores
+    pids[CLIENT] = os.getpid()  # the instrument's own cost, on the same 2 cores
     if args.realtime:  # before the bus: its threads too; after the stack's processes started
         raise_priority(NAVIGATOR_PRIORITY)
     async with open_bus(stack.settings()) as bus:
@@ -220,6 +231,21 @@ def row(*cells: object) -> str:
 
 def ms(seconds: float) -> str:
     return f"{seconds * 1e3:.1f}"
+
+
+def summed_row(figures: Figures, probe_period: float, speed: float) -> str:
+    """The stack's processes (router included) summed, the bench's client left out; and
+    the same over the sim time achieved (at the speed-up asked): a sim that fell behind
+    on a loaded machine did less work a wall second, which this puts back."""
+    stack = [name for name in figures.cpu_idle if name != CLIENT]
+    idle = sum(figures.cpu_idle[name] for name in stack)
+    busy = sum(figures.cpu_driving.get(name, math.nan) for name in stack)
+    label = (
+        f"CPU the stack summed % of a core: idle / driving ({len(stack)} processes, "
+        f"a plan every {probe_period:g} s); the same per sim time at x{speed:g}"
+    )
+    scaled = f"{idle * speed / figures.speed_idle:.1f} / {busy * speed / figures.speed_driving:.1f}"
+    return row(label, f"{idle:.1f} / {busy:.1f}; {scaled}", "")
 
 
 def others_row(others: list[tuple[float, float]]) -> str:
@@ -301,14 +327,15 @@ def pacing_row(robot_log: str) -> str:
     return row("robot: sim time given up to lag, times / waits for a late cmd_vel", value, "")
 
 
-def table(figures: Figures, speed: float) -> list[str]:
+def table(figures: Figures, speed: float, probe_period: float) -> list[str]:
     lines = [row("figure", "value", "target"), row("---", "---", "---")]
     for name, idle in figures.cpu_idle.items():
         busy = figures.cpu_driving.get(name, math.nan)
-        target = "idle < 2 %" if name not in ("robot", "router", "bench client") else ""
+        target = "idle < 2 %" if name not in ("robot", "router", CLIENT) else ""
         lines.append(
             row(f"CPU {name} % of a core: idle / driving", f"{idle:.1f} / {busy:.1f}", target)
         )
+    lines.append(summed_row(figures, probe_period, speed))
     lines.append(others_row(figures.others))
     lines.extend(planner_rows(figures))
     lines.extend(controller_rows(figures.controller))
@@ -333,8 +360,33 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--goals", type=int, default=6)
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--idle", type=float, default=10.0, help="wall s of the idle phase")
-    parser.add_argument("--probe-period", type=float, default=0.25, help="wall s between plans")
+    parser.add_argument(
+        "--probe-period",
+        type=float,
+        default=0.25,
+        help="wall s between the probe's plans (1: a navigator replanning at Nav2's 1 Hz)",
+    )
+    parser.add_argument(
+        "--safety-chain",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="the velocity smoother and the collision monitor, as `aiobt up` runs them",
+    )
     parser.add_argument("--reactions", type=int, default=3)
+    parser.add_argument(
+        "--clock",
+        dest="sim_time",
+        choices=("sim", "wall", "auto"),
+        default="sim",
+        type=str,
+        help="the services' time: the simulation's clock (sim, the default), the wall "
+        "clock (wall), or as `aiobt up` chooses (auto: sim time unless --speed is 1)",
+    )
+    parser.add_argument(
+        "--clock-hz",
+        type=float,
+        help="the robot's {ns}/clock rate in Hz of sim time (its --clock-hz; default: its own)",
+    )
     parser.add_argument("--timeout", type=float, default=120.0, help="wall s per goal")
     parser.add_argument("--logs", type=Path, help="keep each process's output here")
     parser.add_argument(
@@ -360,6 +412,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     exit_on_sigterm()
     args = parser.parse_args(argv)
+    args.sim_time = {"sim": True, "wall": False, "auto": None}[args.sim_time]
+    if not args.probe_period > 0.0:
+        parser.error(f"--probe-period must be > 0 s, got {args.probe_period}")
     if args.busy < 0:
         parser.error(f"--busy must be 0 or more processes, got {args.busy}")
     try:
@@ -371,7 +426,12 @@ def main(argv: list[str] | None = None) -> int:
     before = loadavg()
     extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
     extra.update({name: ["--realtime-priority", str(level)] for name, level in levels.items()})
-    config = StackConfig(world="office", speed=args.speed, seed=args.seed, extra=extra)
+    if args.clock_hz is not None:
+        extra["robot"] = [*extra.get("robot", []), "--clock-hz", str(args.clock_hz)]
+    config = StackConfig(
+        world="office", speed=args.speed, seed=args.seed, extra=extra,
+        safety_chain=args.safety_chain, sim_time=args.sim_time,
+    )  # fmt: skip
     spinners = [spin() for _ in range(args.busy)]
     try:
         router_args = ["--lease-ms", str(config.lease_ms)]
@@ -391,7 +451,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"real-time priority (SCHED_FIFO): {named}; this client {NAVIGATOR_PRIORITY}\n")
     if args.busy:
         print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")
-    print("\n".join(table(figures, args.speed)))
+    clock = "the simulation's clock" if config.uses_sim_time else "the wall clock"
+    print(f"the services on {clock} (--clock)\n")
+    print("\n".join(table(figures, args.speed, args.probe_period)))
     print(f"\nload average before: {before}; after: {loadavg()}")
     for failure in sorted(set(figures.probe_failures))[:5]:
         print(f"planner probe failure: {failure}")

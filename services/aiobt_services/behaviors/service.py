@@ -69,10 +69,15 @@ class BehaviorService:
         # relocalization (ReinitializeGlobalLocalization, then Spin) moves the estimate
         # metres between scans, and a map-frame window would put the robot on obstacles
         # laid from the estimate before the jump (Spin's 703 in the kidnap e2e test)
+        # and no pose in map at all: nothing here reads it (one 50 Hz stream fewer)
         self.tracker = RobotTracker(
-            clock, self.costmap, robot_time=self.options.robot_time, costmap_frame="odom"
-        )
-        self.feed = OnDemand(lambda: self.tracker.attach(bus), self.tracker.forget, clock)
+            clock, self.costmap, robot_time=self.options.robot_time, costmap_frame="odom",
+            map_pose=False,
+        )  # fmt: skip
+        self.feed = OnDemand(
+            lambda: self.tracker.attach(bus), self.tracker.forget, clock,
+            waited=self.tracker.waited,
+        )  # fmt: skip
         self.checker = CollisionChecker(self.costmap)
         self._owner: _Run | None = None
         self._teleop: tuple[Velocity, float] | None = None
@@ -124,7 +129,7 @@ class BehaviorService:
             self._teleop_run = behavior
         log.info("%s: goal %s started", plugin.name, handle.goal_id)
         try:
-            async with self.feed.active(self.options.clock_timeout):  # pose, odom, scan
+            async with self.feed.active(self.options.clock_timeout):  # odom, scan
                 # timed from here: on --sim-time an idle service's clock is the last stamp
                 # it heard, stale until the goal holds it fresh (total_elapsed_time)
                 started = self.clock.now()

@@ -155,15 +155,8 @@ class Amcl:
             self._resample_count = 0
             self._weigh(beams)
             return self._publish(odom_pose, resampled=self._maybe_resample(beams))
-        delta = np.array(
-            [
-                *(odom_pose[:2] - self._odom_ref[:2]),
-                float(se2.angle_diff(odom_pose[2], self._odom_ref[2])),
-            ]
-        )
-        p = self.params
-        moved = bool(np.any(np.abs(delta[:2]) > p.update_min_d) or abs(delta[2]) > p.update_min_a)
-        if not (moved or self._force_update):
+        delta = self._delta(odom_pose, self._odom_ref)
+        if not (self._moved(delta) or self._force_update):
             return ScanOutcome(False, False)
         self._force_update = False
         self.particles = self.motion.odometry_update(self.particles, odom_pose, delta, self.rng)
@@ -173,6 +166,28 @@ class Amcl:
         if not resampled:
             return ScanOutcome(True, False)
         return self._publish(odom_pose, resampled=True)
+
+    def takes_scan_at(self, odom_pose: FloatArray) -> bool:
+        """Whether a scan taken at ``odom_pose`` would update the filter (:meth:`on_scan`
+        does more than nothing): the first since (re)initialisation, after enough motion,
+        or a no-motion update asked. Standing still, AMCL weighs no scan; the caller
+        need not prepare its beams."""
+        if self.laser is None or not self.initialized:
+            return False
+        if self._odom_ref is None or self._force_update:
+            return True
+        return self._moved(self._delta(np.asarray(odom_pose, dtype=np.float64), self._odom_ref))
+
+    @staticmethod
+    def _delta(odom_pose: FloatArray, reference: FloatArray) -> FloatArray:
+        """The odometry's motion since ``reference``: dx, dy (in ``odom``), the turn."""
+        turn = float(se2.angle_diff(odom_pose[2], reference[2]))
+        return np.array([*(odom_pose[:2] - reference[:2]), turn])
+
+    def _moved(self, delta: FloatArray) -> bool:
+        """``update_min_d`` in x or y, or ``update_min_a``, exceeded (AMCL's test)."""
+        p = self.params
+        return bool(np.any(np.abs(delta[:2]) > p.update_min_d) or abs(delta[2]) > p.update_min_a)
 
     def _weigh(self, beams: Beams) -> None:
         assert self.laser is not None

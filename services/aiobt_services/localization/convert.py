@@ -1,5 +1,6 @@
-"""Filter state -> wire messages: ``amcl_pose``, the ``map`` -> ``odom`` transform on
-``tf``, the particle cloud (thinned for viewers) and ``pose``."""
+"""Filter state -> wire messages: ``amcl_pose``, the particle cloud (thinned for viewers)
+and ``pose`` (the ``map`` -> ``odom`` transform on ``tf``: the library's
+:func:`aiobt.robot.correction.correction_message`, which its readers share)."""
 
 from __future__ import annotations
 
@@ -9,9 +10,7 @@ from aiobt.msgs import (
     ParticleCloud,
     PoseStamped,
     PoseWithCovarianceStamped,
-    TFMessage,
     pose_fields,
-    yaw_to_quaternion,
 )
 
 from .estimate import Estimate
@@ -34,24 +33,6 @@ def amcl_pose(est: Estimate, stamp: float, frame: str) -> PoseWithCovarianceStam
     )
 
 
-def map_to_odom(transform: FloatArray, stamp: float, parent: str, child: str) -> TFMessage:
-    qx, qy, qz, qw = yaw_to_quaternion(float(transform[2]))
-    return TFMessage.model_validate(
-        {
-            "transforms": [
-                {
-                    "header": {"stamp": stamp, "frame_id": parent},
-                    "child_frame_id": child,
-                    "transform": {
-                        "translation": {"x": float(transform[0]), "y": float(transform[1])},
-                        "rotation": {"x": qx, "y": qy, "z": qz, "w": qw},
-                    },
-                }
-            ]
-        }
-    )
-
-
 def particle_cloud(
     particles: FloatArray, weights: FloatArray, stamp: float, frame: str, limit: int = CLOUD_MAX
 ) -> ParticleCloud:
@@ -70,7 +51,7 @@ def particle_cloud(
     )
 
 
-def map_pose(pose: FloatArray, stamp: float, frame: str) -> PoseStamped:
+def map_pose(pose: tuple[float, float, float], stamp: float, frame: str) -> PoseStamped:
     header = {"stamp": stamp, "frame_id": frame}
-    x, y, yaw = (float(v) for v in pose)
+    x, y, yaw = pose
     return PoseStamped.model_validate({"header": header, "pose": pose_fields(x, y, yaw)})

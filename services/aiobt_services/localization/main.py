@@ -3,7 +3,8 @@
 Reads the latched ``{ns}/map``, ``{ns}/odom`` and ``{ns}/scan``; takes
 ``{ns}/initialpose`` (a PoseWithCovarianceStamped, or a PoseStamped / its short
 form with Nav2's default covariance). Publishes ``{ns}/amcl_pose`` (latched),
-the ``map`` -> ``odom`` transform on ``{ns}/tf``, ``{ns}/particle_cloud``
+the ``map`` -> ``odom`` transform on ``{ns}/tf`` (with every scan taken, as AMCL),
+``{ns}/particle_cloud``
 (thinned) and ``{ns}/pose``: the estimate composed with the newest odometry, at
 odometry rate. Serves ``{ns}/srv/reinitialize_global_localization``,
 ``{ns}/srv/request_nomotion_update`` and ``{ns}/srv/localization/stats``;
@@ -63,6 +64,10 @@ class Outputs:
         self._pubs = {name: bus.publisher(name, model) for name, model in PUBLISHED.items()}
         self._pubs["amcl_pose"] = bus.latched_publisher("amcl_pose", PoseWithCovarianceStamped)
 
+    def listened(self, topic: str) -> bool:
+        """Whether a subscriber matches ``topic`` now (latched ones: always)."""
+        return self._pubs[topic].matched
+
     def send(self, messages: list[tuple[str, Msg]]) -> None:
         for topic, msg in messages:
             self._pubs[topic].put(msg)
@@ -113,12 +118,12 @@ class ScanWorker:
             except ScanError as exc:
                 log.warning("scan at %.3f refused: %s", scan.header.stamp, exc)
                 continue
-            if job is None:
-                continue
-            # off the event loop: odometry (and so {ns}/pose) flows on while it runs
-            self.outputs.send(await asyncio.to_thread(self.node.update, job))
-            if stats.updates > updates:
-                stats.record_latency(time.perf_counter() - began)
+            if job is not None:
+                # off the event loop: odometry (and so {ns}/pose) flows on while it runs
+                self.outputs.send(await asyncio.to_thread(self.node.update, job))
+                if stats.updates > updates:
+                    stats.record_latency(time.perf_counter() - began)
+            self.outputs.send(self.node.correction(scan.header.stamp))  # with every scan
 
     async def _odom_up_to(self, stamp: float) -> None:
         newest = self.node.odom.newest
@@ -166,8 +171,9 @@ async def serve(args: argparse.Namespace, params: AmclParams) -> None:
     async with open_bus_unless_stopped(BusSettings.from_args(args), stop) as bus:
         if bus is None:
             return
-        node = LocalizationNode(params)
-        worker = ScanWorker(node, Outputs(bus))
+        outputs = Outputs(bus)
+        node = LocalizationNode(params, wanted=outputs.listened)
+        worker = ScanWorker(node, outputs)
         maps = bus.subscribe(params.map_topic, OccupancyGrid, latched=True, queue_size=1)
         scans = _wire(bus, node, worker)
         announce(bus, "localization", sim_time=args.sim_time)

@@ -9,6 +9,7 @@ import logging
 import math
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -20,8 +21,9 @@ from aiobt.msgs import (
     Odometry,
     PoseWithCovarianceStamped,
 )
+from aiobt.robot.correction import compose, correction_message
 
-from . import convert, se2
+from . import convert
 from .amcl import Amcl
 from .initial_pose import InitialPoseError, covariance_from_6x6
 from .laser_model import (
@@ -64,6 +66,7 @@ class UpdateStats:
     updates: int = 0
     skipped_no_odom: int = 0
     skipped_before_reset: int = 0  # taken before the last initial pose or global reset
+    skipped_still: int = 0  # no motion since the last update: the filter takes no scan
     update_cpu: list[float] = field(default_factory=list)
     update_wall: list[float] = field(default_factory=list)  # scan read -> outputs sent
 
@@ -81,8 +84,16 @@ class LocalizationNode:
     """One robot's AMCL: call :meth:`on_map`, :meth:`on_odom`, :meth:`on_scan`, ...;
     each returns the messages to publish as ``(topic, message)`` pairs."""
 
-    def __init__(self, params: AmclParams, rng: np.random.Generator | None = None) -> None:
+    def __init__(
+        self,
+        params: AmclParams,
+        rng: np.random.Generator | None = None,
+        wanted: Callable[[str], bool] = lambda _topic: True,
+    ) -> None:
         self.params = params
+        # whether ``pose`` or ``particle_cloud`` has a reader now: neither is built for
+        # none (an idle stack reads no pose; only viewers read the cloud)
+        self._wanted = wanted
         self.amcl = Amcl(params, rng)
         self.odom = OdomBuffer()
         self.stats = UpdateStats()
@@ -131,16 +142,30 @@ class LocalizationNode:
         stamp = msg.header.stamp
         here = (msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
         self.odom.add(stamp, *here)
-        if self.amcl.map_to_odom is None:
+        correction = self.amcl.map_to_odom
+        if correction is None or not self._wanted("pose"):
             return []
-        pose = se2.compose(self.amcl.map_to_odom, np.array(here))
+        pose = compose((float(correction[0]), float(correction[1]), float(correction[2])), *here)
         return [("pose", convert.map_pose(pose, stamp, self._frame))]
 
     # -- scans ---------------------------------------------------------------
     def on_scan(self, scan: LaserScan) -> list[tuple[str, Msg]]:
-        """One scan through the filter (:class:`ScanError` for a malformed one)."""
+        """One scan through the filter (:class:`ScanError` for a malformed one), then
+        the correction as it stands (:meth:`correction`)."""
         job = self.scan_job(scan)
-        return [] if job is None else self.update(job)
+        return ([] if job is None else self.update(job)) + self.correction(scan.header.stamp)
+
+    def correction(self, stamp: float) -> list[tuple[str, Msg]]:
+        """``map`` -> ``odom`` on ``tf``, stamped ``stamp`` (the scan's), once the filter
+        has one and ``tf_broadcast``: sent with every scan taken, updated or not, as
+        AMCL republishes the last transform "to keep everybody happy", so a reader
+        composing its own pose from odometry (:mod:`aiobt.robot.correction`) has it
+        within a scan of listening, and knows localization is alive."""
+        transform = self.amcl.map_to_odom
+        if transform is None or not self.params.tf_broadcast:
+            return []
+        xyyaw = (float(transform[0]), float(transform[1]), float(transform[2]))
+        return [("tf", correction_message(xyyaw, stamp, self._frame, self.params.odom_frame_id))]
 
     def scan_job(self, scan: LaserScan) -> ScanJob | None:
         """What the filter needs of ``scan``: its beams and the odometry at its stamp
@@ -154,6 +179,10 @@ class LocalizationNode:
         if odom_pose is None:
             self.stats.skipped_no_odom += 1
             return None
+        with self.lock:
+            if not self.amcl.takes_scan_at(odom_pose):  # standing still: nothing to weigh
+                self.stats.skipped_still += 1
+                return None
         low, high = effective_range_limits(
             scan.range_min, scan.range_max, self.params.laser_min_range, self.params.laser_max_range
         )
@@ -182,10 +211,7 @@ class LocalizationNode:
         amcl, frame = self.amcl, self._frame
         if estimated and amcl.last_estimate is not None and amcl.map_to_odom is not None:
             out.append(("amcl_pose", convert.amcl_pose(amcl.last_estimate, stamp, frame)))
-            if self.params.tf_broadcast:
-                tf = convert.map_to_odom(amcl.map_to_odom, stamp, frame, self.params.odom_frame_id)
-                out.append(("tf", tf))
-        if updated:
+        if updated and self._wanted("particle_cloud"):
             cloud = convert.particle_cloud(amcl.particles, amcl.weights, stamp, frame)
             out.append(("particle_cloud", cloud))
         return out

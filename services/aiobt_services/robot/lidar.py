@@ -104,3 +104,21 @@ def cast(
     if discs:
         best = np.minimum(best, disc_distances(discs, ox, oy, ux, uy))
     return best
+
+
+# an obstacle as the lidar's plane cuts it: a box (x, y, yaw, half x, half y) or a disc
+Solid = tuple[float, float, float, float, float] | Disc
+
+
+def cast_solids(
+    walls: Rectangles, solids: Sequence[Solid], origin: tuple[float, float], headings: FloatArray
+) -> FloatArray:
+    """:func:`cast` against the walls and ``solids`` (boxes one by one, the discs)."""
+    rects, discs = [], []
+    for shape in solids:
+        if isinstance(shape, Disc):
+            discs.append(shape)
+        else:
+            x, y, yaw, half_x, half_y = shape
+            rects.append(Rectangles.from_centres([x], [y], [half_x], [half_y], yaw))
+    return cast(walls, rects, discs, origin, headings)

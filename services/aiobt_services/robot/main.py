@@ -98,6 +98,10 @@ class BusOutputs:
     def publish(self, topic: str, msg: Msg) -> None:
         self._pubs[topic].put(msg)
 
+    def listened(self, topic: str) -> bool:
+        """Whether a subscriber matches ``topic`` now (the runner's ``wanted``)."""
+        return self._pubs[topic].matched
+
 
 def _wire(bus: Bus, service: RobotService, *, localization_stand_in: bool) -> None:
     # commands: only the newest counts, so a burst is applied once, not message by message
@@ -142,14 +146,18 @@ async def serve(args: argparse.Namespace, sim: Simulation) -> None:
         service = RobotService(sim, initialpose=args.initialpose)
         bus.latched_publisher("map", OccupancyGrid).put(convert.occupancy_grid(sim.world))
         targets = wire_target(bus, sim, args)  # the followed box (sim/srv/follow_target/*)
+        outputs = BusOutputs(bus, pose=args.pose_source == "truth")
         runner = SimRunner(
             sim,
-            targets.tap(BusOutputs(bus, pose=args.pose_source == "truth")),
+            targets.tap(outputs),
             speed=args.speed,
-            rates=Rates(scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz),
+            rates=Rates(
+                scan=args.scan_hz, odom=args.odom_hz, pose=args.odom_hz, clock=args.clock_hz
+            ),
             command_wait=args.command_wait,
             max_lag=args.max_lag,
             publish_pose=args.pose_source == "truth",
+            wanted=outputs.listened,  # the truth and the wheels only for a reader
         )
         _wire(bus, service, localization_stand_in=args.pose_source == "truth")
         bus.serve(DETECTOR_SERVICE, Trigger.Request, Trigger.Response, runner.dock_detector.toggle)

@@ -7,6 +7,7 @@ from dataclasses import dataclass, replace
 
 from aiobt.geometry import Pose2D
 
+from .lidar import Disc, Solid
 from .mapfile import MapInfo
 
 SHAPES = ("box", "cylinder")
@@ -117,3 +118,10 @@ def validate(spec: ObstacleSpec, world: MapInfo) -> None:
     if spec.motion is not None:
         _check_positive(f"obstacle '{spec.id}': motion speed", spec.motion.speed)
         _check_inside(spec, spec.motion.to_x, spec.motion.to_y, world, "motion end")
+
+
+def solid(spec: ObstacleSpec, here: Pose2D) -> Solid:
+    """``spec`` at ``here`` as the lidar's plane cuts it."""
+    if spec.shape == "box":
+        return (here.x, here.y, here.yaw, 0.5 * spec.size_x, 0.5 * spec.size_y)
+    return Disc(here.x, here.y, spec.radius)

@@ -80,6 +80,13 @@ def add_robot_arguments(parser: argparse.ArgumentParser) -> None:
     add_realtime_argument(group, realtime_priority("robot"))
     add("--scan-hz", type=positive, default=10.0, help="lidar rate (default: %(default)s)")
     add("--odom-hz", type=positive, default=50.0, help="odom and pose rate (default: %(default)s)")
+    add(
+        "--clock-hz",
+        type=positive,
+        default=100.0,
+        help="sim-time stamps on {ns}/clock per sim second, as gazebo_ros_init's "
+        "publish_rate (default: %(default)s)",
+    )
     add("--lidar-rays", type=int, default=360, help="beams per scan (default: %(default)s)")
     add("--lidar-range", type=positive, default=12.0, help="m (default: %(default)s)")
     add(

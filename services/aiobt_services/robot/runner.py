@@ -13,6 +13,7 @@ from __future__ import annotations
 import asyncio
 import logging
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -31,6 +32,9 @@ log = logging.getLogger("aiobt_services.robot.runner")
 TOPICS = ("odom", "pose", "scan", "battery", "clock", "bumper")
 JOINT_STATES = "joint_states"  # the wheels, with odometry (Nav2's stall detection reads it)
 DOCK_DETECTION = "detected_dock_pose"  # Nav2's topic: the dock's marker, as a camera sees it
+# SIM_POSE and JOINT_STATES are built and sent only while someone listens (``wanted``):
+# the truth is for tests, benches and viewers, the wheels for a docking server's stall
+# detection; at 50 Hz each, a third of the robot's messages, read by no navigation service.
 COMMAND_POLL = 0.001  # wall s between looks for a late command
 # A command later than this (wall s) is a stalled client; one scheduler slot on a loaded
 # machine (CFS's latency on 2 cores: 12 ms) is not: the base drives on the last command.
@@ -88,6 +92,7 @@ class SimRunner:
         report_every: float = 5.0,
         command_wait: float = 0.5,
         publish_pose: bool = True,
+        wanted: Callable[[str], bool] = lambda _topic: True,
     ) -> None:
         self.sim = sim
         self._publish_pose = publish_pose  # {ns}/pose from the truth (no localization)
@@ -101,6 +106,7 @@ class SimRunner:
         self._patience = 0.0 if math.isinf(speed) else min(LATE_WALL * speed, limit)
         self.wall: Clock = wall or SystemClock()
         self._outputs = outputs
+        self._wanted = wanted  # whether SIM_POSE or JOINT_STATES has a reader now
         rates = rates or Rates()
         self._periods = {t: rates.period_steps(t, sim.config.dt) for t in TOPICS[:5]}
         if not publish_clock:
@@ -118,24 +124,26 @@ class SimRunner:
             if event.pressed:
                 log.info("bump: %s at (%.2f, %.2f)", event.other, event.x, event.y)
             self._outputs.publish("bumper", convert.bumper(event))
-        due = {t for t, every in self._periods.items() if sim.steps % every == 0}
-        if "clock" in due:
+        steps, every = sim.steps, self._periods
+        if "clock" in every and steps % every["clock"] == 0:
             self._clock_owed = True
-            if sim.steps - self._clock_sent >= self._clock_batch:
+            if steps - self._clock_sent >= self._clock_batch:
                 self.publish_clock()
-        if "odom" in due:
+        if steps % every["odom"] == 0:
             self._outputs.publish("odom", convert.odometry(sim))
-            self._outputs.publish(JOINT_STATES, sim.wheels.state(sim.time))
-        if "pose" in due:
-            self._outputs.publish(SIM_POSE, convert.true_pose(sim))
+            if self._wanted(JOINT_STATES):
+                self._outputs.publish(JOINT_STATES, sim.wheels.state(sim.time))
+        if steps % every["pose"] == 0:
+            if self._wanted(SIM_POSE):
+                self._outputs.publish(SIM_POSE, convert.true_pose(sim))
             if self._publish_pose:
                 self._outputs.publish("pose", convert.map_pose(sim))
-        if "scan" in due:
+        if steps % every["scan"] == 0:
             self._outputs.publish("scan", convert.laser_scan(sim.scan()))
-        if "battery" in due:
+        if steps % every["battery"] == 0:
             self._outputs.publish("battery", convert.battery_state(sim.battery, sim.time))
         if (
-            sim.steps % self._camera_every == 0
+            steps % self._camera_every == 0
             and self.dock_detector.on
             and (seen := sim.detect_dock()) is not None
         ):

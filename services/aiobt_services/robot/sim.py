@@ -20,9 +20,10 @@ from aiobt.geometry import Pose2D, wrap_angle
 from .bumper import Bumper, ContactEvent
 from .dock import build_station
 from .drive import CommandVerdict, DriveController, DriveLimits
-from .lidar import Disc, Rectangles, cast
+from .lidar import Solid, cast_solids
 from .mapfile import MapInfo
-from .obstacles import Motion, ObstacleError, ObstacleSpec, validate
+from .obstacles import Motion, ObstacleError, ObstacleSpec, solid, validate
+from .rest import RestGate
 from .sensors import (
     Battery,
     BatteryConfig,
@@ -60,6 +61,9 @@ class Scan:
     config: LidarConfig
 
 
+CastKey = tuple[Pose2D, tuple[Solid, ...]]
+
+
 @dataclass(slots=True)
 class _Obstacle:
     spec: ObstacleSpec
@@ -70,7 +74,10 @@ class _Obstacle:
 class Simulation:
     """A world (walls from the map), one robot, obstacles; stepped by the caller."""
 
-    def __init__(self, world: MapInfo, config: SimConfig | None = None) -> None:
+    def __init__(
+        self, world: MapInfo, config: SimConfig | None = None, *, rest: bool = True
+    ) -> None:
+        """``rest``: leave the physics out of steps where nothing can move (:mod:`.rest`)."""
         self.world = world
         self.config = config or SimConfig()
         self.time = 0.0
@@ -87,6 +94,8 @@ class Simulation:
         self.dock_station, self._dock_body = build_station(world, self.config.robot, self._physics)
         self._camera_rng = np.random.default_rng(self.config.noise.seed + 1)
         self._headings = self.config.lidar.angles()
+        # the last scan's rays: the robot's pose and the solids then, the distances
+        self._last_cast: tuple[CastKey, npt.NDArray[np.float64]] | None = None
         start = Pose2D(*world.start)
         self._robot = self._physics.robot(self.config.robot, start)
         self._true = start
@@ -94,6 +103,7 @@ class Simulation:
         self._obstacles: dict[str, _Obstacle] = {}
         self.movers: list[Callable[[], None]] = []  # each step, first (target.py's box)
         self._bumper = Bumper()
+        self._rest = RestGate(rest)
         self._clamp_logged = False
         self._empty_logged = False
         try:
@@ -142,31 +152,19 @@ class Simulation:
 
     def _step_once(self) -> list[ContactEvent]:
         dt, cfg = self.config.dt, self.config
-        linear, angular = self.drive.update(self.time, dt)
-        if self.battery.depleted:
-            if (linear or angular) and not self._empty_logged:
-                log.warning("battery empty: the base does not move until it is charged")
-                self._empty_logged = True
-            linear = angular = 0.0
-            self.drive.stop()
-        else:
-            self._empty_logged = False
-        body_speed = linear * (1.0 - cfg.noise.slip)
+        linear, angular = self._velocity(dt)
         before = self._true
-        yaw = before.yaw
-        self._physics.call(
-            "resetBaseVelocity",
-            self._robot,
-            (body_speed * math.cos(yaw), body_speed * math.sin(yaw), 0.0),
-            (0.0, 0.0, angular),
-        )
-        self._move_dynamic_obstacles()
-        self._physics.call("stepSimulation")
+        self._move_dynamic_obstacles()  # the movers first: a box moved unsettles the rest
+        resting = self._rest.holds(linear, angular)
+        if not resting:
+            self._push(linear * (1.0 - cfg.noise.slip), angular, before.yaw)
         self.time = round(self.time + dt, 9)
         self.steps += 1
-        pose = self._physics.planar_pose(self._robot)
-        self._physics.place(self._robot, pose, cfg.robot.z)  # keep the base flat
-        self._true = pose
+        if not resting:
+            pose = self._physics.planar_pose(self._robot)
+            self._physics.place(self._robot, pose, cfg.robot.z)  # keep the base flat
+            self._true = pose
+        pose = self._true
         wheels = (linear, angular)
         if self._bumper.touching:  # pushing an obstacle: the motors stall, the wheels turn
             wheels = self._achieved(before, pose, dt)  # with the body, no further
@@ -174,7 +172,30 @@ class Simulation:
         self.wheels.update((linear, angular), wheels, dt)
         on_dock = self.dock_station is not None and self.dock_station.charging_contact(pose)
         self.battery.update(linear, angular, on_dock, dt)
-        return self._contact_events()
+        if resting:
+            return []  # nothing touches the robot, nothing moved: no contact came or went
+        events = self._contact_events()
+        still = linear == 0.0 and angular == 0.0 and pose == before
+        self._rest.stepped(still and not self._bumper.touching)
+        return events
+
+    def _velocity(self, dt: float) -> tuple[float, float]:
+        """The drive's velocity for this step (zero on an empty battery)."""
+        linear, angular = self.drive.update(self.time, dt)
+        if self.battery.depleted:
+            if (linear or angular) and not self._empty_logged:
+                log.warning("battery empty: the base does not move until it is charged")
+                self._empty_logged = True
+            self.drive.stop()
+            return 0.0, 0.0
+        self._empty_logged = False
+        return linear, angular
+
+    def _push(self, body_speed: float, angular: float, yaw: float) -> None:
+        """One pybullet step with the robot's body at this velocity."""
+        velocity = (body_speed * math.cos(yaw), body_speed * math.sin(yaw), 0.0)
+        self._physics.call("resetBaseVelocity", self._robot, velocity, (0.0, 0.0, angular))
+        self._physics.call("stepSimulation")
 
     # -- state -----------------------------------------------------------
     @property
@@ -188,36 +209,44 @@ class Simulation:
 
     def scan(self) -> Scan:
         """The lidar at the current step: walls and the obstacles taller than its plane,
-        at their poses now (:mod:`.lidar`; the robot's own body is not seen)."""
+        at their poses now (:mod:`.lidar`; the robot's own body is not seen). The rays
+        are cast again only when the robot or such an obstacle moved (a robot standing
+        still sees the same distances); the noise and dropouts are drawn for each scan."""
         cfg, pose = self.config.lidar, self._true
-        dist = self.cast_from(pose, pose.yaw + self._headings)
-        return Scan(self.time, lidar_ranges(dist, cfg, self._rng), cfg)
+        solids = self._solids()
+        if self._last_cast is None or self._last_cast[0] != (pose, solids):
+            dist = self.cast_from(pose, pose.yaw + self._headings, solids)
+            self._last_cast = ((pose, solids), dist)
+        return Scan(self.time, lidar_ranges(self._last_cast[1], cfg, self._rng), cfg)
 
-    def cast_from(self, pose: Pose2D, headings: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    def cast_from(
+        self,
+        pose: Pose2D,
+        headings: npt.NDArray[np.float64],
+        solids: tuple[Solid, ...] | None = None,
+    ) -> npt.NDArray[np.float64]:
         """Distances from ``pose`` along world ``headings`` to the walls and to the
-        obstacles taller than the lidar's plane (``inf``: nothing)."""
-        cfg = self.config.lidar
-        rects: list[Rectangles] = []
-        discs: list[Disc] = []
-        for oid, obstacle in self._obstacles.items():
-            spec = obstacle.spec
-            if spec.height <= cfg.height:
-                continue
-            here = self.obstacle_pose(oid)
-            if spec.shape == "box":
-                half_x, half_y = [0.5 * spec.size_x], [0.5 * spec.size_y]
-                rects.append(Rectangles.from_centres([here.x], [here.y], half_x, half_y, here.yaw))
-            else:
-                discs.append(Disc(here.x, here.y, spec.radius))
-        return cast(self._wall_rects, rects, discs, (pose.x, pose.y), headings)
+        obstacles taller than the lidar's plane (``solids``: those, where they stand now;
+        ``inf``: nothing)."""
+        solids = self._solids() if solids is None else solids
+        return cast_solids(self._wall_rects, solids, (pose.x, pose.y), headings)
+
+    def _solids(self) -> tuple[Solid, ...]:
+        """The obstacles taller than the lidar's plane, where they stand now."""
+        height = self.config.lidar.height
+        return tuple(
+            solid(o.spec, self.obstacle_pose(oid))
+            for oid, o in self._obstacles.items()
+            if o.spec.height > height
+        )
 
     # -- the dock ----------------------------------------------------------
     def detect_dock(self) -> Pose2D | None:
         """The robot camera's detection of the dock's marker (in ``base_link``, noisy),
         or None when it is out of view or hidden."""
         station, pose = self.dock_station, self._true
-        if station is None:
-            return None
+        if station is None or not station.visible(pose, math.inf):
+            return None  # out of range or view, whatever stands between: no ray to cast
         hit = float(self.cast_from(pose, np.array([station.bearing_from(pose)]))[0])
         return station.detect(pose, self._camera_rng) if station.visible(pose, hit) else None
 
@@ -242,6 +271,7 @@ class Simulation:
         self._true = pose
         self._loc_offset = Pose2D()
         self.drive.stop()
+        self._rest.disturb()
 
     def set_localization(self, estimate: Pose2D) -> None:
         """Make the localization believe the robot is at ``estimate`` (AMCL-style)."""
@@ -266,6 +296,7 @@ class Simulation:
         validate(spec, self.world)
         self._check_clear_of_robot(spec, spec.pose)
         self._obstacles[spec.id] = _Obstacle(spec, self._physics.obstacle(spec), self.time)
+        self._rest.disturb()
 
     def move(self, oid: str, pose: Pose2D, motion: Motion | None = None) -> None:
         obstacle = self._get(oid)
@@ -274,12 +305,14 @@ class Simulation:
         self._check_clear_of_robot(spec, pose)
         obstacle.spec, obstacle.since = spec, self.time
         self._physics.place(obstacle.body, pose, 0.5 * spec.height)
+        self._rest.disturb()
 
     def remove(self, oid: str) -> None:
         obstacle = self._get(oid)
         self._physics.remove(obstacle.body)
         del self._obstacles[oid]
         self._bumper.forget(oid)
+        self._rest.disturb()
 
     def _get(self, oid: str) -> _Obstacle:
         if oid not in self._obstacles:
@@ -299,6 +332,7 @@ class Simulation:
             if obstacle.spec.motion is not None:
                 pose = obstacle.spec.pose_at(self.time - obstacle.since)
                 self._physics.place(obstacle.body, pose, 0.5 * obstacle.spec.height)
+                self._rest.disturb()
 
     # -- bumper ----------------------------------------------------------
     def _body_name(self, body: int) -> str | None:

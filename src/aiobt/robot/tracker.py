@@ -1,7 +1,9 @@
 """What the controller and behavior services read from the robot.
 
-:class:`RobotTracker` keeps the newest robot state per frame (``map`` from
-``{ns}/pose``, ``odom`` from ``{ns}/odom``), stamped on the injected clock at
+:class:`RobotTracker` keeps the newest robot state per frame (``odom`` from
+``{ns}/odom``; ``map`` from each odometry message composed with localization's
+correction, or from ``{ns}/pose`` where no correction is sent: :mod:`.correction`),
+stamped on the injected clock at
 arrival and with its own stamp (for the latency compensation,
 :meth:`RobotTracker.lead`), and whether each is fresh by the robot's own stamps
 and the wall clock (:mod:`.freshness`).
@@ -22,6 +24,7 @@ from aiobt.costmap.local import CostmapUpdate, LocalCostmap
 from aiobt.geometry import STOP, Pose2D, Velocity
 from aiobt.msgs import LaserScan, Odometry, PoseStamped, Twist
 
+from .correction import Correction, MapSource, compose
 from .freshness import Freshness
 from .latency import LoopDelay, command_lead
 from .rate import RateGate
@@ -57,11 +60,21 @@ class RobotTracker:
     a costmap in ``odom`` does not move when localization corrects or reinitializes
     the estimate, so a relocalizing turn is not checked against obstacles laid from the
     estimate before the jump.
+    ``map_pose`` False: no pose in ``map`` is read (the behaviors work in ``odom``).
+
+    The pose in ``map`` (see :mod:`.correction`): each odometry message composed with
+    the newest correction, so stamped as the odometry and as fresh as it on arrival (the
+    :meth:`lead`); its freshness (:meth:`snapshot`'s age) is the correction's, sent with
+    every scan localization takes: a localization gone silent makes it stale, as a
+    silent ``{ns}/pose`` did.
     """
 
     __slots__ = (
         "_clock",
+        "_correction",
         "_frame",
+        "_map_pose",
+        "_map_source",
         "_pending_scan",
         "_robot_time",
         "_scan",
@@ -82,13 +95,19 @@ class RobotTracker:
         robot_time: bool = False,
         scan: bool = True,
         costmap_frame: str = "map",
+        map_pose: bool = True,
     ) -> None:
         if costmap_frame not in FRAMES:
             raise ValueError(
                 f"RobotTracker costmap_frame must be one of {FRAMES}, got {costmap_frame!r}"
             )
+        if costmap_frame == "map" and not map_pose:
+            raise ValueError("RobotTracker: a costmap kept in 'map' needs the pose in 'map'")
         self._clock = clock
         self._frame = costmap_frame
+        self._map_pose = map_pose
+        self._map_source: MapSource | None = None
+        self._correction: Correction | None = None
         self._robot_time = robot_time
         self._scan = scan
         self._taken: dict[str, float] = {}  # frame -> the newest state's own stamp
@@ -128,12 +147,20 @@ class RobotTracker:
             return lead
         return max(lead, command_lead(now, taken, self.delay.one_way))
 
-    def attach(self, bus: Bus) -> list[Subscription[Any]]:
-        """Subscribe to pose, odom (and scan); the subscriptions, in that order."""
-        subs: list[Subscription[Any]] = [
-            bus.subscribe("pose", PoseStamped, self.on_pose),
-            bus.subscribe("odom", Odometry, self.on_odom),
-        ]
+    @property
+    def waited(self) -> int:
+        """How many of :meth:`attach`'s streams a goal waits for: the pose in ``map`` (if
+        read) and the odometry."""
+        return 2 if self._map_pose else 1
+
+    def attach(self, bus: Bus) -> list[Subscription[Any] | MapSource]:
+        """Subscribe to the pose in ``map`` (:class:`MapSource`, if read), odom (and
+        scan); the streams, in that order."""
+        subs: list[Subscription[Any] | MapSource] = []
+        if self._map_pose:
+            self._map_source = MapSource(bus, self.on_pose, self.on_correction)
+            subs.append(self._map_source)
+        subs.append(bus.subscribe("odom", Odometry, self.on_odom))
         if self.costmap is not None and self._scan:
             subs.append(bus.subscribe("scan", LaserScan, self.on_scan))
         return subs
@@ -143,6 +170,7 @@ class RobotTracker:
         again: nothing heard before the service stopped listening counts)."""
         self.states.clear()
         self.freshness.clear()
+        self._correction = None
         self._pending_scan = None
         self._updates.reset()
 
@@ -154,12 +182,25 @@ class RobotTracker:
         self._taken["odom"] = stamp
         self.freshness.received("odom", stamp)
         self.delay.observed(now, self._velocity, stamp if self._robot_time else None)
+        if self._correction is not None:
+            in_map = compose(self._correction.transform, pose.x, pose.y, pose.yaw)
+            self._set_map(Pose2D(*in_map), now, stamp)
+
+    def on_correction(self, correction: Correction) -> None:
+        """Localization's ``map`` -> ``odom``: the next odometry is composed with it."""
+        self._correction = correction
+        self.freshness.received("map", correction.stamp)
 
     def on_pose(self, msg: PoseStamped) -> None:
-        pose = Pose2D(msg.x, msg.y, msg.yaw)
-        self.states["map"] = RobotState(pose, self._velocity, self._clock.now())
-        self._taken["map"] = msg.header.stamp
+        """``{ns}/pose`` (read until a correction comes: :class:`MapSource`)."""
+        self._set_map(Pose2D(msg.x, msg.y, msg.yaw), self._clock.now(), msg.header.stamp)
         self.freshness.received("map", msg.header.stamp)
+
+    def _set_map(self, pose: Pose2D, now: float, stamp: float) -> None:
+        self.states["map"] = RobotState(pose, self._velocity, now)
+        self._taken["map"] = stamp
+        if self._map_source is not None:
+            self._map_source.ready()
 
     def on_scan(self, msg: LaserScan) -> None:
         self.freshness.received("scan", msg.header.stamp)

@@ -59,6 +59,13 @@ class StackConfig:
     # the two in one process, ``aiobt safety_chain`` (Nav2's use_composition): each one's
     # extra flags go to it, its token is still nodes/<service> (see tokens())
     use_composition: bool = False
+    # the services on the simulation's clock: None as ``aiobt up`` (on when speed != 1;
+    # at 1x, as on hardware, they keep the wall clock)
+    sim_time: bool | None = True
+
+    @property
+    def uses_sim_time(self) -> bool:
+        return self.speed != 1.0 if self.sim_time is None else self.sim_time
 
     def __post_init__(self) -> None:
         chain = ("safety_chain",) if self.use_composition else SAFETY_CHAIN
@@ -81,7 +88,7 @@ class StackConfig:
             start = start_from_args(self.extra.get("robot", [])) or world_start(self.world)
             args += [*LOCALIZATION_PARAMS, *initial_pose_flags(start)]
             args += ["--set", f"random_seed={self.seed}"]
-        if service in SIM_TIME:
+        if service in SIM_TIME and self.uses_sim_time:
             args += ["--sim-time", "--clock-timeout", str(self.clock_timeout)]
         if self.safety_chain and service in ("controller", "behaviors"):
             args += ["--cmd-vel-topic", "cmd_vel_nav"]

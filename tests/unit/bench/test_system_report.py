@@ -28,6 +28,7 @@ from bench.system.report import (
     pooled_rate,
     priorities,
     spin,
+    summed_row,
 )
 
 
@@ -114,6 +115,24 @@ def test_a_live_sample_holds_this_process_and_its_cpu() -> None:
     sample = machine()
     assert sample.cpu[os.getpid()] > 0.0
     assert sample.steal >= 0.0
+
+
+def test_the_stack_is_summed_without_the_bench_client() -> None:
+    figures = Figures(
+        cpu_idle={"router": 1.0, "robot": 8.0, "planner": 0.5, "bench client": 3.0},
+        cpu_driving={"router": 2.0, "robot": 9.0, "planner": 1.5, "bench client": 6.0},
+        speed_idle=0.95,
+        speed_driving=0.5,
+    )
+    line = summed_row(figures, 1.0, 1.0)
+    assert line.startswith("| CPU the stack summed % of a core: idle / driving (3 processes, ")
+    assert "a plan every 1 s); the same per sim time at x1 | 9.5 / 12.5; 10.0 / 25.0 |" in line
+
+
+def test_the_probe_period_must_be_positive(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit):
+        main(["--probe-period", "0"])
+    assert "--probe-period must be > 0 s, got 0.0" in capsys.readouterr().err
 
 
 def test_busy_must_not_be_negative(capsys: pytest.CaptureFixture[str]) -> None:

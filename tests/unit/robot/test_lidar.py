@@ -14,7 +14,8 @@ from aiobt.geometry import Pose2D
 from aiobt_services.robot.lidar import Disc, Rectangles, cast, disc_distances, rectangle_distances
 from aiobt_services.robot.mapfile import load_map
 from aiobt_services.robot.obstacles import ObstacleSpec
-from aiobt_services.robot.sim import Simulation
+from aiobt_services.robot.sensors import LidarConfig
+from aiobt_services.robot.sim import SimConfig, Simulation
 from aiobt_services.robot.world import ROBOT_GROUP
 from aiobt_services.robot.worlds import OFFICE
 
@@ -113,3 +114,48 @@ def test_the_scan_matches_pybullets_rays_in_the_office(office: Simulation) -> No
         assert np.count_nonzero(~close) <= 4, (pose, np.flatnonzero(~close))
         compared += 1
     assert compared >= 15
+
+
+def test_a_still_robot_casts_once_and_a_move_or_an_obstacle_casts_again(
+    office: Simulation, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Standing still the rays are not cast again, the noise is drawn anew; whatever
+    moved (the robot, an obstacle spawned, moved or removed) is in the next scan."""
+    casts: list[int] = []
+    real = office.cast_from
+
+    def counted(*args: object) -> npt.NDArray[np.float64]:
+        casts.append(1)
+        return real(*args)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(office, "cast_from", counted)
+    start = office.true_pose
+    first, again = office.scan().ranges, office.scan().ranges
+    assert len(casts) == 1
+    assert np.array_equal(first, again)  # no noise configured: the same distances
+    ahead = Pose2D(start.x + 0.7 * math.cos(start.yaw), start.y + 0.7 * math.sin(start.yaw), 0.0)
+    office.spawn(ObstacleSpec("box", "box", ahead, size_x=0.3, size_y=0.3))
+    boxed = office.scan().ranges
+    assert len(casts) == 2
+    assert np.nanmin(boxed) < 0.7 < np.nanmin(first)
+    office.move("box", Pose2D(ahead.x, ahead.y + 0.05, 0.0))
+    office.scan()
+    office.remove("box")
+    assert np.array_equal(office.scan().ranges, first)
+    office.teleport(Pose2D(start.x + 0.1, start.y, start.yaw))
+    office.scan()
+    assert len(casts) == 5
+
+
+def test_a_still_robots_scans_draw_their_noise_each_time() -> None:
+    config = SimConfig(lidar=LidarConfig(noise=0.01, dropout=0.1))
+    with Simulation(load_map(OFFICE), config) as sim:
+        first, again = sim.scan().ranges, sim.scan().ranges
+        later = [sim.scan().ranges for _ in range(30)]
+    # each drawn on the same distances: the dropouts and the noise do not pile up
+    assert 0.05 < np.mean(np.isinf(later[-1])) < 0.15
+    seen = np.isfinite(later[-1]) & np.isfinite(first)
+    assert np.std(later[-1][seen] - first[seen]) < 0.03
+    both = np.isfinite(first) & np.isfinite(again)  # a dropped beam is inf
+    assert not np.array_equal(np.isfinite(first), np.isfinite(again))  # other dropouts
+    assert 0.0 < np.max(np.abs(first[both] - again[both])) < 0.1  # other noise, same walls

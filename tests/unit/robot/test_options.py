@@ -38,3 +38,8 @@ def test_bad_noise_named() -> None:
         sim_config(parse("--slip", "1.5"))
     with pytest.raises(ValueError, match="rays"):
         sim_config(parse("--lidar-rays", "0"))
+
+
+def test_clock_rate_defaults_to_100_hz() -> None:
+    assert parse().clock_hz == 100.0
+    assert parse("--clock-hz", "50").clock_hz == 50.0

@@ -21,11 +21,13 @@ from aiobt.msgs.sim import (
     SnapshotRequest,
     SpawnObstacle,
 )
+from aiobt.transport.keys import SIM_POSE
 from aiobt_services.robot import convert
 from aiobt_services.robot.mapfile import load_map
-from aiobt_services.robot.runner import Rates, SimRunner
+from aiobt_services.robot.runner import JOINT_STATES, Rates, SimRunner
+from aiobt_services.robot.sensors import LidarConfig, NoiseConfig
 from aiobt_services.robot.service import RobotService
-from aiobt_services.robot.sim import Simulation
+from aiobt_services.robot.sim import SimConfig, Simulation
 from aiobt_services.robot.worlds import SMALL
 
 
@@ -147,3 +149,53 @@ def test_snapshot_service_writes_png(sim: Simulation, tmp_path: Path) -> None:
     bad = RobotService(sim).snapshot(SnapshotRequest(path=str(tmp_path / "no" / "x.png")))
     assert not bad.ok
     assert "cannot write" in bad.message
+
+
+def test_truth_and_wheels_only_while_wanted(sim: Simulation) -> None:
+    """The truth and the wheels are built only while a reader listens; the streams the
+    stack reads, and the noise drawn for them, are the same either way."""
+    listening: set[str] = set()
+    out = Recorder()
+    runner = SimRunner(sim, out, wanted=lambda topic: topic in listening)
+    sim.command(0.3, 0.2)
+    for _ in range(50):
+        runner.tick()
+    assert out.of(SIM_POSE) == []
+    assert out.of(JOINT_STATES) == []
+    listening.update({SIM_POSE, JOINT_STATES})
+    for _ in range(50):
+        runner.tick()
+    assert len(out.of(SIM_POSE)) == len(out.of(JOINT_STATES)) == 25
+    assert len(out.of("odom")) == 50
+    assert len(out.of("scan")) == 10
+
+
+def test_unread_streams_leave_the_noise_alone() -> None:
+    """Skipping the unread truth changes no scan or odometry a noisy robot sends."""
+    config = SimConfig(
+        noise=NoiseConfig(odom_linear=0.05, odom_angular=0.05, seed=3),
+        lidar=LidarConfig(noise=0.01, dropout=0.1),
+    )
+    sent: list[list[tuple[str, Msg]]] = []
+    for wanted in (True, False):
+        with Simulation(load_map(SMALL), config) as noisy:
+            out = Recorder()
+            listened = {SIM_POSE, JOINT_STATES} if wanted else set()
+            runner = SimRunner(noisy, out, wanted=listened.__contains__)
+            noisy.command(0.3, 0.2)
+            for _ in range(60):
+                runner.tick()
+            sent.append([(t, m) for t, m in out.messages if t in ("odom", "scan")])
+    assert sent[0] == sent[1]
+    assert len(sent[0]) == 36
+
+
+def test_the_clock_at_a_lower_rate_stamps_fewer_steps(sim: Simulation) -> None:
+    out = Recorder()
+    runner = SimRunner(sim, out, rates=Rates(clock=50.0))  # the robot's --clock-hz 50
+    for _ in range(100):
+        runner.tick()
+    stamps = [m.clock for m in out.of("clock") if isinstance(m, ClockMsg)]
+    assert len(stamps) == 50
+    assert stamps[0] == pytest.approx(0.02)
+    assert len(out.of("odom")) == 50  # the rest as before
