@@ -39,6 +39,7 @@ from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_s
 from aiobt.transport import Bus, BusSettings, Subscription
 from aiobt.transport.announce import announce
 from aiobt.transport.backlog import backlog
+from aiobt.transport.relay import Relay, relay
 
 from .laser_model import ScanError
 from .messages import LocalizationStats
@@ -143,13 +144,14 @@ class ScanWorker:
 
 class PoseStream:
     """``{ns}/pose`` at odometry rate while a subscriber matches ``pose``: only then is
-    each odometry message handed to the event loop (a callback subscription, declared
-    and closed as readers come and go, told by Zenoh's matching listener); the filter
-    takes its odometry from the ring either way."""
+    each odometry message handled, composed with the correction and put on Zenoh's
+    receiving thread (a :class:`~aiobt.transport.relay.Relay`, declared and closed as
+    readers come and go, told by Zenoh's matching listener: no event loop wake-up per
+    message); the filter takes its odometry from the ring either way."""
 
     def __init__(self, bus: Bus, node: LocalizationNode, outputs: Outputs) -> None:
         self._bus, self._node, self._outputs = bus, node, outputs
-        self._odom: Subscription[Odometry] | None = None
+        self._odom: Relay[Odometry] | None = None
         outputs.on_matching_change("pose", self.follow)
         self.follow()  # after the listener: no change slips in between
 
@@ -161,13 +163,13 @@ class PoseStream:
         """Subscribe the odometry while ``pose`` has a reader; let it go when none has."""
         wanted = self._outputs.listened("pose")
         if wanted and self._odom is None:
-            self._odom = self._bus.subscribe("odom", Odometry, callback=self._on_odom,
-                                             queue_size=8)  # fmt: skip
+            self._odom = relay(self._bus, "odom", Odometry, self._on_odom)
         elif not wanted and self._odom is not None:
             self._odom.close()
             self._odom = None
 
     def _on_odom(self, msg: Odometry) -> None:
+        """Zenoh's thread: reads only the filter's correction (replaced whole by an update)."""
         self._outputs.send(self._node.pose_for(msg))
 
 
