@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 import zenoh
 from pydantic import ValidationError
@@ -35,47 +35,20 @@ _PUT = zenoh.SampleKind.PUT
 log = logging.getLogger("aiobt.transport.backlog")
 
 
-class Backlog(Generic[M]):
-    """The last ``capacity`` messages of ``model`` on ``key``, taken in order (see the
-    module's docstring). ``received`` counts the PUTs taken; ``dropped_invalid`` the
-    ones found malformed or too large."""
+class TypedSubscriber(Generic[M]):
+    """A Zenoh subscriber of ``model`` on ``key`` and its decoding: what a
+    :class:`Backlog` and a :class:`~aiobt.transport.relay.Relay` share. ``received``
+    counts the PUTs handled; ``dropped_invalid`` the ones found malformed or too large
+    (logged once per field)."""
 
-    __slots__ = ("_bad", "_max_payload", "_subscriber", "_validate_json", "capacity", "key",
-                 "model", "received")  # fmt: skip
-
-    def __init__(
-        self, session: zenoh.Session, key: str, model: type[M], capacity: int, max_payload: int
-    ) -> None:
-        if capacity < 1:
-            raise ValueError(f"{key}: a backlog's capacity must be >= 1 message, got {capacity!r}")
+    def __init__(self, key: str, model: type[M], max_payload: int) -> None:
         self.key = key
         self.model = model
-        self.capacity = capacity
         self.received = 0
         self._bad = BadMessages(log)
         self._max_payload = max_payload
         self._validate_json: Callable[[bytes], M] = wire_validator(model)
-        ring: zenoh.handlers.RingChannel[zenoh.Sample] = zenoh.handlers.RingChannel(capacity)
-        self._subscriber: zenoh.Subscriber[zenoh.handlers.Handler[zenoh.Sample]] | None = (
-            session.declare_subscriber(key, ring)
-        )
-
-    def take(self) -> list[M]:
-        """The messages that came since the last take (at most ``capacity``), oldest first."""
-        subscriber, out = self._subscriber, []
-        if subscriber is None:
-            return []
-        for _ in range(self.capacity):  # bounded: what comes meanwhile waits for the next take
-            sample = subscriber.try_recv()
-            if sample is None:
-                break
-            if sample.kind != _PUT:
-                continue
-            self.received += 1
-            message = self._decode(sample.payload.to_bytes())
-            if message is not None:
-                out.append(message)
-        return out
+        self._subscriber: zenoh.Subscriber[Any] | None = None
 
     def _decode(self, payload: bytes) -> M | None:
         try:
@@ -93,10 +66,42 @@ class Backlog(Generic[M]):
         return self._bad.count
 
     def close(self) -> None:
-        """Undeclare (idempotent); :meth:`take` then returns nothing."""
+        """Undeclare (idempotent)."""
         subscriber, self._subscriber = self._subscriber, None
         if subscriber is not None:
             _z.undeclare(subscriber)
+
+
+class Backlog(TypedSubscriber[M]):
+    """The last ``capacity`` messages of ``model`` on ``key``, taken in order (see the
+    module's docstring); closed, :meth:`take` returns nothing."""
+
+    def __init__(
+        self, session: zenoh.Session, key: str, model: type[M], capacity: int, max_payload: int
+    ) -> None:
+        if capacity < 1:
+            raise ValueError(f"{key}: a backlog's capacity must be >= 1 message, got {capacity!r}")
+        super().__init__(key, model, max_payload)
+        self.capacity = capacity
+        ring: zenoh.handlers.RingChannel[zenoh.Sample] = zenoh.handlers.RingChannel(capacity)
+        self._subscriber = session.declare_subscriber(key, ring)
+
+    def take(self) -> list[M]:
+        """The messages that came since the last take (at most ``capacity``), oldest first."""
+        subscriber, out = self._subscriber, []
+        if subscriber is None:
+            return []
+        for _ in range(self.capacity):  # bounded: what comes meanwhile waits for the next take
+            sample = subscriber.try_recv()
+            if sample is None:
+                break
+            if sample.kind != _PUT:
+                continue
+            self.received += 1
+            message = self._decode(sample.payload.to_bytes())
+            if message is not None:
+                out.append(message)
+        return out
 
 
 def backlog(bus: Bus, name: str, model: type[M], capacity: int) -> Backlog[M]:

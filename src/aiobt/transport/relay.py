@@ -16,15 +16,14 @@ from __future__ import annotations
 
 import logging
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Generic, TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 import zenoh
-from pydantic import ValidationError
 
-from aiobt.msgs import MessageError, Msg, wire_validator
-from aiobt.transport import _z
-from aiobt.transport.bridge import PayloadTooLarge, callback
-from aiobt.transport.repeats import BadMessages, RepeatedErrors
+from aiobt.msgs import Msg
+from aiobt.transport.backlog import TypedSubscriber
+from aiobt.transport.bridge import callback
+from aiobt.transport.repeats import RepeatedErrors
 
 if TYPE_CHECKING:
     from aiobt.transport.bus import Bus
@@ -34,58 +33,36 @@ _PUT = zenoh.SampleKind.PUT
 log = logging.getLogger("aiobt.transport.relay")
 
 
-class Relay(Generic[M]):
+class Relay(TypedSubscriber[M]):
     """``fn`` called on Zenoh's thread with every good ``model`` on ``key`` (see the
-    module's docstring). ``received`` counts the PUTs, ``dropped_invalid`` the ones
-    found malformed or too large."""
+    module's docstring)."""
 
     def __init__(
         self, session: zenoh.Session, key: str, model: type[M], fn: Callable[[M], object],
         max_payload: int,
     ) -> None:  # fmt: skip
-        self.key = key
-        self.model = model
-        self.received = 0
+        super().__init__(key, model, max_payload)
         self._fn = fn
-        self._bad = BadMessages(log)
         self._errors = RepeatedErrors(log, f"{key}: relay callback")
-        self._max_payload = max_payload
-        self._validate_json: Callable[[bytes], M] = wire_validator(model)
-        self._subscriber: zenoh.Subscriber[None] | None = session.declare_subscriber(
-            key, callback(self._on_sample)
-        )
+        self._subscriber = session.declare_subscriber(key, callback(self._on_sample))
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
         """Zenoh thread: decode, then ``fn``; nothing raises out of here."""
         if sample.kind != _PUT:
             return
         self.received += 1
-        payload = sample.payload.to_bytes()
-        try:
-            if len(payload) > self._max_payload:
-                raise PayloadTooLarge(self.key, len(payload), self._max_payload)
-            message = self._validate_json(payload)
-        except ValidationError as exc:
-            self._bad.drop(MessageError.from_validation(self.model, exc, self.key))
-            return
-        except PayloadTooLarge as exc:
-            self._bad.drop(exc)
+        message = self._decode(sample.payload.to_bytes())
+        if message is None:
             return
         try:
             self._fn(message)
         except Exception as exc:
             self._errors.report(exc)
 
-    @property
-    def dropped_invalid(self) -> int:
-        return self._bad.count
-
     def close(self) -> None:
-        """Undeclare (idempotent)."""
-        subscriber, self._subscriber = self._subscriber, None
-        if subscriber is not None:
-            _z.undeclare(subscriber)
-            self._errors.flush()
+        """Undeclare (idempotent); the callback's repeated errors said."""
+        super().close()
+        self._errors.flush()
 
 
 def relay(bus: Bus, name: str, model: type[M], fn: Callable[[M], object]) -> Relay[M]:
