@@ -152,6 +152,7 @@ class PoseStream:
     def __init__(self, bus: Bus, node: LocalizationNode, outputs: Outputs) -> None:
         self._bus, self._node, self._outputs = bus, node, outputs
         self._odom: Relay[Odometry] | None = None
+        self._closed = False
         outputs.on_matching_change("pose", self.follow)
         self.follow()  # after the listener: no change slips in between
 
@@ -161,12 +162,17 @@ class PoseStream:
 
     def follow(self) -> None:
         """Subscribe the odometry while ``pose`` has a reader; let it go when none has."""
-        wanted = self._outputs.listened("pose")
+        wanted = not self._closed and self._outputs.listened("pose")
         if wanted and self._odom is None:
             self._odom = relay(self._bus, "odom", Odometry, self._on_odom)
         elif not wanted and self._odom is not None:
             self._odom.close()
             self._odom = None
+
+    def close(self) -> None:
+        """Let the odometry go for good (before the bus undeclares ``pose``'s publisher)."""
+        self._closed = True
+        self.follow()
 
     def _on_odom(self, msg: Odometry) -> None:
         """Zenoh's thread: reads only the filter's correction (replaced whole by an update)."""
@@ -212,7 +218,7 @@ async def serve(args: argparse.Namespace, params: AmclParams) -> None:
         odometry = backlog(bus, "odom", Odometry, ODOM_KEPT)
         node = LocalizationNode(params, wanted=outputs.listened, odometry=odometry.take)
         worker = ScanWorker(node, outputs)
-        PoseStream(bus, node, outputs)
+        stream = PoseStream(bus, node, outputs)
         maps = bus.subscribe(params.map_topic, OccupancyGrid, latched=True, queue_size=1)
         scans = _wire(bus, node)
         announce(bus, "localization", sim_time=args.sim_time)
@@ -220,14 +226,18 @@ async def serve(args: argparse.Namespace, params: AmclParams) -> None:
                  bus.namespace, params.min_particles, params.max_particles, params.max_beams,
                  "" if params.set_initial_pose else "; waiting for initialpose",
                  realtime)  # fmt: skip
-        async with asyncio.TaskGroup() as tasks:
-            jobs = [
-                tasks.create_task(_follow_map(bus, node, maps)),
-                tasks.create_task(worker.run(scans)),
-            ]
-            await stop.wait()
-            for job in jobs:
-                job.cancel()
+        try:
+            async with asyncio.TaskGroup() as tasks:
+                jobs = [
+                    tasks.create_task(_follow_map(bus, node, maps)),
+                    tasks.create_task(worker.run(scans)),
+                ]
+                await stop.wait()
+                for job in jobs:
+                    job.cancel()
+        finally:
+            stream.close()
+            odometry.close()
         s = _stats(node, scans)
         log.info("localization stopped: %d scans, %d updates (CPU p50 %.2f ms, p99 %.2f ms), "
                  "%d dropped unread", s.scans, s.updates, s.update_ms_p50, s.update_ms_p99,

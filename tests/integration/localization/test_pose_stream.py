@@ -63,3 +63,9 @@ async def test_pose_is_made_from_each_odometry_only_while_it_has_a_reader(
         poses.close()
         await until(lambda: not stream.following, "the stream letting the odometry go")
         await until(lambda: not odom.matched, "the odometry unsubscribed")
+        stream.close()  # the service stopping: a reader now changes nothing
+        late = robot.subscribe("pose", PoseStamped, queue_size=1)
+        await until(lambda: outputs.listened("pose"), "the late reader matching")
+        stream.follow()  # as the matching listener would
+        assert not stream.following
+        late.close()
