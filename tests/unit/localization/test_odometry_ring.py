@@ -98,8 +98,8 @@ def test_scans_take_the_same_odometry_and_give_the_same_outputs_as_per_message()
     assert correction is not None
     assert isinstance(pose, PoseStamped)
     cx, cy, cyaw = (float(v) for v in correction)
-    expected = (cx + math.cos(cyaw) * ox - math.sin(cyaw) * oy,
-                cy + math.sin(cyaw) * ox + math.cos(cyaw) * oy, float(wrap(cyaw + oyaw)))  # fmt: skip
+    c, s = math.cos(cyaw), math.sin(cyaw)
+    expected = (cx + c * ox - s * oy, cy + s * ox + c * oy, float(wrap(cyaw + oyaw)))
     assert np.allclose((pose.x, pose.y, pose.yaw), expected, atol=1e-9)
     assert pose.header.stamp == stamp
     counted = ("scans", "updates", "skipped_no_odom", "skipped_before_reset", "skipped_still")
