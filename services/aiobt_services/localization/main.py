@@ -18,6 +18,7 @@ import asyncio
 import contextlib
 import logging
 import time
+from collections.abc import Callable
 
 import numpy as np
 
@@ -37,6 +38,8 @@ from aiobt.system.realtime import realtime_if_asked
 from aiobt.system.service import open_bus_unless_stopped, run_service, stop_on_signals
 from aiobt.transport import Bus, BusSettings, Subscription
 from aiobt.transport.announce import announce
+from aiobt.transport.backlog import backlog
+from aiobt.transport.relay import Relay, relay
 
 from .laser_model import ScanError
 from .messages import LocalizationStats
@@ -55,6 +58,9 @@ PUBLISHED: dict[str, type[Msg]] = {
 }
 MAP_WAIT_LOG = 5.0  # wall s between "waiting for the map" lines
 ODOM_WAIT = 0.05  # wall s a scan waits for the odometry of its own stamp
+ODOM_LOOK = 0.002  # wall s between looks at the odometry's ring while a scan waits
+ODOM_KEPT = 128  # odometry messages the ring keeps between scans (the filter's buffer: 2.5 s
+# at 50 Hz; a scan takes them, 5 at a time at the robot's rates)
 SCAN_QUEUE = 10  # scans that wait while the filter is busy (a preempted process); then
 # the oldest are dropped and counted (AMCL's scan filter queues 100)
 
@@ -67,6 +73,10 @@ class Outputs:
     def listened(self, topic: str) -> bool:
         """Whether a subscriber matches ``topic`` now (latched ones: always)."""
         return self._pubs[topic].matched
+
+    def on_matching_change(self, topic: str, fn: Callable[[], object]) -> None:
+        """``fn()`` in the event loop whenever ``topic``'s readers come or go."""
+        self._pubs[topic].on_matching_change(fn)
 
     def send(self, messages: list[tuple[str, Msg]]) -> None:
         for topic, msg in messages:
@@ -97,16 +107,11 @@ async def _follow_map(bus: Bus, node: LocalizationNode, sub: Subscription[Occupa
 
 
 class ScanWorker:
-    """Reads scans one at a time, waiting briefly for the odometry of the scan's own
-    stamp; the filter's update runs on a worker thread."""
+    """Reads scans one at a time, taking the odometry up to the scan's own stamp from
+    the ring (waiting briefly for it); the filter's update runs on a worker thread."""
 
     def __init__(self, node: LocalizationNode, outputs: Outputs) -> None:
         self.node, self.outputs = node, outputs
-        self.odom_arrived = asyncio.Event()
-
-    def on_odom(self, msg: Odometry) -> None:
-        self.outputs.send(self.node.on_odom(msg))
-        self.odom_arrived.set()
 
     async def run(self, scans: Subscription[LaserScan]) -> None:
         stats = self.node.stats
@@ -126,13 +131,52 @@ class ScanWorker:
             self.outputs.send(self.node.correction(scan.header.stamp))  # with every scan
 
     async def _odom_up_to(self, stamp: float) -> None:
-        newest = self.node.odom.newest
+        """Take the odometry received; if none is stamped at or after ``stamp`` yet,
+        look again every ``ODOM_LOOK`` for at most ``ODOM_WAIT`` (wall s)."""
+        node = self.node
+        node.take_odometry()
         with contextlib.suppress(TimeoutError):
             async with asyncio.timeout(ODOM_WAIT):
-                while newest is None or newest[0] < stamp:
-                    self.odom_arrived.clear()
-                    await self.odom_arrived.wait()
-                    newest = self.node.odom.newest
+                while (newest := node.odom.newest) is None or newest[0] < stamp:
+                    await asyncio.sleep(ODOM_LOOK)
+                    node.take_odometry()
+
+
+class PoseStream:
+    """``{ns}/pose`` at odometry rate while a subscriber matches ``pose``: only then is
+    each odometry message handled, composed with the correction and put on Zenoh's
+    receiving thread (a :class:`~aiobt.transport.relay.Relay`, declared and closed as
+    readers come and go, told by Zenoh's matching listener: no event loop wake-up per
+    message); the filter takes its odometry from the ring either way."""
+
+    def __init__(self, bus: Bus, node: LocalizationNode, outputs: Outputs) -> None:
+        self._bus, self._node, self._outputs = bus, node, outputs
+        self._odom: Relay[Odometry] | None = None
+        self._closed = False
+        outputs.on_matching_change("pose", self.follow)
+        self.follow()  # after the listener: no change slips in between
+
+    @property
+    def following(self) -> bool:
+        return self._odom is not None
+
+    def follow(self) -> None:
+        """Subscribe the odometry while ``pose`` has a reader; let it go when none has."""
+        wanted = not self._closed and self._outputs.listened("pose")
+        if wanted and self._odom is None:
+            self._odom = relay(self._bus, "odom", Odometry, self._on_odom)
+        elif not wanted and self._odom is not None:
+            self._odom.close()
+            self._odom = None
+
+    def close(self) -> None:
+        """Let the odometry go for good (before the bus undeclares ``pose``'s publisher)."""
+        self._closed = True
+        self.follow()
+
+    def _on_odom(self, msg: Odometry) -> None:
+        """Zenoh's thread: reads only the filter's correction (replaced whole by an update)."""
+        self._outputs.send(self._node.pose_for(msg))
 
 
 def _stats(node: LocalizationNode, scans: Subscription[LaserScan]) -> LocalizationStats:
@@ -149,9 +193,8 @@ def _stats(node: LocalizationNode, scans: Subscription[LaserScan]) -> Localizati
     )  # fmt: skip
 
 
-def _wire(bus: Bus, node: LocalizationNode, worker: ScanWorker) -> Subscription[LaserScan]:
+def _wire(bus: Bus, node: LocalizationNode) -> Subscription[LaserScan]:
     p = node.params
-    bus.subscribe("odom", Odometry, callback=worker.on_odom, queue_size=8)
     scans = bus.subscribe(p.scan_topic, LaserScan, queue_size=SCAN_QUEUE)
 
     def initialpose(msg: PoseWithCovarianceStamped) -> None:
@@ -172,23 +215,29 @@ async def serve(args: argparse.Namespace, params: AmclParams) -> None:
         if bus is None:
             return
         outputs = Outputs(bus)
-        node = LocalizationNode(params, wanted=outputs.listened)
+        odometry = backlog(bus, "odom", Odometry, ODOM_KEPT)
+        node = LocalizationNode(params, wanted=outputs.listened, odometry=odometry.take)
         worker = ScanWorker(node, outputs)
+        stream = PoseStream(bus, node, outputs)
         maps = bus.subscribe(params.map_topic, OccupancyGrid, latched=True, queue_size=1)
-        scans = _wire(bus, node, worker)
+        scans = _wire(bus, node)
         announce(bus, "localization", sim_time=args.sim_time)
         log.info("localization up on namespace '%s': %d..%d particles, %d beams%s%s",
                  bus.namespace, params.min_particles, params.max_particles, params.max_beams,
                  "" if params.set_initial_pose else "; waiting for initialpose",
                  realtime)  # fmt: skip
-        async with asyncio.TaskGroup() as tasks:
-            jobs = [
-                tasks.create_task(_follow_map(bus, node, maps)),
-                tasks.create_task(worker.run(scans)),
-            ]
-            await stop.wait()
-            for job in jobs:
-                job.cancel()
+        try:
+            async with asyncio.TaskGroup() as tasks:
+                jobs = [
+                    tasks.create_task(_follow_map(bus, node, maps)),
+                    tasks.create_task(worker.run(scans)),
+                ]
+                await stop.wait()
+                for job in jobs:
+                    job.cancel()
+        finally:
+            stream.close()
+            odometry.close()
         s = _stats(node, scans)
         log.info("localization stopped: %d scans, %d updates (CPU p50 %.2f ms, p99 %.2f ms), "
                  "%d dropped unread", s.scans, s.updates, s.update_ms_p50, s.update_ms_p99,

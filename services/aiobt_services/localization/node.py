@@ -9,7 +9,7 @@ import logging
 import math
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -89,8 +89,12 @@ class LocalizationNode:
         params: AmclParams,
         rng: np.random.Generator | None = None,
         wanted: Callable[[str], bool] = lambda _topic: True,
+        odometry: Callable[[], Iterable[Odometry]] = list,
     ) -> None:
         self.params = params
+        # the odometry received since the last call, oldest first, for a reader that
+        # does not hand each message to :meth:`on_odom` (the service's Zenoh ring)
+        self._odometry = odometry
         # whether ``pose`` or ``particle_cloud`` has a reader now: neither is built for
         # none (an idle stack reads no pose; only viewers read the cloud)
         self._wanted = wanted
@@ -139,14 +143,27 @@ class LocalizationNode:
     # -- odometry: {ns}/pose at odometry rate -------------------------------
     def on_odom(self, msg: Odometry) -> list[tuple[str, Msg]]:
         """Record the odometry; the estimate composed with it as ``pose`` once known."""
-        stamp = msg.header.stamp
-        here = (msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
-        self.odom.add(stamp, *here)
+        self._record(msg)
+        return self.pose_for(msg)
+
+    def take_odometry(self) -> None:
+        """Record the odometry the ``odometry`` source holds (in the order it came)."""
+        for msg in self._odometry():
+            self._record(msg)
+
+    def _record(self, msg: Odometry) -> None:
+        position = msg.pose.position
+        self.odom.add(msg.header.stamp, position.x, position.y, msg.pose.yaw)
+
+    def pose_for(self, msg: Odometry) -> list[tuple[str, Msg]]:
+        """The estimate composed with ``msg``'s pose in ``odom``, stamped with its stamp,
+        as ``pose`` (nothing before the filter has an estimate or while nobody reads it)."""
         correction = self.amcl.map_to_odom
         if correction is None or not self._wanted("pose"):
             return []
+        here = (msg.pose.position.x, msg.pose.position.y, msg.pose.yaw)
         pose = compose((float(correction[0]), float(correction[1]), float(correction[2])), *here)
-        return [("pose", convert.map_pose(pose, stamp, self._frame))]
+        return [("pose", convert.map_pose(pose, msg.header.stamp, self._frame))]
 
     # -- scans ---------------------------------------------------------------
     def on_scan(self, scan: LaserScan) -> list[tuple[str, Msg]]:
@@ -171,6 +188,7 @@ class LocalizationNode:
         """What the filter needs of ``scan``: its beams and the odometry at its stamp
         (None if the filter cannot use it yet). Reads the odometry: call it where
         :meth:`on_odom` runs."""
+        self.take_odometry()
         self.stats.scans += 1
         if not (self.has_map and self.amcl.initialized):
             return None
@@ -258,6 +276,7 @@ class LocalizationNode:
         return Reply(True, "particles spread over the free space")
 
     def _mark_reset(self) -> None:
+        self.take_odometry()
         newest = self.odom.newest
         self._reset_at = -math.inf if newest is None else newest[0]
 

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import asyncio
-from typing import Generic, TypeVar
+from collections.abc import Callable
+from typing import Any, Generic, TypeVar
 
 import zenoh
 import zenoh.ext
 
 from aiobt.msgs import Msg
 from aiobt.transport import _z
-from aiobt.transport.bridge import JSON, LoopBridge
+from aiobt.transport.bridge import JSON, LoopBridge, callback
 
 M = TypeVar("M", bound=Msg)
 
@@ -30,6 +31,7 @@ class Publisher(Generic[M]):
         self._pub = zpub
         self._bridge = bridge
         self._closed = False
+        self._listeners: list[Any] = []
 
     def put(self, message: M) -> None:
         if not isinstance(message, self.model):
@@ -44,6 +46,18 @@ class Publisher(Generic[M]):
         if isinstance(self._pub, zenoh.Publisher):
             return _z.matching(self._pub.matching_status)
         return True
+
+    def on_matching_change(self, fn: Callable[[], object]) -> None:
+        """Call ``fn()`` in the event loop whenever subscribers start or stop matching
+        (a Zenoh matching listener: nothing runs while it stays the same; plain
+        publishers only). ``fn`` reads :attr:`matched` for the state now."""
+        if not isinstance(self._pub, zenoh.Publisher):
+            raise TypeError(f"{self.key}: a latched publisher always counts as matched")
+
+        def changed(_status: zenoh.MatchingStatus) -> None:  # Zenoh thread
+            self._bridge.call(fn)
+
+        self._listeners.append(self._pub.declare_matching_listener(callback(changed)))
 
     async def wait_for_subscribers(self, timeout: float) -> bool:  # noqa: ASYNC109
         """Wait until a subscriber matches, so that a first message is not lost; False if
@@ -61,6 +75,8 @@ class Publisher(Generic[M]):
         if self._closed:
             return
         self._closed = True
+        for listener in self._listeners:
+            _z.undeclare(listener)
         _z.undeclare(self._pub)
 
 
