@@ -62,3 +62,33 @@ async def test_without_odometry_the_clock_is_followed(local_bus: Bus) -> None:
     finally:
         feeding.cancel()
         await asyncio.gather(feeding, return_exceptions=True)
+
+
+async def test_the_odometry_is_listened_to_only_while_the_clock_is_held(local_bus: Bus) -> None:
+    odom_pub = local_bus.publisher("odom", Odometry)
+    stamp = [1.0]
+
+    async def feed() -> None:
+        while True:
+            odom_pub.put(odometry(stamp[0]))
+            stamp[0] += 0.02
+            await asyncio.sleep(0.01)
+
+    feeding = asyncio.create_task(feed())
+    try:
+        async with asyncio.timeout(5.0):
+            clock, follower = await make_clock(local_bus, sim_time=True, odometry="odom")
+        assert follower is not None
+        async with asyncio.timeout(5.0):  # nobody holds it: let go after the linger
+            while follower.attached:  # noqa: ASYNC110 - the detach has no event to await
+                await asyncio.sleep(0.05)
+        idle = clock.now()
+        await asyncio.sleep(0.1)
+        assert clock.now() == idle  # stamps sent meanwhile were not received
+        async with asyncio.timeout(5.0):
+            await clock.sleep(0.1)  # a sleeper holds it: attached, woken by the stamps
+        assert follower.attached
+        assert clock.now() >= idle + 0.1 + 0.1  # time caught up past the idle stretch
+    finally:
+        feeding.cancel()
+        await asyncio.gather(feeding, return_exceptions=True)
