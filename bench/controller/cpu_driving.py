@@ -8,8 +8,9 @@ localization) from this tree, up for the whole run. Then, ``--rounds`` times, fo
 each code in turn (``--base``: a ``git archive`` of another commit, run with
 ``PYTHONPATH`` on it; ``this``: this tree; the order alternates by round), the
 controller on sim time (``--sim-time``, as the stack runs it): its CPU (``/proc``, all
-threads) over ``--idle`` wall s standing (from 3 s after it is up), then over ``--goals`` FollowPath legs of 1.5 m
-there and back (from the first goal sent to the last result), in % of one core; and
+threads) over ``--idle`` wall s standing (from 3 s after it is up), then over
+``--goals`` FollowPath legs of 1.5 m there and back (from the first goal sent to the
+last result), in % of one core; and
 its own per-goal log lines (``rate R of 20 Hz``, ``slots lost``): the achieved rate's
 median and lowest over the goals, and the slots lost summed. Prints one markdown table
 and the load average before and after each run.
