@@ -41,6 +41,7 @@ from .session import ControllerConfig
 
 log = logging.getLogger("aiobt_services.controller.main")
 costmap_from = local_costmap_from  # the local costmap these options describe
+ODOMETRY = "odom"  # the topic the tracker reads the odometry on (its stamps: the time)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -112,7 +113,11 @@ async def serve(args: argparse.Namespace) -> None:
         ControllerService(bus, clock, config_from(args), costmap_from(args), options).start()
 
     detail = f" at {args.rate:g} Hz"
-    await serve_on_clock(args, "controller", start, detail, log, args.realtime_priority)
+    # on sim time, the odometry's stamps (it reads them while driving) for the time: the
+    # 100 Hz clock is not received as well; its loop's absolute schedule keeps the rate
+    await serve_on_clock(
+        args, "controller", start, detail, log, args.realtime_priority, odometry=ODOMETRY
+    )
 
 
 def run(args: argparse.Namespace) -> int:

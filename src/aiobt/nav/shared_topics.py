@@ -3,8 +3,8 @@
 Nav2's nodes each open their own ROS subscription; here every node and every
 tree that reads ``{ns}/odom`` (or a selector's topic) on the same bus and
 namespace shares one Zenoh subscription, declared on first use and kept until
-the bus closes. It is read, not delivered: Zenoh's thread keeps the newest
-payload and a node reading ``latest`` decodes it (``Bus.latest``). The last good
+the bus closes. It is read, not delivered: Zenoh keeps the newest payload in a
+ring and a node reading ``latest`` decodes it (``Bus.latest``). The last good
 message is kept: a malformed payload is dropped and reported once, so a node
 reading ``latest`` never sees it and never raises because of it.
 """
@@ -30,8 +30,8 @@ log = logging.getLogger("aiobt.nav.shared_topics")
 
 class SharedTopic(Generic[M]):
     """The newest good message on one key (``latest``, None until one came), read
-    through :meth:`Bus.latest <aiobt.transport.Bus.latest>`: Zenoh's thread keeps the
-    payload, a reader decodes it. No message wakes the event loop: at a sim speed-up
+    through :meth:`Bus.latest <aiobt.transport.Bus.latest>`: Zenoh keeps the payload
+    in a ring, a reader decodes it. No message wakes the event loop: at a sim speed-up
     of 10 the robot's pose and odometry are 1,000 messages a wall second, each a
     hand-over to the navigator's loop and a decode when they were delivered.
     ``keep`` > 1 also keeps the last ``keep`` messages (:meth:`newest_first`)."""
@@ -53,7 +53,8 @@ class SharedTopic(Generic[M]):
 
     @property
     def received(self) -> int:
-        """Messages that arrived (good or not) since the topic was first subscribed."""
+        """Messages taken (good or not) since the topic was first subscribed (reading
+        takes what came; one pushed out by newer ones before a read is not counted)."""
         reader = self.reader
         return self._received + (0 if reader is None else reader.received)
 

@@ -216,18 +216,22 @@ async def make_clock(
     listened to only while held: by a sleeper, a goal, a clearing call (see
     :mod:`aiobt.transport.simtime`); an idle service receives no clock.
 
-    ``odometry``: the robot's time from the stamps of its odometry on that topic
-    (always listened to), for a service that reads the odometry anyway and needs the
-    time at every moment (the collision monitor): the same time as the clock's, at 50
-    stamps a second, with no second subscription (bench/history/safety.md). Coarser
-    than the clock's 100 a second: the velocity smoother, whose timer ramps, keeps
+    ``odometry``: the robot's time from the stamps of its odometry on that topic,
+    listened to on demand as well, for a service that reads the odometry anyway (the
+    collision monitor, which holds its clock always; the controller, while a goal
+    runs): the same time as the clock's, at 50 stamps a second instead of 100
+    (bench/history/safety.md, bench/history/system.md), so a sleeper wakes on a 20 ms
+    grid at 1x (a loop on an absolute schedule keeps its rate: the controller's 50 ms
+    cycles come 40 and 60 ms apart). The velocity smoother, whose timer ramps, keeps
     the clock."""
     if not sim_time:
         return SystemClock(), None
     follower = (
         SimClockFollower(bus, on_demand=True)
         if odometry is None
-        else SimClockFollower(bus, topic=odometry, model=Odometry, stamp_of=_odometry_stamp)
+        else SimClockFollower(
+            bus, topic=odometry, on_demand=True, model=Odometry, stamp_of=_odometry_stamp
+        )
     )
     topic = odometry or "clock"
     while True:

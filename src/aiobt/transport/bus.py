@@ -114,13 +114,13 @@ class Bus:
         keep: int = 1,
     ) -> Latest[M]:  # fmt: skip
         """The newest message on ``{ns}/{name}``, decoded when read (``get()``): arrivals
-        never wake the event loop (see :mod:`aiobt.transport.latest`). For a reader of
+        run no Python (a Zenoh ring, see :mod:`aiobt.transport.latest`). For a reader of
         the value now; :meth:`subscribe` to react to each message. ``keep``: the last
         messages kept for :meth:`Latest.newest_first`."""
         keys = self.keys if namespace is None else Keys(namespace)
         key = keys.topic(name)
-        newest = Latest(key, model, self.bridge.max_payload, keep=keep, bridge=self.bridge)
-        topics.bind_subscriber(self.session, key, newest, latched=latched)
+        newest = Latest(key, model, self.bridge.max_payload, keep=keep)
+        topics.bind_ring(self.session, key, newest, latched=latched)
         newest.on_close = lambda: self._untrack(newest)
         return self._track(newest)
 

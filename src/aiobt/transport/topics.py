@@ -269,14 +269,29 @@ def declare_subscription(
 
 
 def bind_subscriber(
-    session: zenoh.Session, key: str, sub: Subscription[M] | Latest[M], *, latched: bool
+    session: zenoh.Session, key: str, sub: Subscription[M], *, latched: bool
 ) -> None:
     """Declare ``sub.on_sample`` on ``key`` (with a latched publisher's last value)."""
     handler = callback(sub.on_sample)
     if latched:
-        history = zenoh.ext.HistoryConfig(detect_late_publishers=True, max_samples=1)
-        advanced = zenoh.ext.declare_advanced_subscriber(session, key, handler, history=history)
+        advanced = zenoh.ext.declare_advanced_subscriber(session, key, handler, history=_latched())
         sub.bind(advanced.undeclare)
     else:
         plain = session.declare_subscriber(key, handler)
         sub.bind(plain.undeclare)
+
+
+def bind_ring(session: zenoh.Session, key: str, newest: Latest[M], *, latched: bool) -> None:
+    """Subscribe ``newest`` on ``key`` into a Zenoh ring of its ``keep`` samples (with a
+    latched publisher's last value): no Python runs per message."""
+    ring: zenoh.handlers.RingChannel[zenoh.Sample] = zenoh.handlers.RingChannel(newest.keep)
+    if latched:
+        advanced = zenoh.ext.declare_advanced_subscriber(session, key, ring, history=_latched())
+        newest.bind(advanced.handler, advanced.undeclare)
+    else:
+        plain = session.declare_subscriber(key, ring)
+        newest.bind(plain.handler, plain.undeclare)
+
+
+def _latched() -> zenoh.ext.HistoryConfig:
+    return zenoh.ext.HistoryConfig(detect_late_publishers=True, max_samples=1)

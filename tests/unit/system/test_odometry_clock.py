@@ -4,6 +4,9 @@ of its odometry instead of ``{ns}/clock`` (the safety chain's services use it)."
 from __future__ import annotations
 
 import asyncio
+import contextlib
+from collections.abc import AsyncIterator, Coroutine
+from typing import Any
 
 from aiobt.msgs import Clock as ClockMsg
 from aiobt.msgs import Header, Odometry, Pose
@@ -13,6 +16,17 @@ from aiobt.transport import Bus
 
 def odometry(stamp: float) -> Odometry:
     return Odometry(header=Header(stamp=stamp, frame_id="odom"), pose=Pose.from_xy_yaw(0, 0))
+
+
+@contextlib.asynccontextmanager
+async def running(feed: Coroutine[Any, Any, None]) -> AsyncIterator[asyncio.Task[None]]:
+    """``feed`` as a task for the block, cancelled at its end."""
+    task = asyncio.create_task(feed)
+    try:
+        yield task
+    finally:
+        task.cancel()
+        await asyncio.gather(task, return_exceptions=True)
 
 
 async def test_the_time_is_the_newest_odometry_stamp_and_the_clock_is_not_read(
@@ -62,3 +76,30 @@ async def test_without_odometry_the_clock_is_followed(local_bus: Bus) -> None:
     finally:
         feeding.cancel()
         await asyncio.gather(feeding, return_exceptions=True)
+
+
+async def test_the_odometry_is_listened_to_only_while_the_clock_is_held(local_bus: Bus) -> None:
+    odom_pub = local_bus.publisher("odom", Odometry)
+
+    async def feed() -> None:
+        stamp = 1.0
+        while True:
+            odom_pub.put(odometry(stamp))
+            stamp += 0.02
+            await asyncio.sleep(0.01)
+
+    async with running(feed()):
+        clock, follower = await asyncio.wait_for(
+            make_clock(local_bus, sim_time=True, odometry="odom"), 5.0
+        )
+        assert follower is not None
+        async with asyncio.timeout(5.0):  # nobody holds it: let go after the linger
+            while follower.attached:  # noqa: ASYNC110 - the detach has no event to await
+                await asyncio.sleep(0.05)
+        idle = clock.now()
+        await asyncio.sleep(0.1)
+        assert clock.now() == idle  # stamps sent meanwhile were not received
+        async with asyncio.timeout(5.0):
+            await clock.sleep(0.1)  # a sleeper holds it: attached, woken by the stamps
+        assert follower.attached
+        assert clock.now() >= idle + 0.1 + 0.1  # time caught up past the idle stretch
