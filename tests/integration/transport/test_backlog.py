@@ -53,15 +53,22 @@ async def test_take_gives_what_came_since_the_last_take_in_order_without_the_loo
 
 async def test_a_full_ring_keeps_the_newest(bus: Bus, bus_settings: BusSettings) -> None:
     odom = backlog(bus, "odom", PoseStamped, 8)
-    control = bus.latest("odom", PoseStamped)  # declared after: tells when all 30 came
+    came: list[PoseStamped] = []
+    all_came = asyncio.Event()
+
+    def count(message: PoseStamped) -> None:
+        came.append(message)
+        if len(came) == 30:
+            all_came.set()
+
+    bus.subscribe("odom", PoseStamped, count)  # declared after: tells when all 30 came
     async with open_bus(bus_settings) as robot:
         pub = robot.publisher("odom", PoseStamped)
         assert await pub.wait_for_subscribers(5.0)
         for i in range(30):
             pub.put(PoseStamped.from_xy_yaw(float(i), 0.0, 0.0))
         async with asyncio.timeout(5.0):
-            while control.received < 30:  # noqa: ASYNC110 - Latest never wakes the loop
-                await asyncio.sleep(0.01)
+            await all_came.wait()
         first = [m.x for m in odom.take()]
         xs = first + await taken_until(odom, lambda xs: 29.0 in first + xs)
     # the ring's capacity of the newest (the 30th may come just after the first take)
