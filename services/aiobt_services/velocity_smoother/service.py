@@ -12,6 +12,13 @@ held a command back for the timer whenever sim time's stamps were coarser than t
 (every 40 ms of robot time at a speed-up of 10): 79 ms p50 added at 10x. A command
 sooner than a period after the last output may change the velocity by only
 ``max_accel`` times the time between them (see :mod:`.smoother`).
+
+Stopped (no command yet, or the timeout's zero sent and no command since: Nav2's
+timer then publishes nothing), the timer waits for the next command without a clock
+sleep, so on sim time the clock is let go (:mod:`aiobt.transport.simtime`) and an
+idle smoother receives no stamps. Time then stands where it was let go: a command
+arriving before a fresh stamp is taken at the first one, so its age and the ramp
+from the last output (or odometry) count from the robot's time, as Nav2's.
 """
 
 from __future__ import annotations
@@ -26,11 +33,18 @@ import numpy as np
 from aiobt.core.clock import Clock
 from aiobt.msgs import Odometry, Twist
 from aiobt.transport import Bus, Publisher, Subscription
+from aiobt.transport.simtime import SimTime
 
 from .smoother import VelocitySmoother
 
 log = logging.getLogger("aiobt_services.velocity_smoother.service")
 REPORT_PERIOD = 5.0  # robot s between reports of dropped commands
+Velocity = tuple[float, float, float]  # vx, vy, wz
+
+
+def _fresh(clock: Clock) -> bool:
+    """Whether ``now()`` is the robot's time now (sim time not let go)."""
+    return not isinstance(clock, SimTime) or clock.fresh
 
 
 @dataclass(slots=True, frozen=True)
@@ -58,6 +72,10 @@ class SmootherService:
         self._last = -math.inf  # when the last output was sent, robot s
         self._streaming = False  # the last output was a command's: the timer waits longer
         self._next_tick = -math.inf  # the timer's next tick, robot s
+        self._next_report = -math.inf  # when dropped commands may be reported next, robot s
+        self._resting = False  # stopped: the timer waits for a command, not on the clock
+        self._wake = asyncio.Event()  # a command came (for the resting timer)
+        self._pending: Velocity | None = None  # came while time was let go: taken when fresh
 
     @property
     def dropped(self) -> int:
@@ -73,15 +91,29 @@ class SmootherService:
         self._task = asyncio.create_task(self.run(), name="velocity_smoother")
 
     def on_command(self, msg: Twist) -> None:
-        now = self.clock.now()
-        if self.smoother.command((msg.linear.x, msg.linear.y, msg.angular.z), now):
-            self._update(now, streaming=True)
+        velocity = (msg.linear.x, msg.linear.y, msg.angular.z)
+        if self._pending is not None or not _fresh(self.clock):
+            self._pending = velocity  # sim time let go while stopped: taken when fresh
+            self._wake.set()
+            return
+        self._take(velocity, self.clock.now())
 
-    def _update(self, now: float, streaming: bool) -> None:
+    def _take(self, velocity: Velocity, now: float) -> None:
+        if self.smoother.command(velocity, now):
+            self._update(now, streaming=True)
+            self._wake.set()
+        elif now >= self._next_report:
+            self._report_drops(now)
+
+    def _update(self, now: float, streaming: bool) -> bool:
+        """Publish the smoother's output at ``now``; False: nothing to publish (stopped)."""
         out = self.smoother.update(now)
-        if out is not None and self._pub is not None:
+        if out is None:
+            return False
+        if self._pub is not None:
             self._last, self._streaming = now, streaming
             self._pub.put(Twist.planar(float(out[0]), float(out[2]), float(out[1])))
+        return True
 
     def on_odom(self, msg: Odometry) -> None:
         t = msg.twist
@@ -89,23 +121,44 @@ class SmootherService:
 
     async def run(self) -> None:
         """The timer: an update a period after the last one (one and a half after a
-        command's, so a stream of commands is never overtaken by it), until cancelled."""
+        command's, so a stream of commands is never overtaken by it), until cancelled;
+        stopped, it rests until a command comes."""
         period = self.smoother.params.period
-        next_report = self.clock.now() + REPORT_PERIOD
+        self._next_report = self.clock.now() + REPORT_PERIOD
         while True:
             now = self.clock.now()
-            if now >= next_report:
-                next_report = now + REPORT_PERIOD
-                self._report_drops()
+            if now >= self._next_report:
+                self._report_drops(now)
+            if self._resting:
+                await self._rest()
+                continue
             after_output = self._last + (1.5 if self._streaming else 1.0) * period
             due = max(self._next_tick, after_output)
             if now < due:
                 await self.clock.sleep(due - now)
                 continue
             self._next_tick = now + period
-            self._update(now, streaming=False)
+            self._resting = not self._update(now, streaming=False)
 
-    def _report_drops(self) -> None:
+    async def _rest(self) -> None:
+        """Wait for a command, holding no clock; one that came while sim time was let
+        go is taken at the first fresh stamp."""
+        self._wake.clear()
+        await self._wake.wait()
+        if isinstance(self.clock, SimTime):
+            await self.clock.wait_fresh(None)
+        self._resting = False
+        pending, self._pending = self._pending, None
+        if pending is not None:
+            self._take(pending, self.clock.now())
+
+    @property
+    def resting(self) -> bool:
+        """Stopped: the timer waits for a command, not on the clock."""
+        return self._resting
+
+    def _report_drops(self, now: float) -> None:
+        self._next_report = now + REPORT_PERIOD
         dropped = self.dropped
         if dropped > self._reported:
             log.warning(
