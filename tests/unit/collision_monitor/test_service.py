@@ -99,8 +99,9 @@ async def test_base_shift_correction_takes_the_odometry_its_clock_follows(
                          pose=Pose.from_xy_yaw(0.1 * i, 0.0)))  # fmt: skip
     scan = local_bus.publisher("scan", LaserScan)
     for _ in range(50):  # until the monitor has the scan (a ring 2 m round: no stop)
-        odom.put(Odometry(header=Header(stamp=1.5, frame_id="odom"),
-                          pose=Pose.from_xy_yaw(9.0, 0.0)))  # not subscribed a second time
+        odom.put(
+            Odometry(header=Header(stamp=1.5, frame_id="odom"), pose=Pose.from_xy_yaw(9.0, 0.0))
+        )  # not subscribed a second time
         scan.put(ring_scan(2.0, 1.0))
         if await decision(local_bus, out, 0.3) == pytest.approx(0.3):
             break

@@ -82,7 +82,7 @@ async def test_a_tap_gets_each_odometry_message_the_clock_follows(local_bus: Bus
     try:
         async with asyncio.timeout(5.0):
             clock, _ = await make_clock(local_bus, sim_time=True, odometry="odom", taps=[tap])
-            wall, _ = await make_clock(local_bus, sim_time=False, odometry="odom", taps=[idle_tap])
+            await make_clock(local_bus, sim_time=False, odometry="odom", taps=[idle_tap])
     finally:
         feeding.cancel()
         await asyncio.gather(feeding, return_exceptions=True)
