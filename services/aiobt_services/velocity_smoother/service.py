@@ -16,9 +16,11 @@ sooner than a period after the last output may change the velocity by only
 Stopped (no command yet, or the timeout's zero sent and no command since: Nav2's
 timer then publishes nothing), the timer waits for the next command without a clock
 sleep, so on sim time the clock is let go (:mod:`aiobt.transport.simtime`) and an
-idle smoother receives no stamps. Time then stands where it was let go: a command
-arriving before a fresh stamp is taken at the first one, so its age and the ramp
-from the last output (or odometry) count from the robot's time, as Nav2's.
+idle smoother receives no stamps. Time then stands where it was let go. A command
+arriving then is smoothed and sent at once, as of that time: a rest lasts more than a
+period, so the step is a period's from the last output (or odometry), as Nav2's first
+tick after a command; at the first fresh stamp its time (and its output's) becomes
+that stamp's, so its age and the next step count on the robot's time again.
 """
 
 from __future__ import annotations
@@ -39,12 +41,6 @@ from .smoother import VelocitySmoother
 
 log = logging.getLogger("aiobt_services.velocity_smoother.service")
 REPORT_PERIOD = 5.0  # robot s between reports of dropped commands
-Velocity = tuple[float, float, float]  # vx, vy, wz
-
-
-def _fresh(clock: Clock) -> bool:
-    """Whether ``now()`` is the robot's time now (sim time not let go)."""
-    return not isinstance(clock, SimTime) or clock.fresh
 
 
 @dataclass(slots=True, frozen=True)
@@ -75,7 +71,6 @@ class SmootherService:
         self._next_report = -math.inf  # when dropped commands may be reported next, robot s
         self._resting = False  # stopped: the timer waits for a command, not on the clock
         self._wake = asyncio.Event()  # a command came (for the resting timer)
-        self._pending: Velocity | None = None  # came while time was let go: taken when fresh
 
     @property
     def dropped(self) -> int:
@@ -91,15 +86,8 @@ class SmootherService:
         self._task = asyncio.create_task(self.run(), name="velocity_smoother")
 
     def on_command(self, msg: Twist) -> None:
-        velocity = (msg.linear.x, msg.linear.y, msg.angular.z)
-        if self._pending is not None or not _fresh(self.clock):
-            self._pending = velocity  # sim time let go while stopped: taken when fresh
-            self._wake.set()
-            return
-        self._take(velocity, self.clock.now())
-
-    def _take(self, velocity: Velocity, now: float) -> None:
-        if self.smoother.command(velocity, now):
+        now = self.clock.now()  # sim time let go: the last stamp (see _rest)
+        if self.smoother.command((msg.linear.x, msg.linear.y, msg.angular.z), now):
             self._update(now, streaming=True)
             self._wake.set()
         elif now >= self._next_report:
@@ -141,16 +129,16 @@ class SmootherService:
             self._resting = not self._update(now, streaming=False)
 
     async def _rest(self) -> None:
-        """Wait for a command, holding no clock; one that came while sim time was let
-        go is taken at the first fresh stamp."""
+        """Wait for a command, holding no clock; one sent while sim time was let go
+        (as of the last stamp) is moved to the first fresh stamp."""
         self._wake.clear()
         await self._wake.wait()
-        if isinstance(self.clock, SimTime):
+        if isinstance(self.clock, SimTime) and not self.clock.fresh:
             await self.clock.wait_fresh(None)
+            now = self.clock.now()
+            self.smoother.resume(now)
+            self._last = now
         self._resting = False
-        pending, self._pending = self._pending, None
-        if pending is not None:
-            self._take(pending, self.clock.now())
 
     @property
     def resting(self) -> bool:

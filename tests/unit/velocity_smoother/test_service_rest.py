@@ -1,6 +1,7 @@
 """The velocity smoother stopped on sim time: its timer lets the clock go (an idle
-smoother receives no stamps), and the next command is taken at the robot's time
-now, ramping from the last output as Nav2's does."""
+smoother receives no stamps); the next command goes out at once, without waiting
+for a stamp, ramped from the last output as Nav2's, and counts its age from the
+robot's time once a stamp comes."""
 
 from __future__ import annotations
 
@@ -21,15 +22,17 @@ LINGER = 0.05  # wall s the clock stays attached after the last hold
 
 
 @contextlib.asynccontextmanager
-async def running(bus: Bus) -> AsyncIterator[tuple[SmootherService, Sim]]:
+async def running(bus: Bus, going: asyncio.Event) -> AsyncIterator[tuple[SmootherService, Sim]]:
     """The smoother (``velocity_timeout`` 0.2 s) on a :class:`SimTime` fed by a fake
-    simulation running at about 10x (10 ms of sim time per wall ms) while attached."""
+    simulation running at about 10x (10 ms of sim time per wall ms) while ``going``,
+    heard while attached."""
     clock = SimTime(linger=LINGER)
     sim = Sim(clock)
     sim.tick()
 
     async def simulate() -> None:
         while True:
+            await going.wait()
             sim.tick()
             await asyncio.sleep(0.001)
 
@@ -59,7 +62,9 @@ async def test_stopped_it_lets_the_clock_go_and_the_next_command_ramps_at_robot_
     local_bus: Bus,
 ) -> None:
     out = local_bus.subscribe("cmd_vel_smoothed", Twist)
-    async with running(local_bus) as (service, sim):
+    going = asyncio.Event()
+    going.set()
+    async with running(local_bus, going) as (service, sim):
         async with asyncio.timeout(2.0):  # no command yet: nothing to publish, no clock
             await sim.detached.wait()
         assert service.resting
@@ -67,8 +72,11 @@ async def test_stopped_it_lets_the_clock_go_and_the_next_command_ramps_at_robot_
             stood = sim.time
             await asyncio.sleep(0.05)  # the robot's time moves on unheard
             assert sim.time > stood + 0.2  # by more than velocity_timeout
+            going.clear()  # and then stands: no stamp to wait for
             service.on_command(Twist.planar(0.5, 0.0))
-            seen = await outputs(out)
+            first = await out.next(timeout=1.0)  # sent at once, without a stamp
+            going.set()
+            seen = [first.linear.x, *await outputs(out)]
             # taken at a fresh stamp: ramped from 0 within max_accel (2.5 m/s^2 a
             # 0.05 s period), up to the command, then the timeout's ramp to zero
             assert seen[0] == pytest.approx(0.125), burst
@@ -84,7 +92,9 @@ async def test_a_command_while_the_clock_is_still_held_goes_out_at_once(
     local_bus: Bus,
 ) -> None:
     out = local_bus.subscribe("cmd_vel_smoothed", Twist)
-    async with running(local_bus) as (service, sim):
+    going = asyncio.Event()
+    going.set()
+    async with running(local_bus, going) as (service, sim):
         for _ in range(100):  # bounded: the timer's first turn finds nothing to send
             if service.resting:
                 break
@@ -92,6 +102,6 @@ async def test_a_command_while_the_clock_is_still_held_goes_out_at_once(
         assert service.resting
         assert not sim.detached.is_set()  # within the linger: time still fresh
         service.on_command(Twist.planar(0.3, 0.0))
-        assert service.smoother.received  # taken at once, not held for a stamp
         first = await out.next(timeout=1.0)
         assert first.linear.x == pytest.approx(0.125)
+        assert sim.attaches == 1  # never let go, never attached again
