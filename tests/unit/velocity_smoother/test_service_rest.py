@@ -22,10 +22,12 @@ LINGER = 0.05  # wall s the clock stays attached after the last hold
 
 
 @contextlib.asynccontextmanager
-async def running(bus: Bus, going: asyncio.Event) -> AsyncIterator[tuple[SmootherService, Sim]]:
+async def running(bus: Bus) -> AsyncIterator[tuple[SmootherService, Sim, asyncio.Event]]:
     """The smoother (``velocity_timeout`` 0.2 s) on a :class:`SimTime` fed by a fake
-    simulation running at about 10x (10 ms of sim time per wall ms) while ``going``,
-    heard while attached."""
+    simulation running at about 10x (10 ms of sim time per wall ms) while the event
+    yielded is set (at first), heard while attached."""
+    going = asyncio.Event()
+    going.set()
     clock = SimTime(linger=LINGER)
     sim = Sim(clock)
     sim.tick()
@@ -41,7 +43,7 @@ async def running(bus: Bus, going: asyncio.Event) -> AsyncIterator[tuple[Smoothe
     service = SmootherService(bus, clock, VelocitySmoother(params))
     service.start()
     try:
-        yield service, sim
+        yield service, sim, going
     finally:
         await service.stop()
         ticker.cancel()
@@ -62,9 +64,7 @@ async def test_stopped_it_lets_the_clock_go_and_the_next_command_ramps_at_robot_
     local_bus: Bus,
 ) -> None:
     out = local_bus.subscribe("cmd_vel_smoothed", Twist)
-    going = asyncio.Event()
-    going.set()
-    async with running(local_bus, going) as (service, sim):
+    async with running(local_bus) as (service, sim, going):
         async with asyncio.timeout(2.0):  # no command yet: nothing to publish, no clock
             await sim.detached.wait()
         assert service.resting
@@ -77,8 +77,9 @@ async def test_stopped_it_lets_the_clock_go_and_the_next_command_ramps_at_robot_
             first = await out.next(timeout=1.0)  # sent at once, without a stamp
             going.set()
             seen = [first.linear.x, *await outputs(out)]
-            # taken at a fresh stamp: ramped from 0 within max_accel (2.5 m/s^2 a
-            # 0.05 s period), up to the command, then the timeout's ramp to zero
+            # one period's step from 0 within max_accel (2.5 m/s^2, 0.05 s), then, its
+            # age counted from the fresh stamp, up to the command and the timeout's
+            # ramp to zero (its age from the stale time: straight to zero)
             assert seen[0] == pytest.approx(0.125), burst
             assert max(seen) == pytest.approx(0.5), burst
             assert seen[-1] == 0.0, burst
@@ -92,9 +93,7 @@ async def test_a_command_while_the_clock_is_still_held_goes_out_at_once(
     local_bus: Bus,
 ) -> None:
     out = local_bus.subscribe("cmd_vel_smoothed", Twist)
-    going = asyncio.Event()
-    going.set()
-    async with running(local_bus, going) as (service, sim):
+    async with running(local_bus) as (service, sim, _):
         for _ in range(100):  # bounded: the timer's first turn finds nothing to send
             if service.resting:
                 break
