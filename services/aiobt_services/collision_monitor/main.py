@@ -17,6 +17,7 @@ import yaml
 
 from aiobt.core.clock import Clock
 from aiobt.system.catalog import realtime_priority
+from aiobt.system.odometry_tap import OdometryTap
 from aiobt.system.realtime import add_realtime_argument
 from aiobt.system.service import (
     Component,
@@ -28,7 +29,7 @@ from aiobt.transport import Bus, add_bus_arguments
 
 from .monitor import CollisionMonitor
 from .params import MonitorConfigError, MonitorParams, load_params
-from .service import MonitorService
+from .service import ODOM_KEPT, MonitorService
 
 log = logging.getLogger("aiobt_services.collision_monitor.main")
 DEFAULT_PARAMS = Path(__file__).with_name("default.yaml")
@@ -70,14 +71,17 @@ def component(args: argparse.Namespace) -> Component:
     """The monitor as its process starts it (alone, or composed: :mod:`aiobt.system.compose`);
     :class:`MonitorConfigError` names a bad parameter."""
     params = params_from(args)
+    tap = OdometryTap(ODOM_KEPT) if params.base_shift_correction else None
 
     def start(bus: Bus, clock: Clock) -> None:
-        MonitorService(bus, clock, CollisionMonitor(params, robot_time=args.sim_time)).start()
+        monitor = CollisionMonitor(params, robot_time=args.sim_time)
+        MonitorService(bus, clock, monitor, tap if tap and tap.tapped else None).start()
 
     names = ", ".join(f"{z.name} ({z.action_type})" for z in params.polygons)
     detail = f": {params.cmd_vel_in_topic} -> {params.cmd_vel_out_topic}, polygons {names}"
-    # on sim time, the robot's time from its odometry (read anyway): no clock as well
-    return Component("collision_monitor", start, detail, odometry=params.odom_topic)
+    # on sim time, the robot's time from its odometry (read anyway): no clock as well,
+    # and the odometry for base_shift_correction from the same subscription
+    return Component("collision_monitor", start, detail, params.odom_topic, tap)
 
 
 def run(args: argparse.Namespace) -> int:

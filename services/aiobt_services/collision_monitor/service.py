@@ -1,16 +1,21 @@
 """The collision monitor on the bus: ``{ns}/cmd_vel_smoothed`` in, ``{ns}/cmd_vel`` out,
 one decision per command (as Nav2's); sources subscribed as configured (the lidar on
 ``{ns}/scan``, point clouds on any key); ``{ns}/odom`` for ``base_shift_correction``,
-kept undecoded as it comes (50 Hz: no wake-up of the loop each) and read when a scan
-or a command arrives.
+kept as it comes (50 Hz: no wake-up of the loop each) and read when a scan or a
+command arrives.
 
 On sim time the monitor's clock is the robot's time as its odometry stamps it
 (:func:`aiobt.system.service.make_clock`), not a second subscription to the 100 Hz
-``{ns}/clock``: the
-same time base as Nav2's (``use_sim_time``), at a third of the wake-ups of Zenoh's
-threads (bench/history/safety.md). Beside Nav2's decision per command, a source
-going stale between two commands stops a moving base at once (:meth:`watch`), so
-the stop does not wait for the controller's next command.
+``{ns}/clock``: the same time base as Nav2's (``use_sim_time``), at a third of the
+wake-ups of Zenoh's threads (bench/history/safety.md). The odometry for
+``base_shift_correction`` then comes from that same subscription (an
+:class:`~aiobt.system.odometry_tap.OdometryTap`: each message decoded once, for
+both); on the wall clock, or on a clock shared with another component, the monitor
+keeps the odometry's payloads itself (a ``Latest``).
+
+Beside Nav2's decision per command, a source going stale between two commands stops
+a moving base at once (:meth:`watch`), so the stop does not wait for the controller's
+next command.
 
 Publishes, latched, its state on ``{ns}/collision_monitor/state`` (which polygon acts
 and why, on every change) and its polygons on ``{ns}/collision_monitor/polygons`` (the
@@ -33,6 +38,7 @@ from aiobt.msgs.safety import (
     PointCloud,
     ZoneOutline,
 )
+from aiobt.system.odometry_tap import OdometryTap
 from aiobt.transport import Bus, Latest, Publisher
 from aiobt.transport.simtime import SimTime
 
@@ -50,7 +56,9 @@ IDLE_CHECK = 1.0  # robot s between looks for data to watch when none goes stale
 class MonitorService:
     """Wires a :class:`CollisionMonitor` to the bus."""
 
-    def __init__(self, bus: Bus, clock: Clock, monitor: CollisionMonitor) -> None:
+    def __init__(
+        self, bus: Bus, clock: Clock, monitor: CollisionMonitor, tap: OdometryTap | None = None
+    ) -> None:
         self.bus = bus
         self.clock = clock
         self.monitor = monitor
@@ -60,6 +68,7 @@ class MonitorService:
         self._shown: tuple[str, str] | None = None  # the (action, polygon) last reported
         self._shapes: tuple[int, ...] = ()  # the zones' shapes last published
         self._odom: Latest[Odometry] | None = None
+        self._tap = tap  # the odometry the clock follows (None: subscribed here)
         self._odom_fed = -math.inf  # the stamp of the newest odometry in the history
         self._command: Vel = STOP  # the last command in
         self._task: asyncio.Task[None] | None = None
@@ -75,7 +84,7 @@ class MonitorService:
         self._polygons = self.bus.latched_publisher(POLYGONS_TOPIC, CollisionPolygons)
         for source in self.monitor.sources.values():
             self._subscribe(source)
-        if self.monitor.odom is not None:
+        if self.monitor.odom is not None and self._tap is None:
             self._odom = self.bus.latest(p.odom_topic, Odometry, keep=ODOM_KEPT)
         self.bus.subscribe(p.cmd_vel_in_topic, Twist, self.on_command, queue_size=1)
         self.bus.serve(TOGGLE_SERVICE, Toggle.Request, Toggle.Response, self.on_toggle)
@@ -108,6 +117,11 @@ class MonitorService:
     def _feed_odom(self) -> None:
         """The odometry come since the last call into the history, oldest first."""
         history = self.monitor.odom
+        if self._tap is not None and history is not None:
+            for msg in self._tap.take():
+                pose = msg.pose
+                history.add(msg.header.stamp, pose.position.x, pose.position.y, pose.yaw)
+            return
         if self._odom is None or history is None:
             return
         newest = self._odom.get()

@@ -12,6 +12,15 @@ held a command back for the timer whenever sim time's stamps were coarser than t
 (every 40 ms of robot time at a speed-up of 10): 79 ms p50 added at 10x. A command
 sooner than a period after the last output may change the velocity by only
 ``max_accel`` times the time between them (see :mod:`.smoother`).
+
+Stopped (no command yet, or the timeout's zero sent and no command since: Nav2's
+timer then publishes nothing), the timer waits for the next command without a clock
+sleep, so on sim time the clock is let go (:mod:`aiobt.transport.simtime`) and an
+idle smoother receives no stamps. Time then stands where it was let go. A command
+arriving then is smoothed and sent at once, as of that time: a rest lasts more than a
+period, so the step is a period's from the last output (or odometry), as Nav2's first
+tick after a command; at the first fresh stamp its time (and its output's) becomes
+that stamp's, so its age and the next step count on the robot's time again.
 """
 
 from __future__ import annotations
@@ -26,6 +35,7 @@ import numpy as np
 from aiobt.core.clock import Clock
 from aiobt.msgs import Odometry, Twist
 from aiobt.transport import Bus, Publisher, Subscription
+from aiobt.transport.simtime import SimTime
 
 from .smoother import VelocitySmoother
 
@@ -58,6 +68,9 @@ class SmootherService:
         self._last = -math.inf  # when the last output was sent, robot s
         self._streaming = False  # the last output was a command's: the timer waits longer
         self._next_tick = -math.inf  # the timer's next tick, robot s
+        self._next_report = -math.inf  # when dropped commands may be reported next, robot s
+        self._resting = False  # stopped: the timer waits for a command, not on the clock
+        self._wake = asyncio.Event()  # a command came (for the resting timer)
 
     @property
     def dropped(self) -> int:
@@ -73,15 +86,22 @@ class SmootherService:
         self._task = asyncio.create_task(self.run(), name="velocity_smoother")
 
     def on_command(self, msg: Twist) -> None:
-        now = self.clock.now()
+        now = self.clock.now()  # sim time let go: the last stamp (see _rest)
         if self.smoother.command((msg.linear.x, msg.linear.y, msg.angular.z), now):
             self._update(now, streaming=True)
+            self._wake.set()
+        elif now >= self._next_report:
+            self._report_drops(now)
 
-    def _update(self, now: float, streaming: bool) -> None:
+    def _update(self, now: float, streaming: bool) -> bool:
+        """Publish the smoother's output at ``now``; False: nothing to publish (stopped)."""
         out = self.smoother.update(now)
-        if out is not None and self._pub is not None:
+        if out is None:
+            return False
+        if self._pub is not None:
             self._last, self._streaming = now, streaming
             self._pub.put(Twist.planar(float(out[0]), float(out[2]), float(out[1])))
+        return True
 
     def on_odom(self, msg: Odometry) -> None:
         t = msg.twist
@@ -89,23 +109,44 @@ class SmootherService:
 
     async def run(self) -> None:
         """The timer: an update a period after the last one (one and a half after a
-        command's, so a stream of commands is never overtaken by it), until cancelled."""
+        command's, so a stream of commands is never overtaken by it), until cancelled;
+        stopped, it rests until a command comes."""
         period = self.smoother.params.period
-        next_report = self.clock.now() + REPORT_PERIOD
+        self._next_report = self.clock.now() + REPORT_PERIOD
         while True:
             now = self.clock.now()
-            if now >= next_report:
-                next_report = now + REPORT_PERIOD
-                self._report_drops()
+            if now >= self._next_report:
+                self._report_drops(now)
+            if self._resting:
+                await self._rest()
+                continue
             after_output = self._last + (1.5 if self._streaming else 1.0) * period
             due = max(self._next_tick, after_output)
             if now < due:
                 await self.clock.sleep(due - now)
                 continue
             self._next_tick = now + period
-            self._update(now, streaming=False)
+            self._resting = not self._update(now, streaming=False)
 
-    def _report_drops(self) -> None:
+    async def _rest(self) -> None:
+        """Wait for a command, holding no clock; one sent while sim time was let go
+        (as of the last stamp) is moved to the first fresh stamp."""
+        self._wake.clear()
+        await self._wake.wait()
+        if isinstance(self.clock, SimTime) and not self.clock.fresh:
+            await self.clock.wait_fresh(None)
+            now = self.clock.now()
+            self.smoother.resume(now)
+            self._last = now
+        self._resting = False
+
+    @property
+    def resting(self) -> bool:
+        """Stopped: the timer waits for a command, not on the clock."""
+        return self._resting
+
+    def _report_drops(self, now: float) -> None:
+        self._next_report = now + REPORT_PERIOD
         dropped = self.dropped
         if dropped > self._reported:
             log.warning(

@@ -52,6 +52,15 @@ class VelocitySmoother:
     def received(self) -> bool:
         return self._command_time is not None
 
+    def resume(self, now: float) -> None:
+        """The clock stood still (sim time let go while stopped) and reads ``now`` again:
+        the command and the output made while it stood are taken as of ``now``, so the
+        command's age and the next update's step count from there."""
+        if self._command_time is not None:
+            self._command_time = now
+        if self._updated is not None:
+            self._updated = now
+
     def command(self, velocity: Sequence[float], now: float) -> bool:
         """Take ``[vx, vy, wz]`` received at ``now``; False (and counted) if not finite."""
         if not all(math.isfinite(v) for v in velocity):

@@ -19,6 +19,7 @@ from typing import Any, TypeVar
 from aiobt.core.clock import Clock, SystemClock
 from aiobt.msgs import Odometry
 from aiobt.system.heap import settle
+from aiobt.system.odometry_tap import OdometryTap
 from aiobt.system.realtime import RealtimePriorityError, realtime_if_asked
 from aiobt.system.signals import stop_on_signals as stop_on_signals  # for the services
 from aiobt.transport import (
@@ -128,12 +129,15 @@ class Component:
     """One service as its process starts it: ``start(bus, clock)`` wires it, then the
     token ``nodes/{name}`` says it is up. Several run in one process on one bus
     (:mod:`aiobt.system.compose`, Nav2's composition); ``odometry``: its clock on sim
-    time may come from that topic's stamps (see :func:`make_clock`, :func:`time_sources`)."""
+    time may come from that topic's stamps (see :func:`make_clock`, :func:`time_sources`);
+    ``odometry_tap``: the messages of those stamps handed on, when they are its clock's
+    (:mod:`aiobt.system.odometry_tap`)."""
 
     name: str
     start: Callable[[Bus, Clock], None]
     detail: str = ""
     odometry: str | None = None
+    odometry_tap: OdometryTap | None = None
 
 
 async def serve_on_clock(
@@ -169,7 +173,9 @@ async def serve_components(
         sources = time_sources(components)
         clocks: dict[str | None, Clock] = {}
         for source in dict.fromkeys(sources.values()):
-            made = await unless_stopped(make_clock(bus, args.sim_time, source), stopper)
+            taps = [c.odometry_tap for c in components if sources[c.name] == source]
+            taken = make_clock(bus, args.sim_time, source, [t for t in taps if t is not None])
+            made = await unless_stopped(taken, stopper)
             if made is None:
                 return
             clocks[source] = made[0]
@@ -210,7 +216,7 @@ async def open_clock(bus: Bus, sim_time: bool, stop: asyncio.Event) -> Clock | N
 
 
 async def make_clock(
-    bus: Bus, sim_time: bool, odometry: str | None = None
+    bus: Bus, sim_time: bool, odometry: str | None = None, taps: Sequence[OdometryTap] = ()
 ) -> tuple[Clock, SimClockFollower | None]:
     """The wall clock, or a clock following ``{ns}/clock`` (waits for the first stamp),
     listened to only while held: by a sleeper, a goal, a clearing call (see
@@ -223,16 +229,20 @@ async def make_clock(
     (bench/history/safety.md, bench/history/system.md), so a sleeper wakes on a 20 ms
     grid at 1x (a loop on an absolute schedule keeps its rate: the controller's 50 ms
     cycles come 40 and 60 ms apart). The velocity smoother, whose timer ramps, keeps
-    the clock."""
+    the clock. Each of ``taps`` then gets every odometry message followed (``tapped``
+    set): a service keeping the odometry needs no second subscription (the tap is fed
+    while the clock is held: the monitor holds it always)."""
     if not sim_time:
         return SystemClock(), None
-    follower = (
-        SimClockFollower(bus, on_demand=True)
-        if odometry is None
-        else SimClockFollower(
-            bus, topic=odometry, on_demand=True, model=Odometry, stamp_of=_odometry_stamp
+    if odometry is None:
+        follower = SimClockFollower(bus, on_demand=True)
+    else:
+        for tap in taps:
+            tap.tapped = True
+        stamp_of = _tapped_stamp(taps) if taps else _odometry_stamp
+        follower = SimClockFollower(
+            bus, topic=odometry, on_demand=True, model=Odometry, stamp_of=stamp_of
         )
-    )
     topic = odometry or "clock"
     while True:
         try:
@@ -244,3 +254,14 @@ async def make_clock(
 
 def _odometry_stamp(odometry: Odometry) -> float:
     return odometry.header.stamp
+
+
+def _tapped_stamp(taps: Sequence[OdometryTap]) -> Callable[[Odometry], float]:
+    """The stamp of each odometry message, the message handed to ``taps`` (Zenoh's thread)."""
+
+    def stamp_of(odometry: Odometry) -> float:
+        for tap in taps:
+            tap.put(odometry)
+        return odometry.header.stamp
+
+    return stamp_of

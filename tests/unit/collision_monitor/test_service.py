@@ -10,6 +10,7 @@ import pytest
 from aiobt.core.clock import ManualClock
 from aiobt.msgs import Header, LaserScan, Odometry, Pose, Toggle, Twist
 from aiobt.msgs.safety import CollisionMonitorState, CollisionPolygons
+from aiobt.system.odometry_tap import OdometryTap
 from aiobt.transport import Bus, Subscription
 from aiobt_services.collision_monitor import CollisionMonitor, load_params
 from aiobt_services.collision_monitor.service import MonitorService
@@ -17,10 +18,12 @@ from aiobt_services.collision_monitor.service import MonitorService
 from .nav2_setup import config, polygon, ring_scan
 
 
-def start(bus: Bus, **top: Any) -> tuple[MonitorService, ManualClock]:
+def start(
+    bus: Bus, tap: OdometryTap | None = None, **top: Any
+) -> tuple[MonitorService, ManualClock]:
     clock = ManualClock(1.0)
     params = load_params(config({"Stop": polygon("polygon", 1.0, "stop")}, **top))
-    service = MonitorService(bus, clock, CollisionMonitor(params))
+    service = MonitorService(bus, clock, CollisionMonitor(params), tap)
     service.start()
     return service, clock
 
@@ -75,11 +78,39 @@ async def test_base_shift_correction_reads_the_odometry_come_since(local_bus: Bu
         scan.put(ring_scan(2.0, 1.0))
         if await decision(local_bus, out, 0.3) == pytest.approx(0.3):
             break
+    assert await odom.wait_for_subscribers(2.0)  # no clock's to tap: its own
     history = service.monitor.odom
     assert history is not None
     assert not history.empty
     assert history.latest() == pytest.approx((0.4, 0.0, 0.0))
     assert clock.now() == 1.0
+
+
+async def test_base_shift_correction_takes_the_odometry_its_clock_follows(
+    local_bus: Bus,
+) -> None:
+    tap = OdometryTap(keep=32)
+    tap.tapped = True  # as make_clock sets it on sim time
+    service, _ = start(local_bus, tap, base_shift_correction=True)
+    out = local_bus.subscribe("cmd_vel_out", Twist)
+    odom = local_bus.publisher("odom", Odometry)
+    for i in range(5):  # the clock's odometry: 0.1 m a step along x
+        tap.put(Odometry(header=Header(stamp=1.0 + 0.02 * i, frame_id="odom"),
+                         pose=Pose.from_xy_yaw(0.1 * i, 0.0)))  # fmt: skip
+    scan = local_bus.publisher("scan", LaserScan)
+    for _ in range(50):  # until the monitor has the scan (a ring 2 m round: no stop)
+        odom.put(
+            Odometry(header=Header(stamp=1.5, frame_id="odom"), pose=Pose.from_xy_yaw(9.0, 0.0))
+        )  # not subscribed a second time
+        scan.put(ring_scan(2.0, 1.0))
+        if await decision(local_bus, out, 0.3) == pytest.approx(0.3):
+            break
+    assert not await odom.wait_for_subscribers(0.3)  # one subscription: the clock's
+    history = service.monitor.odom
+    assert history is not None
+    assert history.latest() == pytest.approx((0.4, 0.0, 0.0))
+    assert history.pose_at(1.03) == pytest.approx((0.15, 0.0, 0.0))  # all five, in order
+    assert tap.take() == []
 
 
 async def test_data_gone_stale_between_commands_stops_a_moving_base_at_once(
