@@ -2,6 +2,7 @@
 odometry composed with the correction localization sends, the pose stream only until
 a correction comes."""
 
+import math
 from collections.abc import Iterator
 from typing import Generic, TypeVar
 
@@ -118,6 +119,11 @@ def test_a_correction_switches_to_composing_and_lets_the_pose_stream_go() -> Non
     assert moved is not None
     assert moved is not got
     assert (moved.x, moved.y, moved.header.stamp) == pytest.approx((1.6, 2.0, 1.02))
+    odom.put(_odom(1.04, 0.6, 0.0, 0.2))
+    tf.put(_wire(correction_message((1.0, 2.0, 0.5 * math.pi), 1.04)))  # turned a quarter
+    turned = reader.get()
+    assert turned is not None
+    assert (turned.x, turned.y, turned.yaw) == pytest.approx((1.0, 2.6, 0.5 * math.pi + 0.2))
 
 
 def test_the_pose_stops_where_the_correction_stopped() -> None:
@@ -138,6 +144,15 @@ def test_the_pose_stops_where_the_correction_stopped() -> None:
     assert back is not None
     assert back.header.stamp == 3.1
     assert [p.header.stamp for p in reader.newest_first()] == [3.1, 3.0, 2.9]
+
+
+def test_stopped_past_the_kept_odometry_the_pose_is_where_it_stopped() -> None:
+    reader, odom, tf, _ = _reader(keep=1)
+    tf.put(_wire(correction_message((1.0, 0.0, 0.0), 2.0)))
+    odom.put(_odom(3.0, 0.6, 0.0, 0.0))
+    last = reader.get()
+    odom.put(_odom(3.1, 0.7, 0.0, 0.0))  # the odometry at 3.0 no longer kept
+    assert reader.get() is last
 
 
 def test_when_the_odometry_stops_the_pose_keeps_its_stamp() -> None:
