@@ -20,12 +20,11 @@ When the odometry stops, the pose keeps the last one's stamp, as before.
 
 from __future__ import annotations
 
-import asyncio
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Protocol, TypeVar
 
 from aiobt.msgs import Odometry, PoseStamped, TFMessage, pose_fields
-from aiobt.transport.latest import look_after
+from aiobt.transport.latest import first_read
 
 from .correction import MAP_FRAME, POSE_TOPIC, TF_TOPIC, Correction, compose, correction_of
 
@@ -150,13 +149,8 @@ class MapPose:
 
     async def wait_latest(self, timeout: float | None = None) -> PoseStamped:  # noqa: ASYNC109
         """The newest pose in ``map``, waiting (at most ``timeout`` s) for one to be told
-        (looking at the rings, :func:`~aiobt.transport.latest.look_after`)."""
-        loop = asyncio.get_running_loop()
-        start = loop.time()
-        async with asyncio.timeout(timeout):
-            while (pose := self.get()) is None:  # noqa: ASYNC110 - nothing calls the loop
-                await asyncio.sleep(look_after(loop.time() - start))
-        return pose
+        (looking at the rings: :func:`~aiobt.transport.latest.first_read`)."""
+        return await first_read(self.get, timeout)
 
     def close(self) -> None:
         self._odom.close()
