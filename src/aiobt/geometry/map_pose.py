@@ -68,7 +68,8 @@ class MapPose:
         self.tolerance = tolerance
         self._correction: Correction | None = None
         self._tf_read: TFMessage | None = None  # the newest tf message looked at
-        self._made: tuple[Odometry, Correction, PoseStamped] | None = None  # the last composed
+        # the newest odometry and the correction read last, and the pose they gave
+        self._made: tuple[Odometry, Correction, PoseStamped] | None = None
 
     @classmethod
     def read(
@@ -122,10 +123,13 @@ class MapPose:
             return made[2]
         for odom in self._odom.newest_first():
             if odom.header.stamp <= correction.stamp + self.tolerance:
-                pose = self._compose(correction, odom)
-                self._made = (odom, correction, pose)
-                return pose
-        return None if made is None else made[2]  # none kept that early: where it stopped
+                pose: PoseStamped | None = self._compose(correction, odom)
+                break
+        else:
+            pose = None if made is None else made[2]  # none kept that early: where it stopped
+        if pose is not None:  # the answer until the odometry or the correction changes
+            self._made = (newest, correction, pose)
+        return pose
 
     def newest_first(self) -> Iterator[PoseStamped]:
         """The kept poses, newest first: each kept odometry message composed with the
