@@ -137,7 +137,8 @@ def test_the_pose_stops_where_the_correction_stopped() -> None:
     odom.put(_odom(3.1, 0.7, 0.0, 0.0))
     stopped = reader.get()
     assert stopped is not None
-    assert stopped.header.stamp == 3.0
+    assert stopped.header.stamp == 3.0  # stale: its stamp tells
+    assert reader.get() is stopped  # not looked for again until something changes
     assert [p.header.stamp for p in reader.newest_first()] == [3.0, 2.9]
     tf.put(_wire(correction_message((1.0, 0.0, 0.0), 3.1)))  # localization back
     back = reader.get()
