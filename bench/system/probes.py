@@ -11,9 +11,10 @@ import time
 from collections.abc import AsyncIterator, Callable, Sequence
 from typing import Generic, TypeVar
 
+from aiobt.geometry.map_pose import MapPose, Reader
 from aiobt.msgs import Clock, ComputePathToPose, Msg, PoseStamped, Twist
 from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
-from aiobt.transport import ActionError, Bus, Latest
+from aiobt.transport import ActionError, Bus
 from aiobt.transport.keys import sim_namespace
 
 M = TypeVar("M", bound=Msg)
@@ -23,18 +24,27 @@ class Newest(Generic[M]):
     """A topic's newest message, for the instrument: subscribed (``bus.latest``, whose
     arrivals never wake the loop) only while :meth:`held` or for one :meth:`read`, so
     the 1,000 clock stamps and 500 poses a wall second at 10x cost the machine it
-    measures nothing between the instrument's looks (its process, the router)."""
+    measures nothing between the instrument's looks (its process, the router).
+    ``opener``: what reads it, if not ``bus.latest(name, model)``."""
 
-    def __init__(self, bus: Bus, name: str, model: type[M], poll: float = 0.002) -> None:
-        self._bus, self._name, self._model, self._poll = bus, name, model, poll
-        self._open: Latest[M] | None = None
+    def __init__(
+        self,
+        bus: Bus,
+        name: str,
+        model: type[M],
+        poll: float = 0.002,
+        opener: Callable[[], Reader[M]] | None = None,
+    ) -> None:
+        self._name, self._poll = name, poll
+        self._opener: Callable[[], Reader[M]] = opener or (lambda: bus.latest(name, model))
+        self._open: Reader[M] | None = None
         self._holds = 0
 
     @contextlib.asynccontextmanager
     async def held(self) -> AsyncIterator[None]:
         """Subscribed within (:meth:`peek` answers the newest)."""
         if self._open is None:
-            self._open = self._bus.latest(self._name, self._model)
+            self._open = self._opener()
         self._holds += 1
         try:
             yield
@@ -92,10 +102,13 @@ class SimClock(Newest[Clock]):
 
 
 class RobotPose(Newest[PoseStamped]):
-    """The robot's newest pose (see :class:`Newest`), and a wait for it to stand still."""
+    """The robot's newest pose in ``map`` (see :class:`Newest`) as the stack's services
+    read it (:class:`~aiobt.geometry.map_pose.MapPose`: the odometry composed with
+    localization's correction, ``{ns}/pose`` only until one comes), and a wait for it
+    to stand still."""
 
     def __init__(self, bus: Bus, poll: float = 0.02) -> None:
-        super().__init__(bus, "pose", PoseStamped, poll)
+        super().__init__(bus, "pose", PoseStamped, poll, lambda: MapPose.read(bus))
 
     async def wait_still(self, seconds: float, timeout: float, tolerance: float = 0.01) -> bool:  # noqa: ASYNC109
         """True once the robot moved less than ``tolerance`` m over ``seconds`` of sim time."""

@@ -15,7 +15,7 @@ import logging
 from typing import Any
 
 from aiobt.core.clock import Clock
-from aiobt.core.errors import LogicError
+from aiobt.geometry.map_pose import MapPose
 from aiobt.msgs import (
     ActionResult,
     BtSnapshot,
@@ -60,16 +60,15 @@ class NavRobotState:
     def __init__(self, nav: NavContext, clock: Clock, pose_timeout: float) -> None:
         self._robot = robot_state(nav, "navigator")
         self._robot.prepare(POSE, ODOM)
-        self._pose = self._robot.topics.topic(POSE, PoseStamped)
         self._attached = asyncio.Event()
         self._robot.topics.pause()  # the robot's streams only while a navigation runs
         self._feed = OnDemand(self._attach, lambda: None, clock, released=self._released)
         self._pose_timeout = pose_timeout
 
-    def _attach(self) -> list[Latest[Any]]:
+    def _attach(self) -> list[MapPose | Latest[Any]]:
         readers = self._robot.topics.resume()  # paused: nothing from before is kept
         self._attached.set()
-        return [readers[POSE], readers[ODOM]]
+        return [self._robot.read_again(), readers[ODOM]]
 
     def _released(self) -> None:
         self._attached.clear()
@@ -89,8 +88,8 @@ class NavRobotState:
         try:
             async with asyncio.timeout(timeout):  # not wait_for: see Navigation._wait
                 await self._attached.wait()  # the streams are read while a navigation runs
-                await self._pose.wait_latest()
-        except (TimeoutError, LogicError):  # LogicError: let go again meanwhile
+                await self._robot.map_pose.wait_latest()
+        except TimeoutError:  # also: let go again meanwhile (nothing more is read)
             return False
         return self.current_pose() is not None
 

@@ -1,22 +1,27 @@
 """The robot's pose and lidar, read while a server (the planner, the route server) has
 requests to serve, into its global costmap (:class:`~aiobt.costmap.world.FedCostmap`).
 
-At a sim speed-up of 10 the robot sends 500 poses and 100 scans a wall second; a
-planner with nothing to plan has no use for them. A request that needs the robot
-(a plan, a smoothing, ``is_path_valid``, ``get_costs``, a clearing around the
-robot) attaches them if detached, waits (bounded by ``timeout`` wall s) for a
-first pose and a first scan, takes the newest of each, then runs; while attached,
-requests read the costmap as the periodic folds left it (:class:`FedCostmap`)
-and wait for nothing. The streams stay ``linger`` robot s after the last request
-(a navigator replans every second or so, so they stay while it navigates).
+The pose in ``map`` is the odometry composed with localization's correction on
+``{ns}/tf`` (:class:`~aiobt.geometry.map_pose.MapPose`, as Nav2's costmap looks the
+robot up in TF), or ``{ns}/pose`` until a correction comes (a robot with its own
+localization).
+
+At a sim speed-up of 10 the robot sends 500 odometry messages and 100 scans a wall
+second; a planner with nothing to plan has no use for them. A request that needs the
+robot (a plan, a smoothing, ``is_path_valid``, ``get_costs``, a clearing around the
+robot) attaches them if detached, waits (bounded by ``timeout`` wall s) for a first
+pose and a first scan, takes the newest of each, then runs; while attached, requests
+read the costmap as the periodic folds left it (:class:`FedCostmap`) and wait for
+nothing. The streams stay ``linger`` robot s after the last request (a navigator
+replans every second or so, so they stay while it navigates).
 
 Attached, the streams are read, not handed over: Zenoh's thread keeps the newest
-scan and the last poses (``bus.latest``), and the planner looks every ``poll`` wall
-s whether a scan is due for folding (Nav2's global costmap updates at 1 Hz); it
-decodes that scan and the pose stamped nearest it, nothing else. A request takes
-the newest pose, and folds only the first scan after attaching. Handing every
-message to the event loop cost about a third of the planner's CPU while driving
-at 10x (a loop wake-up and a decode for each of 600 a wall second).
+scan and the last odometry messages (``bus.latest``), and the planner looks every
+``poll`` wall s whether a scan is due for folding (Nav2's global costmap updates at
+1 Hz); it decodes that scan and composes the pose stamped nearest it, nothing else.
+A request takes the newest pose, and folds only the first scan after attaching.
+Handing every message to the event loop cost about a third of the planner's CPU
+while driving at 10x (a loop wake-up and a decode for each of 600 a wall second).
 
 What is lost: scans seen while nobody asked (the robot driven by something else:
 teleoperation, a controller goal with no planning) are not marked in the global
@@ -32,7 +37,8 @@ from typing import Any, TypeVar
 
 from aiobt.core.clock import Clock
 from aiobt.costmap.world import POSES_KEPT, FedCostmap
-from aiobt.msgs import LaserScan, PoseStamped
+from aiobt.geometry.map_pose import MapPose
+from aiobt.msgs import LaserScan
 from aiobt.transport import Bus, Latest
 from aiobt.transport.on_demand import LINGER, OnDemand
 
@@ -64,18 +70,19 @@ class RobotFeed:
         self._world = world
         self._timeout = timeout
         self._poll = poll
-        self._poses: Latest[PoseStamped] | None = None
+        self._poses: MapPose | None = None
         self._scan: Latest[LaserScan] | None = None
-        self._pose_read: PoseStamped | None = None
+        self._pose_read: object = None
         self._poller: asyncio.Task[None] | None = None
         self.on_demand = OnDemand(
             self._attach, world.forget, clock, linger=linger, wait_on_attach_only=True,
             released=self._stop_polling,
         )  # fmt: skip
 
-    def _attach(self) -> list[Latest[Any]]:
-        # at 10x 500 poses a wall second: the last POSES_KEPT, to mark each scan from its own
-        self._poses = self._bus.latest("pose", PoseStamped, keep=POSES_KEPT)
+    def _attach(self) -> list[MapPose | Latest[Any]]:
+        # at 10x 500 odometry messages a wall second: the last POSES_KEPT, to mark each
+        # scan from the pose at its stamp
+        self._poses = MapPose.read(self._bus, keep=POSES_KEPT)
         self._scan = self._bus.latest("scan", LaserScan)
         self._pose_read = None
         self._poller = asyncio.ensure_future(self._polling())

@@ -4,7 +4,10 @@ Nav2's nodes ask TF for the robot pose and open their own subscriptions; aiobt's
 read one :class:`RobotState` per bus and namespace, over shared subscriptions
 (:mod:`aiobt.nav.shared_topics`), each declared on first use:
 
-- ``{ns}/pose``: PoseStamped, the robot in ``map`` (localization);
+- the robot in ``map``, as Nav2's nodes look ``map`` -> ``base_link`` up in TF: the
+  odometry composed with localization's ``map`` -> ``odom`` on ``{ns}/tf``, or
+  ``{ns}/pose`` (PoseStamped) until a correction comes (a robot with its own
+  localization): :class:`~aiobt.geometry.map_pose.MapPose`;
 - ``{ns}/odom``: Odometry (pose in ``odom``, twist);
 - ``{ns}/battery``: BatteryState;
 - ``{ns}/initialpose``: PoseWithCovarianceStamped (or a PoseStamped), a localization reset;
@@ -22,12 +25,14 @@ import logging
 import math
 from typing import TYPE_CHECKING, Any, ClassVar
 
+from aiobt.geometry.map_pose import TF_KEPT, MapPose
 from aiobt.msgs import (
     BatteryState,
     Msg,
     Odometry,
     PoseStamped,
     PoseWithCovarianceStamped,
+    TFMessage,
     TrackingFeedback,
 )
 from aiobt.nav.context import NavNode
@@ -38,9 +43,10 @@ if TYPE_CHECKING:
 
 log = logging.getLogger("aiobt.nav.robot_state")
 
-POSE, ODOM, BATTERY, INITIAL_POSE, TRACKING = (
+POSE, ODOM, TF, BATTERY, INITIAL_POSE, TRACKING = (
     "pose",
     "odom",
+    "tf",
     "battery",
     "initialpose",
     "tracking_feedback",
@@ -48,12 +54,13 @@ POSE, ODOM, BATTERY, INITIAL_POSE, TRACKING = (
 _MODELS: dict[str, type[Msg]] = {
     POSE: PoseStamped,
     ODOM: Odometry,
+    TF: TFMessage,
     INITIAL_POSE: PoseWithCovarianceStamped,
     TRACKING: TrackingFeedback,
 }
 ODOM_SMOOTHING_WINDOW = 0.3  # s of odometry averaged for the speed (Nav2's OdomSmoother)
 ODOM_KEEP = 32  # odometry messages kept: 0.64 s at the robot's 50 Hz, over the window
-KEEP = {ODOM: ODOM_KEEP}  # messages each key keeps (the others: the newest only)
+KEEP = {ODOM: ODOM_KEEP, TF: TF_KEPT}  # messages each key keeps (the others: the newest only)
 BRAKE_ACCEL_LIMIT = -10.0  # m/s^2: a harder deceleration means the robot hit something
 
 
@@ -123,13 +130,31 @@ class RobotState:
 
     def __init__(self, topics: SharedTopics) -> None:
         self.topics = topics
+        self._map_pose: MapPose | None = None
 
     def _odom(self) -> SharedTopic[Odometry]:
         return self.topics.topic(ODOM, Odometry, keep=KEEP[ODOM])
 
     @property
+    def map_pose(self) -> MapPose:
+        """The reader of the pose in ``map`` (odometry, tf and, until a correction, pose)."""
+        reader = self._map_pose
+        if reader is None:
+            tf = self.topics.topic(TF, TFMessage, keep=KEEP[TF])
+            pose = self.topics.topic(POSE, PoseStamped)
+            reader = self._map_pose = MapPose(self._odom(), tf, pose)
+        return reader
+
+    def read_again(self) -> MapPose:
+        """A new :attr:`map_pose` after :meth:`SharedTopics.resume` (which subscribes
+        ``{ns}/pose`` again: nothing from before the pause is known)."""
+        self._map_pose = None
+        return self.map_pose
+
+    @property
     def pose(self) -> PoseStamped | None:
-        return self.topics.topic(POSE, PoseStamped).latest
+        """The robot in ``map`` (:class:`MapPose`), None until it can be told."""
+        return self.map_pose.get()
 
     @property
     def odometry(self) -> Odometry | None:
@@ -177,7 +202,10 @@ class RobotState:
     def prepare(self, *names: str) -> None:
         """Subscribe now to the keys a node will read (so data arrive before its first tick)."""
         for name in names:
-            self.topics.topic(name, _MODELS.get(name, BatteryState), keep=KEEP.get(name, 1))
+            if name == POSE:
+                self.map_pose  # noqa: B018 - declares odom, tf and pose
+            else:
+                self.topics.topic(name, _MODELS.get(name, BatteryState), keep=KEEP.get(name, 1))
 
 
 def robot_state(nav: NavContext, who: str) -> RobotState:
@@ -218,13 +246,15 @@ class RobotStateNode(NavNode):
         if pose is None and not self._pose_missing_reported:
             self._pose_missing_reported = True
             log.warning(
-                "%s: no robot pose in frame %r yet (from %s/%s or %s/%s)",
+                "%s: no robot pose in frame %r yet (from %s/%s with %s/%s, or %s/%s)",
                 getattr(self, "path", "?"),
                 frame or "map",
                 self.robot.topics.namespace,
-                POSE,
-                self.robot.topics.namespace,
                 ODOM,
+                self.robot.topics.namespace,
+                TF,
+                self.robot.topics.namespace,
+                POSE,
             )
         elif pose is not None:
             self._pose_missing_reported = False

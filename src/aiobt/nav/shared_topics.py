@@ -51,6 +51,10 @@ class SharedTopic(Generic[M]):
         reader = self.reader
         return None if reader is None else reader.get()
 
+    def get(self) -> M | None:
+        """:attr:`latest` (what a :class:`~aiobt.transport.Latest` reader answers)."""
+        return self.latest
+
     @property
     def received(self) -> int:
         """Messages taken (good or not) since the topic was first subscribed (reading

@@ -1,89 +1,44 @@
-"""Localization's ``map`` -> ``odom`` correction, and the robot's pose in ``map`` from it.
+"""Localization's correction handed to a reader of odometry that is called per message.
 
-Nav2's nodes get the robot's pose in ``map`` from TF: AMCL's ``map`` -> ``odom``
-(sent with every scan it takes, the last one again while the filter does not
-update) chained with the odometry's ``odom`` -> ``base_link``. aiobt's localization
-sends the same correction on ``{ns}/tf`` (:func:`correction_message`), and on
-``{ns}/pose`` the correction composed with each odometry message (:func:`compose`,
-at the odometry's 50 Hz) for readers that take no odometry. A reader that takes the
-odometry anyway composes the pose itself, with the same :func:`compose` and the
-correction it read back (:func:`correction_of`): one 50 Hz stream fewer to receive
-(:class:`MapSource`). The two agree to float rounding (the yaw's way through a
-quaternion), at most one odometry message apart: localization's own stream takes a
-new correction at the first odometry after its update, a reader at the first after
-the correction's message arrived.
+The controller takes every odometry message (its loop runs on them) and composes its
+pose in ``map`` from each with the correction on ``{ns}/tf``, read back as it comes
+(:class:`MapSource`); the frames, :func:`compose` and :func:`correction_of` are in
+:mod:`aiobt.geometry.correction`, where the navigator and the planner read them too
+(:mod:`aiobt.geometry.map_pose`, which reads when asked instead).
 """
 
 from __future__ import annotations
 
 import asyncio
-import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-from aiobt.geometry import XYYaw
-from aiobt.msgs import PoseStamped, TFMessage, yaw_to_quaternion
+from aiobt.geometry.correction import (
+    MAP_FRAME,
+    ODOM_FRAME,
+    POSE_TOPIC,
+    TF_TOPIC,
+    Correction,
+    compose,
+    correction_message,
+    correction_of,
+)
+from aiobt.msgs import PoseStamped, TFMessage
 
 if TYPE_CHECKING:
     from aiobt.transport import Bus, Subscription
 
-TF_TOPIC = "tf"  # localization's map -> odom, as Nav2's AMCL broadcasts it on /tf
-POSE_TOPIC = "pose"  # the pose in map, composed by localization (or a robot's own)
-MAP_FRAME = "map"
-ODOM_FRAME = "odom"
-
-
-def compose(correction: XYYaw, x: float, y: float, yaw: float) -> XYYaw:
-    """``correction * (x, y, yaw)``: a pose in ``odom`` expressed in ``map``, in plain
-    floats (the per-message work of a 50 Hz stream, where numpy's per-call cost would be
-    most of it); the yaw wrapped to ``[-pi, pi)``."""
-    cx, cy, cyaw = correction
-    c, s = math.cos(cyaw), math.sin(cyaw)
-    turned = (cyaw + yaw + math.pi) % (2.0 * math.pi) - math.pi
-    return cx + c * x - s * y, cy + s * x + c * y, turned
-
-
-@dataclass(slots=True, frozen=True)
-class Correction:
-    """``map`` -> ``odom`` as of ``stamp`` (robot time: the scan it was sent with)."""
-
-    transform: XYYaw
-    stamp: float
-
-
-def correction_message(
-    transform: XYYaw, stamp: float, parent: str = MAP_FRAME, child: str = ODOM_FRAME
-) -> TFMessage:
-    """The correction as localization sends it on ``{ns}/tf``."""
-    x, y, yaw = transform
-    qx, qy, qz, qw = yaw_to_quaternion(yaw)
-    return TFMessage.model_validate(
-        {
-            "transforms": [
-                {
-                    "header": {"stamp": stamp, "frame_id": parent},
-                    "child_frame_id": child,
-                    "transform": {
-                        "translation": {"x": x, "y": y},
-                        "rotation": {"x": qx, "y": qy, "z": qz, "w": qw},
-                    },
-                }
-            ]
-        }
-    )
-
-
-def correction_of(
-    msg: TFMessage, parent: str = MAP_FRAME, child: str = ODOM_FRAME
-) -> Correction | None:
-    """The ``parent`` -> ``child`` transform in ``msg`` (the last if several), or None if
-    it has none (other frames share ``{ns}/tf``). Finite: the wire model refuses others."""
-    for tf in reversed(msg.transforms):
-        if tf.header.frame_id == parent and tf.child_frame_id == child:
-            t = tf.transform.translation
-            return Correction((t.x, t.y, tf.yaw), tf.header.stamp)
-    return None
+__all__ = [
+    "MAP_FRAME",
+    "ODOM_FRAME",
+    "POSE_TOPIC",
+    "TF_TOPIC",
+    "Correction",
+    "MapSource",
+    "compose",
+    "correction_message",
+    "correction_of",
+]
 
 
 class MapSource:

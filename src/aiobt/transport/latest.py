@@ -38,6 +38,7 @@ from aiobt.transport.bridge import PayloadTooLarge
 from aiobt.transport.repeats import BadMessages
 
 M = TypeVar("M", bound=Msg)
+T = TypeVar("T")
 _REFUSED = object()  # a kept payload found malformed or too large
 _PUT = zenoh.SampleKind.PUT
 WAIT_LOOK = 0.002  # wall s: the shortest time between two looks for a first message
@@ -57,6 +58,17 @@ def look_after(waited: float) -> float:
     is seen at most 10 % of the wait, or 2 ms, after it came; a long wait looks 50
     times a second)."""
     return min(WAIT_LOOK_MAX, max(WAIT_LOOK, waited / 10.0))
+
+
+async def first_read(read: Callable[[], T | None], timeout: float | None) -> T:  # noqa: ASYNC109
+    """``read()``'s first answer that is not None, looked for every :func:`look_after`
+    wall s (at most ``timeout`` s: TimeoutError): a wait on rings nothing calls back from."""
+    loop = asyncio.get_running_loop()
+    start = loop.time()
+    async with asyncio.timeout(timeout):
+        while (found := read()) is None:  # noqa: ASYNC110 - nothing calls the loop
+            await asyncio.sleep(look_after(loop.time() - start))
+    return found
 
 
 class Latest(Generic[M]):
@@ -148,12 +160,7 @@ class Latest(Generic[M]):
     async def wait_latest(self, timeout: float | None = None) -> M:  # noqa: ASYNC109
         """The newest good message, waiting (at most ``timeout`` s) for one to come
         (looking at the ring, :func:`look_after`: nothing calls into the loop)."""
-        loop = asyncio.get_running_loop()
-        start = loop.time()
-        async with asyncio.timeout(timeout):
-            while (newest := self.get()) is None:  # noqa: ASYNC110 - nothing calls the loop
-                await asyncio.sleep(look_after(loop.time() - start))
-        return newest
+        return await first_read(self.get, timeout)
 
     def _decode(self, raw: list[Any]) -> M | None:
         """``raw``'s message, decoded on the first call (None, logged once: malformed)."""

@@ -9,6 +9,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import pytest
 
+from aiobt.geometry.correction import correction_message
 from aiobt.msgs import (
     ClearCostmapAroundPose,
     ClearCostmapAroundRobot,
@@ -22,10 +23,13 @@ from aiobt.msgs import (
     GoalState,
     IsPathValid,
     OccupancyGrid,
+    Odometry,
     Path,
     Point,
     PoseStamped,
     SmoothPath,
+    TFMessage,
+    pose_fields,
 )
 from aiobt.msgs.sim import Ack, RemoveObstacle, SpawnObstacle
 from aiobt.testing.bus import ServiceProcess
@@ -207,3 +211,32 @@ async def smooth_coverage_and_clearing(bus: Bus, path: Path) -> None:
     around = ClearCostmapAroundPose.Request(pose=PoseStamped.from_xy_yaw(5.0, 5.0))
     name = ClearCostmapAroundPose.service_name("global_costmap")
     assert (await bus.call(name, around, ClearCostmapResponse)).success
+
+
+async def test_the_start_is_the_odometry_composed_with_localizations_correction(
+    spawn: Spawn, bus: Bus, bus_settings: BusSettings
+) -> None:
+    """With localization's map -> odom on tf, the planner plans from the odometry composed
+    with it (as Nav2's costmap reads TF) and leaves ``{ns}/pose`` unread."""
+    cells = np.zeros((400, 400), dtype=np.int8)  # 20 x 20 m, free
+    bus.latched_publisher("map", OccupancyGrid).put(OccupancyGrid.from_array(cells, 0.05))
+    odom, tf = bus.publisher("odom", Odometry), bus.publisher("tf", TFMessage)
+    pose = bus.publisher("pose", PoseStamped)  # never put on: whether anybody reads it
+    planner = spawn(["-m", "aiobt_services.planner", "--downsample", "1", *common(bus_settings)])
+    await up(bus, "planner", planner)
+    here = {"header": {"stamp": 5.0, "frame_id": "odom"}, "pose": pose_fields(1.0, 0.5, 0.0)}
+    async with asyncio.timeout(20.0):
+        while True:
+            odom.put(Odometry.model_validate(here))
+            tf.put(correction_message((2.0, 3.0, math.pi / 2), 5.0))  # odom (1, 0.5): map (1.5, 4)
+            result = await plan(bus, 9.0, 9.0)
+            if result.error_code not in (To.UNKNOWN, To.TF_ERROR):
+                break
+            await asyncio.sleep(0.2)
+    assert result.error_code == 0, result.error_msg
+    start = result.path.poses[0]
+    assert (start.x, start.y) == pytest.approx((1.5, 4.0), abs=0.05)
+    assert result.path.header.stamp == 5.0  # the odometry's
+    async with asyncio.timeout(5.0):
+        while pose.matched:  # noqa: ASYNC110 - let go at the first correction read
+            await asyncio.sleep(0.05)

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import asyncio
 import logging
+import math
 from pathlib import Path
 
 import pytest
 
 from aiobt.core.clock import ManualClock, SystemClock
 from aiobt.factory import BehaviorTreeFactory
+from aiobt.geometry.correction import correction_message
 from aiobt.msgs import (
     BtSnapshot,
     BtTree,
@@ -18,6 +20,8 @@ from aiobt.msgs import (
     NavigateToPose,
     Odometry,
     PoseStamped,
+    TFMessage,
+    pose_fields,
 )
 from aiobt.nav import register_nav2_nodes
 from aiobt.nav.shared_topics import shared_topics
@@ -151,6 +155,48 @@ async def test_the_robot_state_comes_from_the_shared_pose_and_odometry(local_bus
     await clock.forward(LINGER + 0.1)  # the goal ended a linger ago: streams let go
     assert robot.current_pose() is None
     assert shared_topics(nav, "test").live() == []
+
+
+@pytest.mark.timeout(60)
+async def test_with_a_correction_the_pose_is_composed_and_pose_let_go_each_navigation(
+    local_bus: Bus,
+) -> None:
+    """As Nav2's navigator reads map -> base_link from TF: the odometry composed with
+    localization's map -> odom on tf; ``{ns}/pose`` read only until a correction came,
+    in every navigation (the streams are subscribed afresh each time)."""
+    nav = register_nav2_nodes(BehaviorTreeFactory(), local_bus)
+    clock = ManualClock()
+    robot = NavRobotState(nav, clock, pose_timeout=WAIT)
+    hub = shared_topics(nav, "test")
+    pose_key = f"{local_bus.namespace}/pose"
+    odometry = local_bus.publisher("odom", Odometry)
+    tf = local_bus.publisher("tf", TFMessage)
+    header = {"stamp": 1.0, "frame_id": "odom"}
+    moved = Odometry.model_validate({"header": header, "pose": pose_fields(0.5, 0.0, 0.0)})
+
+    async def robot_and_localization() -> None:
+        while True:
+            odometry.put(moved)
+            tf.put(correction_message((1.0, 2.0, 0.5 * math.pi), moved.header.stamp))
+            await asyncio.sleep(0.01)
+
+    sending = asyncio.create_task(robot_and_localization())
+    for n in range(2):
+        moved = moved.model_copy(
+            update={"header": moved.header.model_copy(update={"stamp": 1.0 + n})}
+        )
+        async with robot.active() as fresh:
+            assert fresh
+            async with asyncio.timeout(WAIT):
+                while (current := robot.current_pose()) is None or current.header.stamp != 1.0 + n:  # noqa: ASYNC110
+                    await asyncio.sleep(0.01)
+            assert (current.x, current.y, current.yaw) == pytest.approx((1.0, 2.5, 0.5 * math.pi))
+            assert current.header.frame_id == "map"
+            assert pose_key not in hub.live()  # read only until the correction came
+        await clock.forward(LINGER + 0.1)
+        assert hub.live() == []
+        assert robot.current_pose() is None
+    sending.cancel()
 
 
 @pytest.mark.timeout(60)

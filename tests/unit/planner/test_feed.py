@@ -11,7 +11,8 @@ import pytest
 
 from aiobt.core.clock import ManualClock
 from aiobt.costmap.feed import RobotFeed
-from aiobt.msgs import LaserScan, PoseStamped
+from aiobt.geometry.correction import correction_message
+from aiobt.msgs import LaserScan, Odometry, PoseStamped, TFMessage, pose_fields
 from aiobt.transport import Bus
 from aiobt_services.planner.state import POSES_KEPT, GlobalCostmap
 
@@ -47,10 +48,13 @@ class FakeLatest:
 
 class FakeBus:
     def __init__(self) -> None:
-        self.subs: dict[str, list[FakeLatest]] = {"pose": [], "scan": []}
+        self.subs: dict[str, list[FakeLatest]] = {"odom": [], "tf": [], "pose": [], "scan": []}
         self.kept: dict[str, int] = {}
 
-    def latest(self, name: str, _model: object, *, keep: int = 1) -> FakeLatest:
+    def latest(
+        self, name: str, _model: object, *, keep: int = 1, namespace: str | None = None
+    ) -> FakeLatest:
+        assert namespace is None  # the bus's own
         sub = FakeLatest(keep)
         self.subs[name].append(sub)
         self.kept[name] = keep
@@ -99,7 +103,7 @@ async def test_a_request_attaches_waits_for_pose_and_scan_and_folds_the_scan() -
     bus, clock = FakeBus(), ManualClock()
     feed = feed_of(bus, clock)
     grid = feed._world
-    assert bus.subs == {"pose": [], "scan": []}  # idle: nothing subscribed
+    assert not any(bus.subs.values())  # idle: nothing subscribed
     call = asyncio.ensure_future(feed.call(lambda _: grid.pose)(None))
     await asyncio.sleep(0)
     assert grid.pose is None  # forgotten at attach: the robot may have moved meanwhile
@@ -168,7 +172,7 @@ async def test_a_request_does_not_mark_a_scan_taken_before_from_the_newer_pose()
     grid = feed._world
     call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
     await asyncio.sleep(0)
-    assert bus.kept == {"pose": POSES_KEPT, "scan": 1}  # the newest scan; poses kept
+    assert bus.kept == {"odom": POSES_KEPT, "tf": 4, "pose": POSES_KEPT, "scan": 1}
     bus.live("pose").deliver(PoseStamped.from_xy_yaw(1.0, 1.0, 0.0, stamp=1.0))
     bus.live("scan").deliver(scan(0.4, 5.0, 5.0))  # a hit 0.4 m ahead, from (1, 1)
     assert await asyncio.wait_for(call, 1.0) == "first"
@@ -230,4 +234,51 @@ async def test_a_request_takes_the_newest_pose_but_leaves_folding_to_the_look() 
     assert not lethal(grid, 1.4, 1.0)  # due, but not folded by the request
     feed.read()
     assert lethal(grid, 1.4, 1.0)
+    feed.close()
+
+
+def odom_at(stamp: float, x: float, y: float) -> Odometry:
+    return Odometry.model_validate(
+        {"header": {"stamp": stamp, "frame_id": "odom"}, "pose": pose_fields(x, y, 0.0)}
+    )
+
+
+def correction_at(stamp: float, x: float, y: float) -> TFMessage:
+    return correction_message((x, y, 0.0), stamp)
+
+
+async def test_with_a_correction_the_pose_is_the_odometry_composed_and_pose_is_let_go() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = feed._world
+    call = asyncio.ensure_future(feed.call(lambda _: grid.pose)(None))
+    await asyncio.sleep(0)
+    bus.live("odom").deliver(odom_at(1.0, 0.5, 0.0))
+    bus.live("tf").deliver(correction_at(1.0, 0.5, 1.0))  # map -> odom
+    bus.live("scan").deliver(scan_at(1.0, 5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == (1.0, 1.0, 0.0)
+    assert bus.subs["pose"][0].closed  # read only until a correction came
+    assert grid.pose_stamp == 1.0  # the odometry's
+    feed.close()
+
+
+async def test_a_scan_is_marked_from_the_kept_odometry_stamped_nearest_it() -> None:
+    bus, clock = FakeBus(), ManualClock()
+    feed = feed_of(bus, clock)
+    grid = cast(GlobalCostmap, feed._world)
+    call = asyncio.ensure_future(feed.call(lambda _: "first")(None))
+    await asyncio.sleep(0)
+    bus.live("odom").deliver(odom_at(1.0, 0.5, 0.0))
+    bus.live("tf").deliver(correction_at(1.0, 0.5, 1.0))
+    bus.live("scan").deliver(scan_at(1.0, 5.0, 5.0, 5.0))
+    assert await asyncio.wait_for(call, 1.0) == "first"
+    for i, y in enumerate((1.0, 0.0, 0.5)):  # in map: (1, 2), (1, 1), (1, 1.5)
+        bus.live("odom").deliver(odom_at(2.0 + 0.02 * i, 0.5, y))
+    bus.live("tf").deliver(correction_at(2.02, 0.5, 1.0))  # sent with the scan
+    bus.live("scan").deliver(scan_at(2.02, 0.4, 5.0, 5.0))
+    feed.read()
+    assert grid.pose == (1.0, 1.5, 0.0)  # the newest odometry, composed
+    assert lethal(grid, 1.4, 1.0)  # from the odometry at 2.02, composed
+    assert not lethal(grid, 1.4, 1.5)
+    assert not lethal(grid, 1.4, 2.0)
     feed.close()
