@@ -1,10 +1,13 @@
-"""Wires the docking server onto the bus: the robot's pose, odometry, static transforms
+"""Wires the docking server onto the bus: the robot's odometry, its pose in ``map``
+(:class:`~aiobt.geometry.map_pose.MapPose`: the odometry composed with localization's
+correction on ``tf``, ``pose`` read only until one comes), static transforms
 (``tf_static``), battery and the dock's detections in; ``cmd_vel``, the poses it works
 with (``dock_pose``, ``filtered_dock_pose``, ``staging_pose``), the docks and the docked
 state (latched, for viewers) out; the two actions and ``docking_server/reload_database``."""
 
 from __future__ import annotations
 
+import asyncio
 import logging
 from typing import Any
 
@@ -12,6 +15,7 @@ import numpy as np
 
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry.map_pose import TF_KEPT, MapPose
 from aiobt.geometry.pose_filter import StampedPose3D
 from aiobt.geometry.static_frames import StaticFrames
 from aiobt.msgs import (
@@ -51,8 +55,11 @@ class DockingBus:
     def __init__(self, bus: Bus, clock: Clock, cmd_vel_topic: str = "cmd_vel") -> None:
         self.bus = bus
         self.clock = clock
-        self._pose = bus.latest("pose", PoseStamped)
         self._odom = bus.latest("odom", Odometry, keep=ODOMETRY_KEPT)
+        tf = bus.latest("tf", TFMessage, keep=TF_KEPT)
+        self._pose = MapPose(self._odom, tf, bus.latest("pose", PoseStamped))
+        # between goals nothing reads the pose: let ``pose`` go once localization corrects
+        self._settle = asyncio.create_task(self._pose.settle(), name="docking.map_pose")
         self._detected: Latest[PoseStamped] | None = None  # while a plugin subscribes
         self._subscribers = 0
         self._joints: Latest[JointState] | None = None  # once a plugin detects stalls

@@ -1,9 +1,12 @@
-"""Wires the following server onto the bus: the robot's odometry and pose in, the
-goal's detections subscribed for the goal's time, the command and the filtered
-object pose out, the ``follow_object`` action."""
+"""Wires the following server onto the bus: the robot's odometry and its pose in ``map``
+(:class:`~aiobt.geometry.map_pose.MapPose`: the odometry composed with localization's
+correction on ``tf``, ``pose`` read only until one comes) in; the goal's detections
+subscribed for the goal's time; the command and the filtered object pose out; the
+``follow_object`` action."""
 
 from __future__ import annotations
 
+import asyncio
 import logging
 import math
 from collections.abc import Callable, Iterator
@@ -12,6 +15,7 @@ from typing import Any, Protocol
 
 from aiobt.core.clock import Clock
 from aiobt.geometry import Pose2D, Velocity
+from aiobt.geometry.map_pose import TF_KEPT, MapPose
 from aiobt.geometry.pose_filter import StampedPose
 from aiobt.msgs import Odometry, PoseStamped, TFMessage, Twist
 from aiobt.msgs.remote_actions import FollowObject
@@ -99,6 +103,7 @@ class FollowingService:
         self.params = params
         self.frames = RobotFrames(params.base_frame, params.transform_tolerance, self.refresh)
         self._feeds: list[PoseFeed] = []
+        self._settle: asyncio.Task[None] | None = None
         self._cmd = bus.publisher(cmd_vel_topic, Twist, reliable=True)
         self._filtered = bus.publisher(FILTERED_TOPIC, PoseStamped)
         self.server = FollowingServer(params, self.frames, clock, self.detections,
@@ -108,10 +113,13 @@ class FollowingService:
 
     def start(self) -> None:
         bus = self.bus
-        for topic, model, read in ((self.params.odom_topic, Odometry, odom_reading),
-                                   (MAP_POSE_TOPIC, PoseStamped, map_reading)):  # fmt: skip
-            latest = bus.latest(topic, model, keep=KEEP)
-            self._feeds.append(PoseFeed(latest, self.frames, read))
+        odom = bus.latest(self.params.odom_topic, Odometry, keep=KEEP)
+        in_map = MapPose(odom, bus.latest(TF_TOPIC, TFMessage, keep=TF_KEPT),
+                         bus.latest(MAP_POSE_TOPIC, PoseStamped, keep=KEEP))  # fmt: skip
+        self._feeds += [PoseFeed(odom, self.frames, odom_reading),
+                        PoseFeed(in_map, self.frames, map_reading)]  # fmt: skip
+        # between goals nothing reads the pose: let ``pose`` go once localization corrects
+        self._settle = asyncio.create_task(in_map.settle(), name="following.map_pose")
         bus.action_server(FollowObject.name, FollowObject, self.server.execute, clock=self.clock)
 
     def refresh(self) -> None:

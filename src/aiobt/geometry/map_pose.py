@@ -20,6 +20,7 @@ When the odometry stops, the pose keeps the last one's stamp, as before.
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Protocol, TypeVar
 
@@ -35,6 +36,7 @@ M = TypeVar("M", covariant=True)
 ODOM_TOPIC = "odom"
 TF_KEPT = 4  # tf messages looked through for the correction (other frames may share the key)
 TRANSFORM_TOLERANCE = 1.0  # robot s: nav2_amcl's transform_tolerance default
+SETTLE_LOOK = 1.0  # wall s between looks for the first correction (:meth:`MapPose.settle`)
 
 
 class Reader(Protocol[M]):
@@ -150,6 +152,14 @@ class MapPose:
                             odom.pose.yaw)  # fmt: skip
         header = {"stamp": odom.header.stamp, "frame_id": MAP_FRAME}
         return PoseStamped.model_validate({"header": header, "pose": pose_fields(x, y, yaw)})
+
+    async def settle(self, period: float = SETTLE_LOOK) -> None:
+        """Look for the first correction every ``period`` wall s, and return once one came
+        (the pose's ring let go) or the pose is not read. For a reader read only now and
+        then (a server between goals): without it, ``{ns}/pose`` stays subscribed, and
+        localization composes it, until the reader's first read."""
+        while self._pose is not None and self.correction is None:  # noqa: ASYNC110 - rings
+            await asyncio.sleep(period)
 
     async def wait_latest(self, timeout: float | None = None) -> PoseStamped:  # noqa: ASYNC109
         """The newest pose in ``map``, waiting (at most ``timeout`` s) for one to be told

@@ -9,6 +9,10 @@ nodes read TF. A publisher the test declares on ``{ns}/pose`` and never puts on 
 matched by any subscription there, as localization's is (it composes ``pose`` only
 while matched): it must match none while the robot drives. The control: a viewer's
 subscription is matched and is sent poses.
+
+The docking and following servers read the pose only in a goal, through a
+:class:`~aiobt.geometry.map_pose.MapPose` too: idle beside localization, they let
+``pose`` go once its first correction has come.
 """
 
 from __future__ import annotations
@@ -85,4 +89,26 @@ async def test_a_driving_stack_leaves_localizations_pose_unread(router_endpoint:
             await viewer.wait_latest(10.0)  # localization composes it for a viewer
             viewer.close()
             await running.goal.cancel(10.0)
+            tf.close()
+
+
+async def test_idle_docking_and_following_servers_leave_the_pose_unread(
+    router_endpoint: str,
+) -> None:
+    config = StackConfig(world="office", speed=1.0,
+                         services=("robot", "localization", "docking", "following"),
+                         extra={"docking": ["--dock-database", "office"]})  # fmt: skip
+    with contextlib.closing(NavStack(router_endpoint, config)) as stack:
+        async with open_bus(stack.settings()) as bus:
+            watch = bus.publisher("pose", PoseStamped)  # never put on: a matching probe
+            for service in config.services:
+                stack.start(service)
+            await stack.wait_ready(bus, timeout=120.0)
+            tf = bus.latest("tf", TFMessage)
+            await tf.wait_latest(60.0)  # localization sends its correction
+            # each server looks for it once a second (MapPose.settle) and lets pose go
+            await _within(20.0, f"{{ns}}/pose let go by the servers\n{stack.logs()}",
+                          lambda: not watch.matched)  # fmt: skip
+            seen = await _readers_seen(lambda: watch.matched, WATCHED)
+            assert seen == [], f"{{ns}}/pose had a reader at {seen} s of {WATCHED}:\n{stack.logs()}"
             tf.close()

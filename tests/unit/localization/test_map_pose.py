@@ -2,6 +2,7 @@
 odometry composed with the correction localization sends, the pose stream only until
 a correction comes."""
 
+import asyncio
 import math
 from collections.abc import Iterator
 from typing import Generic, TypeVar
@@ -174,6 +175,25 @@ def test_kept_poses_without_a_correction_are_the_pose_streams() -> None:
     for message in sent:
         pose.put(message)
     assert list(reader.newest_first()) == sent[::-1]
+
+
+async def test_settle_lets_the_pose_stream_go_at_the_first_correction_unread() -> None:
+    reader, _, tf, pose = _reader()
+    settling = asyncio.create_task(reader.settle(period=0.001))
+    try:
+        tf.put(_wire(correction_message((0.0, 0.0, 0.0), 1.0, "map", "other")))  # not map->odom
+        for _ in range(20):  # looks at the rings many times over: no correction, no let-go
+            await asyncio.sleep(0.002)
+        assert not settling.done()
+        assert not pose.closed
+        tf.put(_wire(correction_message((1.0, 2.0, 0.0), 1.0)))  # nobody calls get
+        await asyncio.wait_for(settling, 5.0)
+        assert pose.closed
+        assert reader.composing
+    finally:
+        settling.cancel()
+    no_pose = MapPose(Ring[Odometry](), Ring[TFMessage](4), None)
+    await asyncio.wait_for(no_pose.settle(period=60.0), 1.0)  # nothing to let go: at once
 
 
 def test_close_closes_every_ring() -> None:
