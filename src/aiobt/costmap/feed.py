@@ -3,8 +3,8 @@ requests to serve, into its global costmap (:class:`~aiobt.costmap.world.FedCost
 
 The pose in ``map`` is the odometry composed with localization's correction on
 ``{ns}/tf`` (:class:`~aiobt.geometry.map_pose.MapPose`, as Nav2's costmap looks the
-robot up in TF), or ``{ns}/pose`` until a correction comes (a robot with its own
-localization).
+robot up in TF), or ``{ns}/pose`` until a pose is composed with a correction (a robot
+with its own localization).
 
 At a sim speed-up of 10 the robot sends 500 odometry messages and 100 scans a wall
 second; a planner with nothing to plan has no use for them. A request that needs the

@@ -2,13 +2,17 @@
 correction, as Nav2's nodes look ``map`` -> ``base_link`` up in TF.
 
 A :class:`MapPose` reads three rings (:meth:`Bus.latest <aiobt.transport.Bus.latest>`:
-no Python per message): ``{ns}/odom``, ``{ns}/tf`` and, only until a correction has
-been seen, ``{ns}/pose``. A robot with its own localization, or a localization with
+no Python per message): ``{ns}/odom``, ``{ns}/tf`` and, only until a pose has been
+composed, ``{ns}/pose``. A robot with its own localization, or a localization with
 ``tf_broadcast`` off, publishes the pose and no correction (``docs/robot_contract.md``):
-it is read as before. Once a correction comes, the pose's ring is let go (localization
-composes ``{ns}/pose`` only while somebody reads it) and each read composes the newest
-odometry with the newest correction (:func:`~aiobt.geometry.correction.compose`),
-stamped with the odometry's stamp, in ``map``.
+it is read as before. Once a correction comes and the odometry composes with it, the
+pose's ring is let go (localization composes ``{ns}/pose`` only while somebody reads
+it) and each read composes the newest odometry with the newest correction
+(:func:`~aiobt.geometry.correction.compose`), stamped with the odometry's stamp, in
+``map``. A correction with no odometry yet to compose with (the rings opened together:
+one can come first), or none old enough (a correction sent late, older than every
+odometry message kept since the rings opened), leaves the pose read from ``{ns}/pose``
+meanwhile: a reader never goes from a pose back to none.
 
 Staleness is TF's: the pose is composed from the newest odometry stamped no later than
 the correction's stamp plus ``tolerance`` (AMCL's ``transform_tolerance``, by which it
@@ -83,7 +87,7 @@ class MapPose:
         tolerance: float = TRANSFORM_TOLERANCE,
     ) -> MapPose:
         """Read ``bus``'s streams (in ``namespace``), the last ``keep`` odometry messages
-        (and poses, until a correction) kept for :meth:`newest_first`."""
+        (and poses, until one is composed) kept for :meth:`newest_first`."""
         return cls(
             bus.latest(ODOM_TOPIC, Odometry, keep=keep, namespace=namespace),
             bus.latest(TF_TOPIC, TFMessage, keep=TF_KEPT, namespace=namespace),
@@ -93,7 +97,7 @@ class MapPose:
 
     @property
     def correction(self) -> Correction | None:
-        """The newest ``map`` -> ``odom`` seen (the pose's ring let go at the first)."""
+        """The newest ``map`` -> ``odom`` seen."""
         newest = self._tf.get()
         if newest is not None and newest is not self._tf_read:
             self._tf_read = newest
@@ -102,21 +106,28 @@ class MapPose:
                 if found is not None:
                     self._correction = found
                     break
-        if self._correction is not None and self._pose is not None:
-            self._pose.close()
-            self._pose = None
         return self._correction
 
     @property
     def composing(self) -> bool:
-        """Whether a correction came (the pose is composed, ``{ns}/pose`` not read)."""
-        return self.correction is not None
+        """Whether the pose is composed (the pose's ring let go), looking now."""
+        self.get()
+        return self._made is not None
 
     def get(self) -> PoseStamped | None:
         """The robot's newest pose in ``map``; None before one can be told."""
         correction = self.correction
-        if correction is None:
-            return None if self._pose is None else self._pose.get()
+        composed = None if correction is None else self._composed(correction)
+        if composed is not None:
+            if self._pose is not None:  # composing from now on
+                self._pose.close()
+                self._pose = None
+            return composed
+        return None if self._pose is None else self._pose.get()
+
+    def _composed(self, correction: Correction) -> PoseStamped | None:
+        """The newest odometry composed with ``correction`` (the module's rule); None
+        before a pose could ever be composed."""
         newest = self._odom.get()
         made = self._made
         if newest is None:
@@ -125,19 +136,18 @@ class MapPose:
             return made[2]
         for odom in self._odom.newest_first():
             if odom.header.stamp <= correction.stamp + self.tolerance:
-                pose: PoseStamped | None = self._compose(correction, odom)
-                break
-        else:
-            pose = None if made is None else made[2]  # none kept that early: where it stopped
-        if pose is not None:  # the answer until the odometry or the correction changes
-            self._made = (newest, correction, pose)
-        return pose
+                pose = self._compose(correction, odom)
+                self._made = (newest, correction, pose)  # the answer until either changes
+                return pose
+        return None if made is None else made[2]  # none kept that early: where it stopped
 
     def newest_first(self) -> Iterator[PoseStamped]:
         """The kept poses, newest first: each kept odometry message composed with the
-        newest correction (the same rule as :meth:`get`), or the kept poses without one."""
-        correction = self.correction
-        if correction is None:
+        newest correction (the same rule as :meth:`get`), or, until a pose is composed,
+        the pose stream's kept ones."""
+        self.get()  # settles which
+        correction = self._correction
+        if self._pose is not None or correction is None:
             if self._pose is not None:
                 yield from self._pose.newest_first()
             return
@@ -154,12 +164,14 @@ class MapPose:
         return PoseStamped.model_validate({"header": header, "pose": pose_fields(x, y, yaw)})
 
     async def settle(self, period: float = SETTLE_LOOK) -> None:
-        """Look for the first correction every ``period`` wall s, and return once one came
-        (the pose's ring let go) or the pose is not read. For a reader read only now and
-        then (a server between goals): without it, ``{ns}/pose`` stays subscribed, and
-        localization composes it, until the reader's first read."""
-        while self._pose is not None and self.correction is None:  # noqa: ASYNC110 - rings
-            await asyncio.sleep(period)
+        """Read every ``period`` wall s, and return once a pose is composed (the pose's
+        ring let go) or the pose is not read. For a reader read only now and then (a
+        server between goals): without it, ``{ns}/pose`` stays subscribed, and
+        localization composes it, until the reader's first read after a correction."""
+        while self._pose is not None:
+            self.get()
+            if self._pose is not None:
+                await asyncio.sleep(period)
 
     async def wait_latest(self, timeout: float | None = None) -> PoseStamped:  # noqa: ASYNC109
         """The newest pose in ``map``, waiting (at most ``timeout`` s) for one to be told

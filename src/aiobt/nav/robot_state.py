@@ -6,8 +6,8 @@ read one :class:`RobotState` per bus and namespace, over shared subscriptions
 
 - the robot in ``map``, as Nav2's nodes look ``map`` -> ``base_link`` up in TF: the
   odometry composed with localization's ``map`` -> ``odom`` on ``{ns}/tf``, or
-  ``{ns}/pose`` (PoseStamped) until a correction comes (a robot with its own
-  localization): :class:`~aiobt.geometry.map_pose.MapPose`;
+  ``{ns}/pose`` (PoseStamped) until a pose is composed with a correction (a robot
+  with its own localization): :class:`~aiobt.geometry.map_pose.MapPose`;
 - ``{ns}/odom``: Odometry (pose in ``odom``, twist);
 - ``{ns}/battery``: BatteryState;
 - ``{ns}/initialpose``: PoseWithCovarianceStamped (or a PoseStamped), a localization reset;
@@ -137,7 +137,7 @@ class RobotState:
 
     @property
     def map_pose(self) -> MapPose:
-        """The reader of the pose in ``map`` (odometry, tf and, until a correction, pose)."""
+        """The reader of the pose in ``map`` (odometry, tf and, until a pose is composed, pose)."""
         reader = self._map_pose
         if reader is None:
             tf = self.topics.topic(TF, TFMessage, keep=KEEP[TF])

@@ -103,10 +103,13 @@ def test_without_a_correction_the_pose_stream_is_read() -> None:
 
 def test_a_correction_switches_to_composing_and_lets_the_pose_stream_go() -> None:
     reader, odom, tf, pose = _reader()
-    pose.put(PoseStamped.from_xy_yaw(9.0, 9.0, 0.0, stamp=1.0))
+    streamed = PoseStamped.from_xy_yaw(9.0, 9.0, 0.0, stamp=1.0)
+    pose.put(streamed)
     tf.put(_wire(correction_message((1.0, 2.0, 0.0), 1.0)))
-    assert reader.get() is None  # a correction and no odometry yet: nowhere
-    assert pose.closed
+    assert reader.get() is streamed  # a correction and no odometry yet: the stream's
+    assert not pose.closed
+    assert not reader.composing
+    assert list(reader.newest_first()) == [streamed]
     odom.put(_odom(1.0, 0.5, 0.0, 0.0))
     got = reader.get()
     assert got is not None
@@ -177,8 +180,31 @@ def test_kept_poses_without_a_correction_are_the_pose_streams() -> None:
     assert list(reader.newest_first()) == sent[::-1]
 
 
+def test_a_correction_older_than_the_kept_odometry_leaves_the_pose_stream_read() -> None:
+    """The route server's e2e failure (2026-11-29): rings opened together, the stream's
+    pose read first, then a correction sent late, older than every odometry message
+    kept since; the reader had gone from a pose back to none."""
+    reader, odom, tf, pose = _reader(keep=4)
+    streamed = PoseStamped.from_xy_yaw(4.0, 5.0, 0.0, stamp=12.0)
+    pose.put(streamed)
+    for i in range(4):
+        odom.put(_odom(11.94 + 0.02 * i, 0.5, 0.0, 0.0))
+    assert reader.get() is streamed
+    tf.put(_wire(correction_message((1.0, 2.0, 0.0), 10.0)))  # 10.0 + 1.0 < 11.94
+    assert reader.get() is streamed  # not None: nothing composes yet
+    assert not pose.closed
+    tf.put(_wire(correction_message((1.0, 2.0, 0.0), 12.0)))
+    got = reader.get()
+    assert got is not None
+    assert (got.x, got.y, got.header.stamp) == pytest.approx((1.5, 2.0, 12.0))
+    assert pose.closed
+    tf.put(_wire(correction_message((1.0, 2.0, 0.0), 10.0)))  # late again: where it was
+    assert reader.get() is got
+
+
 async def test_settle_lets_the_pose_stream_go_at_the_first_correction_unread() -> None:
-    reader, _, tf, pose = _reader()
+    reader, odom, tf, pose = _reader()
+    odom.put(_odom(1.0, 0.5, 0.0, 0.0))
     settling = asyncio.create_task(reader.settle(period=0.001))
     try:
         tf.put(_wire(correction_message((0.0, 0.0, 0.0), 1.0, "map", "other")))  # not map->odom
