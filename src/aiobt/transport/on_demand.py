@@ -44,7 +44,9 @@ class OnDemand:
     ``forget()`` drops what was received before; ``released()`` (if given) is
     called after a detach closed the streams. ``wait_on_attach_only``: a user
     arriving while the streams are attached does not wait (a silent publisher
-    costs only the user that attached a wait).
+    costs only the user that attached a wait); one arriving during that wait waits
+    for its end, and waits in its place if that user left before it was over (its
+    goal cancelled), so no user is told the streams are fresh before they are.
     """
 
     def __init__(
@@ -67,8 +69,9 @@ class OnDemand:
         self._waited = waited
         self._released = released
         self._wait_on_attach_only = wait_on_attach_only  # attached: take what came, if any
-        self._settled = asyncio.Event()  # the attaching user's wait is over
+        self._settled = asyncio.Event()  # the attaching user's wait ended
         self._settled.set()
+        self._wait_over = False  # ...with a first message on each, or its timeout
         self._streams: Sequence[Stream] = ()
         self._users = 0
         self._detacher: asyncio.Task[None] | None = None
@@ -93,17 +96,23 @@ class OnDemand:
                     await sim_time.wait_fresh(None)
                 if self._streams and self._wait_on_attach_only:
                     await self._settled.wait()  # a user attaching meanwhile: its wait
-                    return True
+                    if self._wait_over:
+                        return True
+                    # that user left (its goal cancelled) before its wait was over: the
+                    # streams may have nothing yet, so this one waits in its place
                 if not self._streams:
                     self._forget()
                     self._streams = tuple(self._attach())
-                    self._settled.clear()
                     log.debug("streams attached")
+                self._wait_over = False
+                self._settled.clear()
                 try:
                     await asyncio.gather(*(s.wait_latest() for s in self._streams[: self._waited]))
+                    self._wait_over = True
                 finally:
                     self._settled.set()
         except TimeoutError:
+            self._wait_over = True  # silent streams: the users after do not wait on them
             log.warning("no first message within %.1f s of attaching", timeout)
             return False
         return True

@@ -117,3 +117,64 @@ async def test_no_samples_within_the_timeout_says_so() -> None:
 async def test_a_negative_linger_is_refused() -> None:
     with pytest.raises(ValueError, match="linger"):
         OnDemand(list, lambda: None, ManualClock(), linger=-1.0)
+
+
+def attach_only(robot: Robot) -> OnDemand:
+    return OnDemand(robot.attach, robot.forget, ManualClock(), wait_on_attach_only=True)
+
+
+async def _spin(times: int = 20) -> None:
+    for _ in range(times):
+        await asyncio.sleep(0)
+
+
+@pytest.mark.timeout(10)
+async def test_a_user_arriving_during_the_attach_wait_is_told_fresh_at_its_end() -> None:
+    robot = Robot(silent=True)
+    feed = attach_only(robot)
+    first = asyncio.create_task(feed.acquire(5.0))
+    await _spin()
+    second = asyncio.create_task(feed.acquire(5.0))
+    await _spin()
+    assert not first.done()
+    assert not second.done()
+    for stream in robot.attached[0][:2]:
+        stream.arrived.set()
+    assert await asyncio.wait_for(asyncio.gather(first, second), 1.0) == [True, True]
+    assert len(robot.attached) == 1
+    assert await asyncio.wait_for(feed.acquire(5.0), 1.0) is True  # attached: no wait
+    feed.detach()
+
+
+@pytest.mark.timeout(10)
+async def test_an_attaching_user_cancelled_mid_wait_leaves_the_wait_to_the_next() -> None:
+    """The route server's e2e failure of 2026-11-29: a request cancelled while it waited
+    for the first pose released the request behind it, told fresh with no pose yet."""
+    robot = Robot(silent=True)
+    feed = attach_only(robot)
+    first = asyncio.create_task(feed.acquire(5.0))
+    await _spin()
+    second = asyncio.create_task(feed.acquire(5.0))
+    await _spin()
+    first.cancel()
+    await _spin()
+    assert first.cancelled()
+    assert not second.done()  # nothing came: still waiting, in the cancelled one's place
+    for stream in robot.attached[0][:2]:
+        stream.arrived.set()
+    assert await asyncio.wait_for(second, 1.0) is True
+    assert len(robot.attached) == 1  # the same streams
+    feed.detach()
+
+
+@pytest.mark.timeout(10)
+async def test_silent_streams_cost_only_the_user_that_attached() -> None:
+    robot = Robot(silent=True)
+    feed = attach_only(robot)
+    first = asyncio.create_task(feed.acquire(0.05))
+    await _spin()
+    second = asyncio.create_task(feed.acquire(5.0))
+    assert await asyncio.wait_for(first, 1.0) is False
+    assert await asyncio.wait_for(second, 1.0) is True  # its wait was the first's
+    assert await asyncio.wait_for(feed.acquire(5.0), 1.0) is True  # and no wait after
+    feed.detach()
