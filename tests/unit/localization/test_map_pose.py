@@ -181,9 +181,10 @@ def test_kept_poses_without_a_correction_are_the_pose_streams() -> None:
 
 
 def test_a_correction_older_than_the_kept_odometry_leaves_the_pose_stream_read() -> None:
-    """The route server's e2e failure (2026-11-29): rings opened together, the stream's
-    pose read first, then a correction sent late, older than every odometry message
-    kept since; the reader had gone from a pose back to none."""
+    """Rings opened together, the stream's pose read first, then a correction sent late,
+    older than every odometry message kept since: the reader went from a pose back to
+    none (a candidate cause of the route server's 'no robot pose' in an e2e run,
+    2026-11-29)."""
     reader, odom, tf, pose = _reader(keep=4)
     streamed = PoseStamped.from_xy_yaw(4.0, 5.0, 0.0, stamp=12.0)
     pose.put(streamed)

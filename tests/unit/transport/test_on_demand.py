@@ -119,28 +119,37 @@ async def test_a_negative_linger_is_refused() -> None:
         OnDemand(list, lambda: None, ManualClock(), linger=-1.0)
 
 
-def attach_only(robot: Robot) -> OnDemand:
-    return OnDemand(robot.attach, robot.forget, ManualClock(), wait_on_attach_only=True)
-
-
 async def _spin(times: int = 20) -> None:
     for _ in range(times):
         await asyncio.sleep(0)
 
 
-@pytest.mark.timeout(10)
-async def test_a_user_arriving_during_the_attach_wait_is_told_fresh_at_its_end() -> None:
+async def _one_behind_another(
+    first_timeout: float = 5.0,
+) -> tuple[Robot, OnDemand, asyncio.Task[bool], asyncio.Task[bool]]:
+    """Silent streams on demand, waited for only on attach; a first user attaching and
+    waiting, then a second arriving during that wait."""
     robot = Robot(silent=True)
-    feed = attach_only(robot)
-    first = asyncio.create_task(feed.acquire(5.0))
+    feed = OnDemand(robot.attach, robot.forget, ManualClock(), wait_on_attach_only=True)
+    first = asyncio.create_task(feed.acquire(first_timeout))
     await _spin()
     second = asyncio.create_task(feed.acquire(5.0))
     await _spin()
-    assert not first.done()
-    assert not second.done()
+    return robot, feed, first, second
+
+
+def _messages_come(robot: Robot) -> None:
     for stream in robot.attached[0][:2]:
         stream.arrived.set()
-    assert await asyncio.wait_for(asyncio.gather(first, second), 1.0) == [True, True]
+
+
+@pytest.mark.timeout(10)
+async def test_a_user_arriving_during_the_attach_wait_is_told_fresh_at_its_end() -> None:
+    robot, feed, first, second = await _one_behind_another()
+    assert not first.done()
+    assert not second.done()
+    _messages_come(robot)
+    assert list(await asyncio.wait_for(asyncio.gather(first, second), 1.0)) == [True, True]
     assert len(robot.attached) == 1
     assert await asyncio.wait_for(feed.acquire(5.0), 1.0) is True  # attached: no wait
     feed.detach()
@@ -148,20 +157,14 @@ async def test_a_user_arriving_during_the_attach_wait_is_told_fresh_at_its_end()
 
 @pytest.mark.timeout(10)
 async def test_an_attaching_user_cancelled_mid_wait_leaves_the_wait_to_the_next() -> None:
-    """The route server's e2e failure of 2026-11-29: a request cancelled while it waited
-    for the first pose released the request behind it, told fresh with no pose yet."""
-    robot = Robot(silent=True)
-    feed = attach_only(robot)
-    first = asyncio.create_task(feed.acquire(5.0))
-    await _spin()
-    second = asyncio.create_task(feed.acquire(5.0))
-    await _spin()
+    """Before, the request behind a cancelled one was told fresh with nothing received
+    (a candidate cause of the route server's 'no robot pose' in an e2e run, 2026-11-29)."""
+    robot, feed, first, second = await _one_behind_another()
     first.cancel()
     await _spin()
     assert first.cancelled()
     assert not second.done()  # nothing came: still waiting, in the cancelled one's place
-    for stream in robot.attached[0][:2]:
-        stream.arrived.set()
+    _messages_come(robot)
     assert await asyncio.wait_for(second, 1.0) is True
     assert len(robot.attached) == 1  # the same streams
     feed.detach()
@@ -169,11 +172,7 @@ async def test_an_attaching_user_cancelled_mid_wait_leaves_the_wait_to_the_next(
 
 @pytest.mark.timeout(10)
 async def test_silent_streams_cost_only_the_user_that_attached() -> None:
-    robot = Robot(silent=True)
-    feed = attach_only(robot)
-    first = asyncio.create_task(feed.acquire(0.05))
-    await _spin()
-    second = asyncio.create_task(feed.acquire(5.0))
+    _, feed, first, second = await _one_behind_another(first_timeout=0.05)
     assert await asyncio.wait_for(first, 1.0) is False
     assert await asyncio.wait_for(second, 1.0) is True  # its wait was the first's
     assert await asyncio.wait_for(feed.acquire(5.0), 1.0) is True  # and no wait after
