@@ -1,6 +1,6 @@
 """Wires the docking server onto the bus: the robot's odometry, its pose in ``map``
 (:class:`~aiobt.geometry.map_pose.MapPose`: the odometry composed with localization's
-correction on ``tf``, ``pose`` read only until one comes), static transforms
+correction on ``tf``, ``pose`` read only until one is composed), static transforms
 (``tf_static``), battery and the dock's detections in; ``cmd_vel``, the poses it works
 with (``dock_pose``, ``filtered_dock_pose``, ``staging_pose``), the docks and the docked
 state (latched, for viewers) out; the two actions and ``docking_server/reload_database``."""

@@ -1,6 +1,6 @@
 """Wires the following server onto the bus: the robot's odometry and its pose in ``map``
 (:class:`~aiobt.geometry.map_pose.MapPose`: the odometry composed with localization's
-correction on ``tf``, ``pose`` read only until one comes) in; the goal's detections
+correction on ``tf``, ``pose`` read only until one is composed) in; the goal's detections
 subscribed for the goal's time; the command and the filtered object pose out; the
 ``follow_object`` action."""
 
