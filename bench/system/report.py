@@ -5,7 +5,8 @@ Run: ``.venv/bin/python -m bench.system.report --speed 10``
 Starts a router and the stack (robot at ``--speed``, localization, planner, controller,
 behaviors, navigator, and the safety chain (velocity smoother, collision monitor) as
 ``aiobt up`` runs it unless ``--no-safety-chain``; processes as the end-to-end tests run
-them) and measures:
+them; ``--no-localization``: the robot's stand-in pose, the truth, in localization's
+stead: the same-session baseline for what localization costs) and measures:
 
 - CPU of each process (router included) in % of one core, from ``/proc/<pid>/stat``,
   over an idle phase (robot standing, ``--idle`` wall s) and over the driving phase, and
@@ -68,7 +69,7 @@ from aiobt.system.lifeline import popen_bound
 from aiobt.system.realtime import raise_priority
 from aiobt.testing.bus import exit_on_sigterm, start_router
 from aiobt.testing.navwatch import NavClient, start_navigation
-from aiobt.testing.stack import NavStack, StackConfig
+from aiobt.testing.stack import SERVICES, NavStack, StackConfig
 from aiobt.transport import ActionError, Bus, ServiceError, open_bus
 
 from ..nav.goals import pick_goals, static_grid
@@ -372,6 +373,14 @@ def main(argv: list[str] | None = None) -> int:
         default=True,
         help="the velocity smoother and the collision monitor, as `aiobt up` runs them",
     )
+    parser.add_argument(
+        "--localization",
+        action=argparse.BooleanOptionalAction,
+        default=True,
+        help="the localization service in the loop (the default, as `aiobt up`); "
+        "--no-localization: the robot's stand-in pose instead (--pose-source truth), the "
+        "same-session baseline for what localization costs the running stack",
+    )
     parser.add_argument("--reactions", type=int, default=3)
     parser.add_argument(
         "--clock",
@@ -424,14 +433,7 @@ def main(argv: list[str] | None = None) -> int:
     if levels and not args.realtime:
         parser.error("--priority needs --realtime")
     before = loadavg()
-    extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
-    extra.update({name: ["--realtime-priority", str(level)] for name, level in levels.items()})
-    if args.clock_hz is not None:
-        extra["robot"] = [*extra.get("robot", []), "--clock-hz", str(args.clock_hz)]
-    config = StackConfig(
-        world="office", speed=args.speed, seed=args.seed, extra=extra,
-        safety_chain=args.safety_chain, sim_time=args.sim_time,
-    )  # fmt: skip
+    config = stack_config(args, levels)
     spinners = [spin() for _ in range(args.busy)]
     try:
         router_args = ["--lease-ms", str(config.lease_ms)]
@@ -453,11 +455,31 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{args.busy} other process(es) spinning at ordinary priority (--busy)\n")
     clock = "the simulation's clock" if config.uses_sim_time else "the wall clock"
     print(f"the services on {clock} (--clock)\n")
+    if not args.localization:
+        print("no localization: the robot's stand-in pose, the truth (--no-localization)\n")
     print("\n".join(table(figures, args.speed, args.probe_period)))
     print(f"\nload average before: {before}; after: {loadavg()}")
     for failure in sorted(set(figures.probe_failures))[:5]:
         print(f"planner probe failure: {failure}")
     return 0
+
+
+def stack_config(args: argparse.Namespace, levels: dict[str, int]) -> StackConfig:
+    """The stack the options ask for (``levels``: :func:`priorities` of ``--priority``)."""
+    extra = {name: ["--realtime-priority"] for name in REALTIME} if args.realtime else {}
+    extra.update({name: ["--realtime-priority", str(level)] for name, level in levels.items()})
+    robot = ["--clock-hz", str(args.clock_hz)] if args.clock_hz is not None else []
+    services = SERVICES
+    if not args.localization:  # the robot's stand-in: the truth on {ns}/pose
+        robot += ["--pose-source", "truth"]
+        services = tuple(name for name in SERVICES if name != "localization")
+        extra.pop("localization", None)
+    if robot:
+        extra["robot"] = [*extra.get("robot", []), *robot]
+    return StackConfig(
+        world="office", speed=args.speed, seed=args.seed, extra=extra, services=services,
+        safety_chain=args.safety_chain, sim_time=args.sim_time,
+    )  # fmt: skip
 
 
 def priorities(given: list[str]) -> dict[str, int]:

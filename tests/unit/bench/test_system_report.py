@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import math
 import os
 import time
@@ -28,6 +29,7 @@ from bench.system.report import (
     pooled_rate,
     priorities,
     spin,
+    stack_config,
     summed_row,
 )
 
@@ -152,6 +154,27 @@ def test_a_priority_names_a_raised_service_and_a_fifo_level() -> None:
         priorities(["planner=100"])
     with pytest.raises(ValueError, match="'planner': N must be"):
         priorities(["planner"])
+
+
+def options(**given: object) -> argparse.Namespace:
+    """The report's options as its parser gives them by default, ``given`` replaced."""
+    values = {"speed": 1.0, "seed": 1, "realtime": False, "clock_hz": None}
+    values |= {"localization": True, "safety_chain": True, "sim_time": False}
+    return argparse.Namespace(**{**values, **given})
+
+
+def test_without_localization_the_robot_gives_its_stand_in_pose() -> None:
+    config = stack_config(options(localization=False, realtime=True, clock_hz=50.0), {})
+    assert "localization" not in config.services
+    assert {"robot", "planner", "controller", "navigator", "collision_monitor"} <= {
+        *config.services
+    }
+    robot = config.command("robot", "tcp/127.0.0.1:7447", "ns")
+    assert robot[-5:] == ["--realtime-priority", "--clock-hz", "50.0", "--pose-source", "truth"]
+    assert "localization" not in config.extra
+    with_it = stack_config(options(), {})
+    assert "localization" in with_it.services
+    assert "--pose-source" not in with_it.command("robot", "tcp/127.0.0.1:7447", "ns")
 
 
 def test_a_priority_needs_realtime(capsys: pytest.CaptureFixture[str]) -> None:
