@@ -157,7 +157,7 @@ def test_a_priority_names_a_raised_service_and_a_fifo_level() -> None:
 
 
 def options(**given: object) -> argparse.Namespace:
-    """The report's options as its parser gives them by default, ``given`` replaced."""
+    """The options :func:`stack_config` reads (1x, wall clock, all in), ``given`` replaced."""
     values = {"speed": 1.0, "seed": 1, "realtime": False, "clock_hz": None}
     values |= {"localization": True, "safety_chain": True, "sim_time": False}
     return argparse.Namespace(**{**values, **given})
